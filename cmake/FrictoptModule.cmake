@@ -1,0 +1,67 @@
+# SPDX-License-Identifier: MIT
+# One helper per kind of target, so each module's CMake is a few lines and the layering of
+# DESIGN.md (a module links only modules above it) is a link-time fact.
+
+# Flags every frictopt target gets: C++20, warnings, sanitizers, the portable -march.
+function(frictopt_target_defaults target)
+  target_compile_features(${target} PUBLIC cxx_std_20)
+  set_target_properties(${target} PROPERTIES CXX_EXTENSIONS OFF)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
+                                           $<$<CONFIG:Release>:-O2 -march=x86-64-v2>)
+  if(FRICTOPT_WARNINGS_AS_ERRORS)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  if(FRICTOPT_SANITIZE)
+    if("address" IN_LIST FRICTOPT_SANITIZE AND "thread" IN_LIST FRICTOPT_SANITIZE)
+      message(FATAL_ERROR "FRICTOPT_SANITIZE='${FRICTOPT_SANITIZE}': address and thread "
+                          "sanitizers cannot be combined; choose one.")
+    endif()
+    list(JOIN FRICTOPT_SANITIZE "," _san)
+    target_compile_options(${target} PRIVATE -fsanitize=${_san} -fno-omit-frame-pointer -g)
+    target_link_options(${target} PUBLIC -fsanitize=${_san})
+    target_compile_definitions(${target} PUBLIC FRICTOPT_ENABLE_ASSERTS=1)
+  endif()
+endfunction()
+
+# frictopt_add_module(name SOURCES a.cpp b.cpp DEPENDS frictopt::x LIBS third::party)
+# creates frictopt_<name> with alias frictopt::<name>.
+function(frictopt_add_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;LIBS;PRIVATE_LIBS" ${ARGN})
+  if(ARG_SOURCES)
+    add_library(frictopt_${name} STATIC ${ARG_SOURCES})
+    target_include_directories(frictopt_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include
+                               PRIVATE ${PROJECT_SOURCE_DIR}/src)
+    target_link_libraries(frictopt_${name} PUBLIC ${ARG_DEPENDS} ${ARG_LIBS}
+                          PRIVATE ${ARG_PRIVATE_LIBS})
+    frictopt_target_defaults(frictopt_${name})
+  else()
+    add_library(frictopt_${name} INTERFACE)
+    target_include_directories(frictopt_${name} INTERFACE ${PROJECT_SOURCE_DIR}/include)
+    target_link_libraries(frictopt_${name} INTERFACE ${ARG_DEPENDS} ${ARG_LIBS})
+  endif()
+  add_library(frictopt::${name} ALIAS frictopt_${name})
+endfunction()
+
+# frictopt_add_test(module SOURCES x_test.cpp ... [LABELS slow] [DEPENDS extra])
+# One test binary per call, registered with CTest through gtest_discover_tests.
+function(frictopt_add_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;LABELS" ${ARGN})
+  add_executable(${name}_test ${ARG_SOURCES})
+  target_include_directories(${name}_test PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+  target_link_libraries(${name}_test PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main)
+  frictopt_target_defaults(${name}_test)
+  set(_labels ${ARG_LABELS})
+  if(NOT _labels)
+    set(_labels quick)
+  endif()
+  gtest_discover_tests(${name}_test PROPERTIES LABELS "${_labels}" DISCOVERY_TIMEOUT 60
+                       WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+endfunction()
+
+# frictopt_add_benchmark(name SOURCES x.cpp DEPENDS frictopt::fem)
+function(frictopt_add_benchmark name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} benchmark::benchmark)
+  frictopt_target_defaults(${name})
+endfunction()
