@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// The admissible designs Υ as linear constraints on α (spec 01, §4.4; 3D: A-3DUPS of §3).
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+
+#include "frictopt/shape/bezier_shape.hpp"
+
+namespace frictopt::shape {
+
+/// Slope-bound scaling, spec 01 §4.3: the thesis' |Δα| ≤ C1/(m−1) (which bounds the true slope
+/// by C1/a), or the exact |Δα| ≤ a·C1/(m−1) that bounds |∂G/∂x| by C1.
+enum class SlopeScaling { kThesis, kExact };
+
+/// Data of Υ (spec 01, §4.1 with the corrected volume of §4.2).
+struct AdmissibleSetParameters {
+  double upper_bound = 0.0;             ///< C0 > 0: 0 <= α_k <= C0 [m]
+  std::optional<double> slope_bound;    ///< C1 > 0; absent: no slope rows
+  std::optional<double> volume;         ///< C2: meas Ω(α) [m² in 2D per unit thickness, m³ in 3D]; absent: no equality
+  double height = 0.0;                  ///< C4: height of the flat top [m]
+  SlopeScaling slope_scaling = SlopeScaling::kThesis;
+};
+
+/// Υ = {α : lower <= α <= upper, A_in α <= b_in, A_eq α = b_eq}.
+struct LinearConstraints {
+  Eigen::VectorXd lower, upper;
+  Eigen::MatrixXd A_in;
+  Eigen::VectorXd b_in;
+  Eigen::MatrixXd A_eq;
+  Eigen::VectorXd b_eq;
+  std::vector<std::string> inequality_names;  ///< one per row of A_in, e.g. "slope x1 (2,0)-(1,0) <= 0.05"
+
+  Eigen::Index dimension() const { return lower.size(); }
+  /// Largest violation of any constraint at α (0 when feasible).
+  double max_violation(const Eigen::Ref<const Eigen::VectorXd>& alpha) const;
+  /// Empty when max_violation(α) <= tol; else a message naming the worst violated constraint.
+  std::string describe_violation(const Eigen::Ref<const Eigen::VectorXd>& alpha, double tol) const;
+};
+
+/// Builds Υ for the shape:
+///  * bounds 0 <= α <= C0;
+///  * slopes between neighbouring control points, both directions in 3D:
+///    |α_{i+1,j} − α_{i,j}| <= δ1, |α_{i,j+1} − α_{i,j}| <= δ2, δ_c = C1/(m_c−1) (thesis) or
+///    extent_c·C1/(m_c−1) (exact), as two rows each;
+///  * volume: meas Ω(α) = base·C4 − ∫G_α = C2, i.e. Σ_k α_k = d·(base·C4 − C2)/base with
+///    base = a (2D) or a·b (3D) — the corrected form of spec 01, §4.2 (2D: d(C4 − C2/a)) and
+///    its 3D analogue A-3DUPS (spec 01, §3).
+/// Throws InvalidInput when a parameter is out of range or the set is obviously empty (the
+/// volume asks for a mean height outside [0, C0]).
+LinearConstraints make_admissible_set(const BezierShape& shape, const AdmissibleSetParameters& p);
+
+}  // namespace frictopt::shape

@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/shape/admissible_set.hpp"
+
+#include <fmt/format.h>
+
+#include <vector>
+
+#include "frictopt/core/error.hpp"
+
+namespace frictopt::shape {
+
+double LinearConstraints::max_violation(const Eigen::Ref<const Eigen::VectorXd>& alpha) const {
+  double v = 0.0;
+  v = std::max(v, (lower - alpha).maxCoeff());
+  v = std::max(v, (alpha - upper).maxCoeff());
+  if (A_in.rows() > 0) v = std::max(v, (A_in * alpha - b_in).maxCoeff());
+  if (A_eq.rows() > 0) v = std::max(v, (A_eq * alpha - b_eq).cwiseAbs().maxCoeff());
+  return v;
+}
+
+std::string LinearConstraints::describe_violation(const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                                                  double tol) const {
+  double worst = tol;
+  std::string what;
+  for (Eigen::Index k = 0; k < alpha.size(); ++k) {
+    if (lower(k) - alpha(k) > worst) {
+      worst = lower(k) - alpha(k);
+      what = fmt::format("alpha[{}] = {:.6g}; expected >= {:.6g}", k, alpha(k), lower(k));
+    }
+    if (alpha(k) - upper(k) > worst) {
+      worst = alpha(k) - upper(k);
+      what = fmt::format("alpha[{}] = {:.6g}; expected <= {:.6g} (upper bound C0)", k, alpha(k),
+                         upper(k));
+    }
+  }
+  for (Eigen::Index r = 0; r < A_in.rows(); ++r) {
+    const double lhs = A_in.row(r).dot(alpha);
+    if (lhs - b_in(r) > worst) {
+      worst = lhs - b_in(r);
+      what = fmt::format("{}: value {:.6g}; expected <= {:.6g}", inequality_names[r], lhs, b_in(r));
+    }
+  }
+  for (Eigen::Index r = 0; r < A_eq.rows(); ++r) {
+    const double lhs = A_eq.row(r).dot(alpha);
+    if (std::abs(lhs - b_eq(r)) > worst) {
+      worst = std::abs(lhs - b_eq(r));
+      what = fmt::format("volume: sum of alpha = {:.6g}; expected {:.6g}", lhs, b_eq(r));
+    }
+  }
+  return what;
+}
+
+LinearConstraints make_admissible_set(const BezierShape& shape, const AdmissibleSetParameters& p) {
+  if (!(p.upper_bound > 0))
+    throw InvalidInput(fmt::format("design.upper_bound = {}; expected > 0", p.upper_bound));
+  if (!(p.height > p.upper_bound))
+    throw InvalidInput(fmt::format(
+        "design.upper_bound = {}; expected < geometry.height = {} (a control point above the "
+        "top would invert elements)",
+        p.upper_bound, p.height));
+  if (p.slope_bound && !(*p.slope_bound > 0))
+    throw InvalidInput(fmt::format("design.slope_bound = {}; expected > 0", *p.slope_bound));
+
+  const int d = shape.num_controls();
+  const auto m = shape.control_net();
+  const auto extent = shape.extents();
+  LinearConstraints c;
+  c.lower = Eigen::VectorXd::Zero(d);
+  c.upper = Eigen::VectorXd::Constant(d, p.upper_bound);
+
+  std::vector<Eigen::VectorXd> rows;
+  std::vector<double> rhs;
+  if (p.slope_bound) {
+    const int directions = shape.dim() - 1;
+    for (int dir = 0; dir < directions; ++dir) {
+      const double scale = p.slope_scaling == SlopeScaling::kExact ? extent[dir] : 1.0;
+      const double delta = scale * *p.slope_bound / (m[dir] - 1);
+      for (int j = 0; j < m[1]; ++j)
+        for (int i = 0; i < m[0]; ++i) {
+          const int i2 = dir == 0 ? i + 1 : i, j2 = dir == 1 ? j + 1 : j;
+          if (i2 >= m[0] || j2 >= m[1]) continue;
+          const int k = i + m[0] * j, k2 = i2 + m[0] * j2;
+          for (int sign : {+1, -1}) {
+            Eigen::VectorXd row = Eigen::VectorXd::Zero(d);
+            row(k2) = sign;
+            row(k) = -sign;
+            rows.push_back(row);
+            rhs.push_back(delta);
+            c.inequality_names.push_back(
+                shape.dim() == 2
+                    ? fmt::format("slope {}alpha[{}] - alpha[{}]", sign > 0 ? "" : "-", k2, k)
+                    : fmt::format("slope x{} {}(alpha({},{}) - alpha({},{}))", dir + 1,
+                                  sign > 0 ? "" : "-", i2, j2, i, j));
+          }
+        }
+    }
+  }
+  c.A_in.resize(static_cast<Eigen::Index>(rows.size()), d);
+  c.b_in.resize(static_cast<Eigen::Index>(rows.size()));
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    c.A_in.row(static_cast<Eigen::Index>(r)) = rows[r].transpose();
+    c.b_in(static_cast<Eigen::Index>(r)) = rhs[r];
+  }
+
+  if (p.volume) {
+    const double base = shape.base_measure();
+    const double sum = d * (base * p.height - *p.volume) / base;
+    const double mean_height = sum / d;
+    if (mean_height < 0 || mean_height > p.upper_bound)
+      throw InvalidInput(fmt::format(
+          "design.volume = {}; the volume asks for a mean bottom height {:.6g}, expected within "
+          "[0, upper_bound = {}] (the admissible set would be empty)",
+          *p.volume, mean_height, p.upper_bound));
+    c.A_eq = Eigen::MatrixXd::Ones(1, d);
+    c.b_eq = Eigen::VectorXd::Constant(1, sum);
+  } else {
+    c.A_eq.resize(0, d);
+    c.b_eq.resize(0);
+  }
+  return c;
+}
+
+}  // namespace frictopt::shape
