@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/mesh/structured_mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "common/finite_difference.hpp"
+#include "frictopt/core/error.hpp"
+
+namespace frictopt::mesh {
+namespace {
+
+using frictopt::testing::kSeed;
+
+Eigen::VectorXd wavy_design(int d, double base, double amplitude) {
+  Eigen::VectorXd alpha(d);
+  for (int k = 0; k < d; ++k) alpha(k) = base + amplitude * std::sin(1.7 * k + 0.3);
+  return alpha;
+}
+
+// Exact volume from the linear formula: base·C4 − ∫G_α = base·C4 − wᵀα (spec 01, §4.2).
+double linear_volume(const shape::BezierShape& s, double height, const Eigen::VectorXd& alpha) {
+  return s.base_measure() * height - s.integral_weights().dot(alpha);
+}
+
+TEST(StructuredMesh, VolumeConvergesToLinearFormulaAtSecondOrder2D) {
+  const auto curve = shape::BezierShape::curve(2.0, 15);
+  const Eigen::VectorXd alpha = wavy_design(15, 0.3, 0.2);
+  const double exact = linear_volume(curve, 1.0, alpha);
+  std::vector<double> errors;
+  for (int n : {8, 16, 32, 64}) {
+    StructuredMesh mesh(curve, 1.0, {{n, 0, 4}, 1.0});
+    errors.push_back(std::abs(mesh.volume(mesh.positions(alpha)) - exact));
+  }
+  for (std::size_t i = 0; i + 1 < errors.size(); ++i) {
+    const double rate = std::log2(errors[i] / errors[i + 1]);
+    // The bottom is interpolated piecewise linearly: the trapezoid rule's O(h²).
+    EXPECT_NEAR(rate, 2.0, 0.15) << "refinement " << i << " errors " << errors[i] << " " << errors[i + 1];
+    std::printf("2D volume: error %.3e -> %.3e, observed rate %.3f\n", errors[i], errors[i + 1], rate);
+  }
+}
+
+TEST(StructuredMesh, VolumeConvergesToLinearFormulaAtSecondOrder3D) {
+  const auto surface = shape::BezierShape::surface(1.0, 0.8, 4, 3);
+  const Eigen::VectorXd alpha = wavy_design(12, 0.25, 0.15);
+  const double exact = linear_volume(surface, 1.0, alpha);
+  std::vector<double> errors;
+  for (int n : {4, 8, 16}) {
+    StructuredMesh mesh(surface, 1.0, {{n, n, 2}, 1.0});
+    errors.push_back(std::abs(mesh.volume(mesh.positions(alpha)) - exact));
+  }
+  for (std::size_t i = 0; i + 1 < errors.size(); ++i) {
+    const double rate = std::log2(errors[i] / errors[i + 1]);
+    EXPECT_NEAR(rate, 2.0, 0.2);
+    std::printf("3D volume: error %.3e -> %.3e, observed rate %.3f\n", errors[i], errors[i + 1], rate);
+  }
+}
+
+TEST(StructuredMesh, DesignJacobianMatchesCentralDifferences) {
+  const auto surface = shape::BezierShape::surface(1.0, 1.0, 3, 3);
+  StructuredMesh mesh(surface, 1.0, {{3, 4, 3}, 2.0});
+  std::mt19937_64 rng{kSeed};
+  const Eigen::VectorXd alpha = wavy_design(9, 0.2, 0.1);
+  const auto positions = [&](const Eigen::VectorXd& a) {
+    const Eigen::MatrixXd X = mesh.positions(a);
+    Eigen::VectorXd flat(X.size());
+    for (int n = 0; n < X.rows(); ++n) flat.segment(n * 3, 3) = X.row(n).transpose();
+    return flat;
+  };
+  const Eigen::MatrixXd fd =
+      frictopt::testing::central_jacobian(positions, alpha, frictopt::testing::central_step(alpha));
+  const Eigen::MatrixXd V = Eigen::MatrixXd(mesh.design_jacobian());
+  // X is affine in α: the central difference is exact up to round-off (~eps/h·|X|).
+  EXPECT_LE((fd - V).norm(), 1e-9 * V.norm());
+}
+
+TEST(StructuredMesh, BottomFollowsTheBezierSurfaceAndTopStaysFlat) {
+  const auto curve = shape::BezierShape::curve(2.0, 5);
+  StructuredMesh mesh(curve, 1.0, {{10, 0, 3}, 1.5});
+  const Eigen::VectorXd alpha = wavy_design(5, 0.3, 0.1);
+  const Eigen::MatrixXd X = mesh.positions(alpha);
+  for (int node : mesh.bottom_nodes())
+    EXPECT_NEAR(X(node, 1), curve.height(alpha, X.row(node).head(1).transpose()), 1e-15);
+  for (int node : mesh.face_nodes(Face::kTop)) EXPECT_NEAR(X(node, 1), 1.0, 1e-15);
+}
+
+TEST(StructuredMesh, FacesHaveTheExpectedSizes) {
+  const auto surface = shape::BezierShape::surface(1.0, 1.0, 2, 2);
+  StructuredMesh mesh(surface, 1.0, {{4, 3, 2}, 1.0});
+  EXPECT_EQ(mesh.num_nodes(), 5 * 4 * 3);
+  EXPECT_EQ(mesh.num_elements(), 4 * 3 * 2);
+  EXPECT_EQ(mesh.face_nodes(Face::kLeft).size(), 4u * 3u);
+  EXPECT_EQ(mesh.face_nodes(Face::kFront).size(), 5u * 3u);
+  EXPECT_EQ(mesh.face_nodes(Face::kBottom).size(), 5u * 4u);
+  EXPECT_EQ(mesh.face_facets(Face::kTop).rows(), 12);
+  EXPECT_EQ(mesh.face_facets(Face::kRight).rows(), 6);
+  const auto curve = shape::BezierShape::curve(1.0, 3);
+  StructuredMesh mesh2(curve, 1.0, {{4, 0, 2}, 1.0});
+  EXPECT_THROW((void)mesh2.face_nodes(Face::kFront), InvalidInput);
+}
+
+TEST(StructuredMesh, InvertedElementIsReportedWithElementAndDesign) {
+  const auto curve = shape::BezierShape::curve(1.0, 3);
+  StructuredMesh mesh(curve, 1.0, {{4, 0, 2}, 1.0});
+  Eigen::VectorXd alpha(3);
+  alpha << 0.1, 3.0, 0.1;  // peak height 0.05 + 1.5 > 1: the bottom rises above the top
+  try {
+    mesh.check_quality(mesh.positions(alpha), "design 12");
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("element"), std::string::npos) << what;
+    EXPECT_NE(what.find("inverted"), std::string::npos) << what;
+    EXPECT_NE(what.find("design 12"), std::string::npos) << what;
+  }
+  alpha << 0.1, 0.5, 0.1;
+  EXPECT_NO_THROW(mesh.check_quality(mesh.positions(alpha), "design 13"));
+}
+
+TEST(StructuredMesh, RejectsBadResolution) {
+  const auto curve = shape::BezierShape::curve(1.0, 3);
+  EXPECT_THROW(StructuredMesh(curve, 1.0, {{0, 0, 2}, 1.0}), InvalidInput);
+  EXPECT_THROW(StructuredMesh(curve, 1.0, {{2, 0, 2}, 0.5}), InvalidInput);
+  EXPECT_THROW((void)parse_face("bottomm"), InvalidInput);
+}
+
+}  // namespace
+}  // namespace frictopt::mesh
