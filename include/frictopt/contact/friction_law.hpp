@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: MIT
+// Friction laws as friction sets W (spec 02, §0 and §10.2; DESIGN.md "Friction sets"): the
+// friction resistance q = −τ at a contact node lies in s·W (s = λ for Coulomb), and the
+// dissipation is the support function N_W(u_t) = max_{w ∈ W} ⟨w, u_t⟩.
+#pragma once
+
+#include <Eigen/Core>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace frictopt::contact {
+
+/// The shape of the friction set W. Spellings in reports and case files come from one table.
+enum class FrictionLawKind {
+  kInterval,        ///< 2D: W = [−μ₋, μ₊] (direction-dependent when μ₋ ≠ μ₊)
+  kDisc,            ///< 3D: W = μ·(unit disc), exact isotropic Coulomb
+  kRegularPolygon,  ///< 3D: W = μ·conv{v_j}, v_j at φ_j = π(2j−1)/n (spec 02, §10.2)
+  kPolygon,         ///< 3D: W = conv{μ_j v_j}, per-vertex coefficients (spec 03, §16)
+  kEllipse,         ///< 3D: W = {(x/μ_x)² + (y/μ_y)² ≤ 1}, exact orthotropic law
+  kEllipsePolygon   ///< 3D: W = conv{(μ_x cos φ_j, μ_y sin φ_j)}, vertices on the ellipse
+};
+/// "interval", "disc", "regular_polygon", "polygon", "ellipse", "ellipse_polygon".
+std::string_view to_string(FrictionLawKind kind);
+/// Inverse of to_string; throws InvalidInput listing the accepted spellings.
+FrictionLawKind parse_friction_law_kind(std::string_view text);
+
+/// A face of the friction set: where a force lies in s·W, or which face a slip direction exposes.
+enum class FrictionFace {
+  kInterior,    ///< force: strictly inside s·W (stick); slip: u ≈ 0 (no slip direction)
+  kEdge,        ///< polygon edge `index` (joins vertices index and index+1 mod n)
+  kVertex,      ///< polygon vertex `index` (2D interval: 0 = −μ₋ end, 1 = +μ₊ end)
+  kSmooth,      ///< on the smooth boundary of a disc or ellipse
+  kDegenerate   ///< s·W collapses to {0} (s ≈ 0 or μ = 0): no face structure
+};
+/// "interior", "edge", "vertex", "smooth", "degenerate".
+std::string_view to_string(FrictionFace face);
+/// Inverse of to_string; throws InvalidInput listing the accepted spellings.
+FrictionFace parse_friction_face(std::string_view text);
+
+/// A face and, for kEdge / kVertex, its 0-based index (−1 otherwise).
+/// Index convention: our vertex j is the thesis' vertex j+1 (φ = π(2j+1)/n), our edge j joins
+/// vertices j and j+1 and is crossed by the thesis' ray ρ_{j+1} (spec 03, §14.1–§14.2).
+struct FaceLocation {
+  FrictionFace face = FrictionFace::kInterior;
+  int index = -1;
+  bool operator==(const FaceLocation&) const = default;
+};
+
+/// Absolute tolerances of FrictionLaw::classify (ContactState derives them from the solution).
+struct ClassificationTolerance {
+  double force = 0.0;  ///< distance (units of q) within which q counts as on a face; >= 0
+  double slip = 0.0;   ///< |u_t| (units of u) at or below which the node counts as not slipping
+  double angle = 1e-8; ///< sin of the angle within which u counts as on an edge-normal ray
+};
+
+/// Force face and slip face at one node.
+struct FrictionClassification {
+  FaceLocation force;  ///< where q lies in s·W
+  FaceLocation slip;   ///< face of W exposed by u_t (kInterior when |u_t| <= tolerance.slip)
+};
+
+/// A friction law: a compact convex friction set W ⊂ R^{dim−1} containing 0. Value type.
+///
+/// Tangential vectors are passed as Eigen::Vector2d for both dimensions: in 2D (interval laws)
+/// only component 0 is read and results have component 1 = 0; scalar overloads exist for 2D.
+/// Polygons are stored counter-clockwise; edge j joins vertices j and j+1 (mod n), has unit
+/// outward normal e_j and height h_j = ⟨e_j, w_j⟩ > 0 computed from the actual edge (spec 02,
+/// §10.2 and spec 03, §16), so linear constraints read ⟨e_j, q⟩ <= s·h_j.
+/// All methods are const and thread-safe.
+class FrictionLaw {
+ public:
+  /// 2D law W = [−μ₋, μ₊]: sliding in +e₁ costs μ₊, in −e₁ costs μ₋. Throws InvalidInput
+  /// unless both are finite and >= 0.
+  static FrictionLaw interval(double mu_minus, double mu_plus);
+  /// 3D isotropic disc of radius μ >= 0 (exact Coulomb law).
+  static FrictionLaw disc(double mu);
+  /// 3D thesis n-gon μ·conv{v_j}, v_j = (cos φ_j, sin φ_j), φ_j = π(2j−1)/n, j = 1..n
+  /// (spec 02, §10.2). Requires n >= 3, μ >= 0.
+  static FrictionLaw regular_polygon(double mu, int n);
+  /// 3D anisotropic polygon conv{μ_j v_j} with the n = mu_vertices.size() directions v_j of
+  /// regular_polygon (n = 4 is the thesis' Remark 6.2.1). Requires n >= 3, every μ_j finite and
+  /// > 0 (or all = 0), and a convex polygon whose every vertex is a corner; otherwise throws
+  /// InvalidInput naming the vertex and the offending values.
+  static FrictionLaw polygon(std::vector<double> mu_vertices);
+  /// 3D exact elliptic law {(x/μ_x)² + (y/μ_y)² <= 1}; μ_x, μ_y > 0 (or both 0).
+  static FrictionLaw ellipse(double mu_x, double mu_y);
+  /// 3D polygon with vertices (μ_x cos φ_j, μ_y sin φ_j) on the ellipse, φ_j as above.
+  static FrictionLaw ellipse_polygon(double mu_x, double mu_y, int n);
+
+  FrictionLawKind kind() const { return kind_; }
+  /// Spatial dimension of the contact problem: 2 (interval) or 3.
+  int dim() const { return kind_ == FrictionLawKind::kInterval ? 2 : 3; }
+  /// Number of tangential components: dim() − 1.
+  int tangential_dim() const { return dim() - 1; }
+  /// True for interval and polygon laws (faces are vertices and edges).
+  bool is_polygonal() const;
+  /// True when W = {0} (all coefficients zero): frictionless.
+  bool is_zero() const { return zero_; }
+  /// Largest |w| over W (the largest friction coefficient in any direction).
+  double max_coefficient() const { return max_coefficient_; }
+  /// Vertices w_j (polygons: counter-clockwise; interval: (−μ₋,0), (μ₊,0); smooth sets: none).
+  std::span<const Eigen::Vector2d> vertices() const { return vertices_; }
+  /// Unit outward normals e_j of edges [w_j, w_{j+1}] (polygons only; empty otherwise).
+  std::span<const Eigen::Vector2d> edge_normals() const { return normals_; }
+  /// Heights h_j = ⟨e_j, w_j⟩ of the edges (polygons only).
+  std::span<const double> edge_heights() const { return heights_; }
+  /// Semi-axes (μ_x, μ_y) of an ellipse law; (μ, μ) for a disc.
+  Eigen::Vector2d semi_axes() const { return semi_axes_; }
+
+  /// Euclidean projection of q onto s·W, s >= 0 (asserted). Exact for every law (ellipse:
+  /// Newton on the Lagrange multiplier, converged to rounding).
+  Eigen::Vector2d project(const Eigen::Vector2d& q, double s) const;
+  double project(double q, double s) const;
+  /// Support function N_W(u) = max_{w ∈ W} ⟨w, u⟩ (the dissipation per unit s).
+  double support(const Eigen::Vector2d& u) const;
+  double support(double u) const;
+  /// An element of argmax_{w ∈ W} ⟨w, u⟩ = ∂N_W(u) (for u = 0: the point 0 ∈ W).
+  Eigen::Vector2d exposed_point(const Eigen::Vector2d& u) const;
+  /// Largest α >= 0 with q + α d ∈ s·W, for q ∈ s·W; +∞ when d = 0.
+  double max_step(const Eigen::Vector2d& q, double s, const Eigen::Vector2d& d) const;
+  /// Signed boundary offset of q w.r.t. s·W, in units of q: < 0 inside, 0 on the boundary.
+  /// Polygons/interval/disc: exact signed distance inside; ellipse: (γ(q) − s)·min(μ_x, μ_y)
+  /// with γ the gauge, which has the sign and the scale of the distance.
+  double boundary_offset(const Eigen::Vector2d& q, double s) const;
+  /// Face of s·W on which q lies, within absolute distance `tolerance`.
+  FaceLocation locate(const Eigen::Vector2d& q, double s, double tolerance) const;
+  /// The sector of a slip direction u ≠ 0 in the thesis' language (spec 03, §14.2): the face of
+  /// W exposed by u. kVertex j when u is in the open cone between e_{j−1} and e_j (sector S_j,
+  /// q = λ w_j); kEdge j when u is within sin-angle `angle_tolerance` of e_j (ray ρ_j);
+  /// kSmooth for disc and ellipse; kInterior for u = 0.
+  FaceLocation sector(const Eigen::Vector2d& u, double angle_tolerance) const;
+  /// Force face and slip face at a node (spec 03, §3.2 and §14.2).
+  FrictionClassification classify(const Eigen::Vector2d& q, double s, const Eigen::Vector2d& u,
+                                  const ClassificationTolerance& tolerance) const;
+  /// One line, e.g. "polygon(n=4, mu=[0.3, 0.5, 0.3, 0.5])".
+  std::string describe() const;
+
+ private:
+  FrictionLaw() = default;
+  static FrictionLaw make_polygon(FrictionLawKind kind, std::vector<Eigen::Vector2d> vertices,
+                                  std::vector<double> mu_vertices, const char* context);
+
+  FrictionLawKind kind_ = FrictionLawKind::kDisc;
+  bool zero_ = false;
+  double max_coefficient_ = 0.0;
+  double min_coefficient_ = 0.0;  // smallest semi-axis / μ_j (used for the ellipse offset)
+  Eigen::Vector2d semi_axes_ = Eigen::Vector2d::Zero();
+  std::vector<double> mu_vertices_;
+  std::vector<Eigen::Vector2d> vertices_;
+  std::vector<Eigen::Vector2d> normals_;
+  std::vector<double> heights_;
+};
+
+}  // namespace frictopt::contact
