@@ -1,0 +1,464 @@
+// SPDX-License-Identifier: MIT
+// Case-file parsing: valid 2D and 3D cases give the expected values; every kind of bad input
+// (syntax, unknown key, wrong type, missing field, out of range, size not matching the
+// dimension) gives an InvalidInput whose message names the field.
+#include "frictopt/io/case_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <string>
+
+#include "frictopt/core/error.hpp"
+
+namespace frictopt::io {
+namespace {
+
+// The thesis' 2D example (spec 01 §4.4, 05-examples): a = 2, C4 = 1, d = 15, C2 = 1.9.
+constexpr std::string_view kValid2d = R"(
+[geometry]
+dim = 2
+a = 2.0
+height = 1.0
+
+[mesh]
+cells = [29, 14]
+grading = 2.0
+
+[material]
+young = 2.1e11
+poisson = 0.3
+
+[[load]]
+face = "top"
+traction = [0.0, -2.0e7]
+
+[[dirichlet]]
+face = "left"
+
+[[dirichlet]]
+face = "right"
+displacement = [0.0, 1e-3]
+components = [1]
+
+[design]
+control_points = [15]
+initial = 0.05
+upper_bound = 0.75
+slope_bound = 1.0
+volume = 1.9
+
+[contact]
+[contact.friction]
+kind = "isotropic"
+mu = 0.3
+
+[solver.coulomb]
+max_iterations = 40
+relative_tolerance = 1e-9
+
+[output]
+every = 5
+)";
+
+constexpr std::string_view kValid3d = R"(
+[geometry]
+dim = 3
+a = 2
+b = 1
+height = 1
+
+[mesh]
+cells = [20, 10, 8]
+
+[material]
+young = 1e9
+poisson = 0.25
+
+[[load]]
+face = "top"
+traction = [1e5, 0, -1e6]
+
+[[load]]
+face = "front"
+traction = [0, 2e5, 0]
+
+[[dirichlet]]
+face = "left"
+components = [2, 0]
+
+[design]
+control_points = [4, 3]
+initial = [0.0, 0.1, 0.1, 0.0, 0.1, 0.2, 0.2, 0.1, 0.0, 0.1, 0.1, 0.0]
+upper_bound = 0.5
+slope_scaling = "exact"
+
+[contact]
+law = "coulomb"
+[contact.friction]
+kind = "polygon"
+mu_vertices = [0.3, 0.2, 0.3, 0.2]
+
+[solver.qp]
+max_iterations = 500
+
+[solver.fem]
+
+[output]
+vtk = false
+name = "block"
+)";
+
+// `base` with the first occurrence of `from` replaced by `to`; fails the test if absent, so
+// a mutation cannot silently test the unmodified case.
+std::string replaced(std::string_view base, std::string_view from, std::string_view to) {
+  std::string text(base);
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << "'" << from << "' not in the base case";
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// Expects parse_case(text) to throw InvalidInput whose message contains every fragment.
+void expect_invalid(const std::string& text, std::initializer_list<std::string_view> fragments) {
+  try {
+    (void)parse_case(text, "case.toml");
+    ADD_FAILURE() << "no InvalidInput; expected a message with '" << *fragments.begin() << "'";
+  } catch (const InvalidInput& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("case.toml", 0), 0u) << message;
+    for (std::string_view f : fragments)
+      EXPECT_NE(message.find(f), std::string::npos) << "'" << f << "' not in: " << message;
+  }
+}
+
+TEST(ParseCase, Valid2dCaseGivesTheWrittenValuesAndDefaults) {
+  const CaseDescription c = parse_case(kValid2d, "cases2d/thesis/case.toml");
+  EXPECT_EQ(c.origin, "cases2d/thesis/case.toml");
+  EXPECT_EQ(c.geometry.dim, 2);
+  EXPECT_EQ(c.geometry.a, 2.0);
+  EXPECT_EQ(c.geometry.b, 0.0);
+  EXPECT_EQ(c.geometry.height, 1.0);
+  EXPECT_EQ(c.mesh.cells, (std::vector<int>{29, 14}));
+  EXPECT_EQ(c.mesh.grading, 2.0);
+  EXPECT_EQ(c.material.young, 2.1e11);
+  EXPECT_EQ(c.material.poisson, 0.3);
+  EXPECT_EQ(c.material.model, PlaneModel::kPlaneStrain);
+  ASSERT_EQ(c.loads.size(), 1u);
+  EXPECT_EQ(c.loads[0].face, Face::kTop);
+  EXPECT_EQ(c.loads[0].traction, Eigen::Vector2d(0.0, -2.0e7));
+  ASSERT_EQ(c.dirichlet.size(), 2u);
+  EXPECT_EQ(c.dirichlet[0].face, Face::kLeft);
+  EXPECT_EQ(c.dirichlet[0].displacement, Eigen::Vector2d::Zero());
+  EXPECT_EQ(c.dirichlet[0].components, (std::vector<int>{0, 1}));
+  EXPECT_EQ(c.dirichlet[1].face, Face::kRight);
+  EXPECT_EQ(c.dirichlet[1].displacement, Eigen::Vector2d(0.0, 1e-3));
+  EXPECT_EQ(c.dirichlet[1].components, (std::vector<int>{1}));
+  EXPECT_EQ(c.design.control_points, (std::vector<int>{15}));
+  EXPECT_EQ(c.design.num_control_points(), 15);
+  EXPECT_EQ(c.design.initial, Eigen::VectorXd::Constant(15, 0.05));
+  EXPECT_EQ(c.design.upper_bound, 0.75);
+  EXPECT_EQ(c.design.slope_bound, 1.0);
+  EXPECT_EQ(c.design.volume, 1.9);
+  EXPECT_EQ(c.design.slope_scaling, SlopeScaling::kThesis);
+  ASSERT_TRUE(c.contact.has_value());
+  EXPECT_EQ(c.contact->law, ContactLaw::kCoulomb);
+  EXPECT_EQ(c.contact->friction.kind, FrictionKind::kIsotropic);
+  EXPECT_EQ(c.contact->friction.mu, 0.3);
+  EXPECT_FALSE(c.contact->friction.n.has_value()) << "2D friction sets are intervals";
+  EXPECT_EQ(c.solver.coulomb.max_iterations, 40);
+  EXPECT_EQ(c.solver.coulomb.relative_tolerance, 1e-9);
+  EXPECT_FALSE(c.solver.qp.max_iterations.has_value());
+  EXPECT_FALSE(c.solver.qp.relative_tolerance.has_value());
+  EXPECT_TRUE(c.output.vtk);
+  EXPECT_EQ(c.output.every, 5);
+  EXPECT_EQ(c.output.name, "case") << "default name is the stem of the origin";
+}
+
+TEST(ParseCase, Valid3dCaseGivesTheWrittenValuesAndDefaults) {
+  const CaseDescription c = parse_case(kValid3d, "block.toml");
+  EXPECT_EQ(c.geometry.dim, 3);
+  EXPECT_EQ(c.geometry.a, 2.0) << "integers are valid numbers";
+  EXPECT_EQ(c.geometry.b, 1.0);
+  EXPECT_EQ(c.mesh.cells, (std::vector<int>{20, 10, 8}));
+  EXPECT_EQ(c.mesh.grading, 1.0);
+  ASSERT_EQ(c.loads.size(), 2u);
+  EXPECT_EQ(c.loads[0].traction, Eigen::Vector3d(1e5, 0, -1e6));
+  EXPECT_EQ(c.loads[1].face, Face::kFront);
+  ASSERT_EQ(c.dirichlet.size(), 1u);
+  EXPECT_EQ(c.dirichlet[0].components, (std::vector<int>{0, 2})) << "components are sorted";
+  EXPECT_EQ(c.dirichlet[0].displacement, Eigen::Vector3d::Zero());
+  EXPECT_EQ(c.design.num_control_points(), 12);
+  EXPECT_EQ(c.design.initial.size(), 12);
+  EXPECT_EQ(c.design.initial[5], 0.2);
+  EXPECT_FALSE(c.design.slope_bound.has_value());
+  EXPECT_FALSE(c.design.volume.has_value());
+  EXPECT_EQ(c.design.slope_scaling, SlopeScaling::kExact);
+  ASSERT_TRUE(c.contact.has_value());
+  EXPECT_EQ(c.contact->friction.kind, FrictionKind::kPolygon);
+  EXPECT_EQ(c.contact->friction.mu_vertices, (std::vector<double>{0.3, 0.2, 0.3, 0.2}));
+  EXPECT_EQ(c.contact->friction.n, 4) << "n defaults to the number of vertex coefficients";
+  EXPECT_EQ(c.solver.qp.max_iterations, 500);
+  EXPECT_FALSE(c.solver.coulomb.max_iterations.has_value());
+  EXPECT_FALSE(c.output.vtk);
+  EXPECT_EQ(c.output.every, 1);
+  EXPECT_EQ(c.output.name, "block");
+}
+
+TEST(ParseCase, AbsentContactTableMeansNoContact) {
+  const std::string text = replaced(kValid2d, "[contact]\n[contact.friction]\nkind = \"isotropic\"\nmu = 0.3\n", "");
+  EXPECT_FALSE(parse_case(text, "case.toml").contact.has_value());
+}
+
+TEST(ParseCase, ContactWithoutFrictionTableIsFrictionless) {
+  const std::string text =
+      replaced(kValid2d, "[contact.friction]\nkind = \"isotropic\"\nmu = 0.3\n", "");
+  const CaseDescription c = parse_case(text, "case.toml");
+  ASSERT_TRUE(c.contact.has_value());
+  EXPECT_EQ(c.contact->friction.kind, FrictionKind::kNone);
+}
+
+TEST(ParseCase, IsotropicAndEllipticLawsIn3dDefaultToSixteenSides) {
+  const std::string iso = replaced(kValid3d, "kind = \"polygon\"\nmu_vertices = [0.3, 0.2, 0.3, 0.2]",
+                                   "kind = \"isotropic\"\nmu = 0.5");
+  EXPECT_EQ(parse_case(iso, "case.toml").contact->friction.n, 16);
+  const std::string ellipse =
+      replaced(kValid3d, "kind = \"polygon\"\nmu_vertices = [0.3, 0.2, 0.3, 0.2]",
+               "kind = \"ellipse\"\nmu_x = 0.4\nmu_y = 0.2\nn = 32");
+  const FrictionSpec f = parse_case(ellipse, "case.toml").contact->friction;
+  EXPECT_EQ(f.kind, FrictionKind::kEllipse);
+  EXPECT_EQ(f.mu_x, 0.4);
+  EXPECT_EQ(f.mu_y, 0.2);
+  EXPECT_EQ(f.n, 32);
+}
+
+TEST(ParseCase, DirectionDependentFrictionIn2dReadsBothCoefficients) {
+  const std::string text =
+      replaced(kValid2d, "kind = \"isotropic\"\nmu = 0.3",
+               "kind = \"polygon\"\nmu_plus = 0.4\nmu_minus = 0.1");
+  const FrictionSpec f = parse_case(text, "case.toml").contact->friction;
+  EXPECT_EQ(f.kind, FrictionKind::kPolygon);
+  EXPECT_EQ(f.mu_plus, 0.4);
+  EXPECT_EQ(f.mu_minus, 0.1);
+}
+
+TEST(ParseCase, PlaneStressIsAccepted) {
+  const std::string text = replaced(kValid2d, "poisson = 0.3", "poisson = 0.3\nmodel = \"plane_stress\"");
+  EXPECT_EQ(parse_case(text, "case.toml").material.model, PlaneModel::kPlaneStress);
+}
+
+TEST(ParseCase, SyntaxErrorNamesTheLine) {
+  expect_invalid(replaced(kValid2d, "a = 2.0", "a = = 2.0"), {"case.toml:4:", "TOML syntax"});
+}
+
+TEST(ParseCase, UnknownKeyIsNamedWithTheAcceptedKeysAndASuggestion) {
+  expect_invalid(replaced(kValid2d, "height = 1.0", "heigth = 1.0"),
+                 {"case.toml:5:", "unknown key 'geometry.heigth'", "did you mean 'height'",
+                  "expected one of dim, a, b, height"});
+}
+
+TEST(ParseCase, UnknownTopLevelTableIsAnError) {
+  expect_invalid(std::string(kValid2d) + "\n[meshh]\ncells = [1, 1]\n",
+                 {"unknown key 'meshh'", "did you mean 'mesh'"});
+}
+
+TEST(ParseCase, ReservedTablesAreRejectedAsNotYetSupported) {
+  expect_invalid(std::string(kValid2d) + "\n[optimization]\n", {"[optimization] is reserved"});
+  expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"x\"\n", {"[cost] is reserved"});
+}
+
+TEST(ParseCase, UnknownKeyInNestedTablesIsNamedWithItsPath) {
+  expect_invalid(replaced(kValid2d, "mu = 0.3", "mu = 0.3\nmuu = 0.1"),
+                 {"contact.friction.muu"});
+  expect_invalid(replaced(kValid2d, "max_iterations = 40", "max_iter = 40"),
+                 {"solver.coulomb.max_iter"});
+  expect_invalid(replaced(kValid3d, "[solver.fem]", "[solver.fem]\nordering = \"amd\""),
+                 {"solver.fem.ordering"});
+  expect_invalid(replaced(kValid2d, "face = \"left\"", "face = \"left\"\nvalue = 0"),
+                 {"dirichlet[0].value"});
+}
+
+TEST(ParseCase, WrongTypeNamesFieldValueAndExpectedType) {
+  expect_invalid(replaced(kValid2d, "a = 2.0", "a = \"2.0\""),
+                 {"geometry.a = \"2.0\" (a string); expected a number"});
+  expect_invalid(replaced(kValid2d, "dim = 2", "dim = 2.0"),
+                 {"geometry.dim = 2 (a float); expected an integer"});
+  expect_invalid(replaced(kValid2d, "cells = [29, 14]", "cells = [29, 14.5]"),
+                 {"mesh.cells[1] = 14.5 (a float); expected an integer"});
+  expect_invalid(replaced(kValid2d, "every = 5", "every = 5\nvtk = \"yes\""), {"output.vtk"});
+  expect_invalid(replaced(kValid2d, "[mesh]\ncells", "mesh = 3\n[mesh2]\ncells"),
+                 {"mesh"});
+}
+
+TEST(ParseCase, NonFiniteNumbersAreRejected) {
+  expect_invalid(replaced(kValid2d, "young = 2.1e11", "young = inf"),
+                 {"material.young = inf; expected a finite number"});
+  expect_invalid(replaced(kValid2d, "poisson = 0.3", "poisson = nan"), {"material.poisson"});
+}
+
+TEST(ParseCase, MissingRequiredFieldsAreNamed) {
+  expect_invalid(replaced(kValid2d, "height = 1.0", ""),
+                 {"geometry.height is missing", "expected a number > 0"});
+  expect_invalid(replaced(kValid2d, "young = 2.1e11", ""), {"material.young is missing"});
+  expect_invalid(replaced(kValid2d, "initial = 0.05", ""), {"design.initial is missing"});
+  expect_invalid(replaced(kValid2d, "[material]\nyoung = 2.1e11\npoisson = 0.3\n", ""),
+                 {"material is missing", "a table [material]"});
+  expect_invalid(replaced(kValid2d, "face = \"top\"\n", ""), {"load[0].face is missing"});
+  expect_invalid(replaced(kValid2d, "kind = \"isotropic\"\nmu = 0.3", "kind = \"isotropic\""),
+                 {"contact.friction.mu is missing"});
+  expect_invalid(replaced(kValid3d, "b = 1\n", ""), {"geometry.b is missing", "in 3D"});
+}
+
+TEST(ParseCase, AtLeastOneDirichletConditionIsRequired) {
+  const std::string text = replaced(
+      replaced(kValid2d, "[[dirichlet]]\nface = \"left\"\n", ""),
+      "[[dirichlet]]\nface = \"right\"\ndisplacement = [0.0, 1e-3]\ncomponents = [1]\n", "");
+  expect_invalid(text, {"dirichlet is missing", "rigid-body modes"});
+}
+
+TEST(ParseCase, OutOfRangeValuesNameFieldValueAndRange) {
+  expect_invalid(replaced(kValid2d, "poisson = 0.3", "poisson = 0.6"),
+                 {"case.toml:13: material.poisson = 0.6; expected 0 <= poisson < 0.5"});
+  expect_invalid(replaced(kValid2d, "young = 2.1e11", "young = -1"),
+                 {"material.young = -1; expected young > 0"});
+  expect_invalid(replaced(kValid2d, "dim = 2", "dim = 4"), {"geometry.dim = 4; expected 2 or 3"});
+  expect_invalid(replaced(kValid2d, "a = 2.0", "a = 0.0"), {"geometry.a = 0; expected a > 0"});
+  expect_invalid(replaced(kValid2d, "grading = 2.0", "grading = 0.5"),
+                 {"mesh.grading = 0.5", "1 <= grading <= 10"});
+  expect_invalid(replaced(kValid2d, "cells = [29, 14]", "cells = [29, 0]"),
+                 {"mesh.cells[1] = 0; expected an integer >= 1"});
+  expect_invalid(replaced(kValid2d, "control_points = [15]", "control_points = [1]"),
+                 {"design.control_points[0] = 1; expected an integer >= 2"});
+  expect_invalid(replaced(kValid2d, "initial = 0.05", "initial = 0.8"),
+                 {"design.initial = 0.8; expected 0 <= α <= upper_bound = 0.75"});
+  expect_invalid(replaced(kValid2d, "upper_bound = 0.75", "upper_bound = 1.0"),
+                 {"design.upper_bound = 1", "< geometry.height = 1"});
+  expect_invalid(replaced(kValid2d, "slope_bound = 1.0", "slope_bound = 0"),
+                 {"design.slope_bound = 0; expected slope_bound > 0"});
+  expect_invalid(replaced(kValid2d, "max_iterations = 40", "max_iterations = 0"),
+                 {"solver.coulomb.max_iterations = 0; expected max_iterations >= 1"});
+  expect_invalid(replaced(kValid2d, "relative_tolerance = 1e-9", "relative_tolerance = -1e-9"),
+                 {"solver.coulomb.relative_tolerance = -1e-09"});
+  expect_invalid(replaced(kValid2d, "every = 5", "every = 0"), {"output.every = 0"});
+  expect_invalid(replaced(kValid3d, "name = \"block\"", "name = \"a/b\""), {"output.name"});
+}
+
+TEST(ParseCase, UnreachableVolumeIsRejectedWithTheReachableInterval) {
+  // The thesis' printed formula reads C2 as d·(mean height); as an area, 28.5 is far outside
+  // [a·(C4 − C0), a·C4] = [0.5, 2] (spec 01 §4.2).
+  expect_invalid(replaced(kValid2d, "volume = 1.9", "volume = 28.5"),
+                 {"design.volume = 28.5; expected 0.5 <= volume <= 2"});
+}
+
+TEST(ParseCase, SizesMustMatchTheDimension) {
+  expect_invalid(replaced(kValid2d, "cells = [29, 14]", "cells = [29, 3, 14]"),
+                 {"mesh.cells = [29, 3, 14]; expected a list of 2 integers"});
+  expect_invalid(replaced(kValid3d, "cells = [20, 10, 8]", "cells = [20, 8]"),
+                 {"mesh.cells", "a list of 3 integers"});
+  expect_invalid(replaced(kValid2d, "traction = [0.0, -2.0e7]", "traction = [0.0, 0.0, -2.0e7]"),
+                 {"load[0].traction = [0, 0, -20000000]; expected a list of 2 numbers"});
+  expect_invalid(replaced(kValid3d, "traction = [1e5, 0, -1e6]", "traction = [1e5, -1e6]"),
+                 {"load[0].traction", "3 numbers"});
+  expect_invalid(replaced(kValid2d, "displacement = [0.0, 1e-3]", "displacement = [1e-3]"),
+                 {"dirichlet[1].displacement"});
+  expect_invalid(replaced(kValid2d, "components = [1]", "components = [2]"),
+                 {"dirichlet[1].components[0] = 2; expected an index in 0..1"});
+  expect_invalid(replaced(kValid2d, "control_points = [15]", "control_points = [15, 3]"),
+                 {"design.control_points", "a list [m1]"});
+  expect_invalid(replaced(kValid3d, "initial = [0.0, 0.1, 0.1, 0.0,", "initial = [0.1, 0.0,"),
+                 {"design.initial", "a list of 12 numbers"});
+  expect_invalid(replaced(kValid2d, "a = 2.0", "a = 2.0\nb = 1.0"),
+                 {"geometry.b = 1 is only allowed in 3D"});
+  expect_invalid(replaced(kValid3d, "poisson = 0.25", "poisson = 0.25\nmodel = \"plane_strain\""),
+                 {"material.model", "only allowed in 2D"});
+}
+
+TEST(ParseCase, FacesAreCheckedAgainstTheDimension) {
+  expect_invalid(replaced(kValid2d, "face = \"top\"", "face = \"front\""),
+                 {"load[0].face = \"front\"; expected one of left, right, top in 2D"});
+  expect_invalid(replaced(kValid2d, "face = \"top\"", "face = \"bottom\""),
+                 {"load[0].face = \"bottom\"", "contact surface"});
+  expect_invalid(replaced(kValid3d, "face = \"left\"", "face = \"side\""),
+                 {"dirichlet[0].face = \"side\"", "left, right, front, back, top"});
+}
+
+TEST(ParseCase, AComponentFixedTwiceOnOneFaceIsAnError) {
+  expect_invalid(replaced(kValid2d, "face = \"right\"", "face = \"left\""),
+                 {"dirichlet[1].face = \"left\" fixes component 1", "dirichlet[0]"});
+}
+
+TEST(ParseCase, FrictionLawsAreValidated) {
+  const std::string_view poly = "mu_vertices = [0.3, 0.2, 0.3, 0.2]";
+  expect_invalid(replaced(kValid3d, poly, "mu_vertices = [0.3, -0.2, 0.3, 0.2]"),
+                 {"contact.friction.mu_vertices[1] = -0.2", ">= 0"});
+  expect_invalid(replaced(kValid3d, poly, "mu_vertices = [0.3, 0.2]"),
+                 {"contact.friction.mu_vertices = [0.3, 0.2]", ">= 3 numbers"});
+  expect_invalid(replaced(kValid3d, poly, "mu_vertices = [0.3, 0.2, 0.3, 0.2]\nn = 6"),
+                 {"contact.friction.n = 6", "length of mu_vertices (4)"});
+  expect_invalid(replaced(kValid3d, "kind = \"polygon\"\n" + std::string(poly),
+                          "kind = \"isotropic\"\nmu = 0.3\nn = 2"),
+                 {"contact.friction.n = 2; expected n >= 3"});
+  expect_invalid(replaced(kValid2d, "mu = 0.3", "mu = -0.3"),
+                 {"contact.friction.mu = -0.3; expected mu >= 0"});
+  expect_invalid(replaced(kValid2d, "kind = \"isotropic\"", "kind = \"ellipse\""),
+                 {"contact.friction.kind = \"ellipse\"", "none, isotropic, polygon in 2D"});
+  expect_invalid(replaced(kValid2d, "kind = \"isotropic\"", "kind = \"anisotropic\""),
+                 {"contact.friction.kind = \"anisotropic\""});
+  expect_invalid(replaced(kValid2d, "mu = 0.3", "mu = 0.3\nn = 8"),
+                 {"contact.friction.n = 8 is not used by kind = \"isotropic\" in 2D"});
+  expect_invalid(replaced(kValid3d, poly, std::string(poly) + "\nmu = 0.3"),
+                 {"contact.friction.mu = 0.3 is not used by kind = \"polygon\""});
+  expect_invalid(replaced(kValid2d, "kind = \"isotropic\"\nmu = 0.3",
+                          "kind = \"polygon\"\nmu_plus = 0.3"),
+                 {"contact.friction.mu_minus is missing"});
+  expect_invalid(replaced(kValid3d, "law = \"coulomb\"", "law = \"tresca\""),
+                 {"contact.law = \"tresca\"; expected one of coulomb"});
+}
+
+TEST(LoadCase, ReadsAFileAndUsesItsPathInMessages) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "frictopt_io_test";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path file = dir / "plate.toml";
+  {
+    std::ofstream out(file);
+    out << kValid2d;
+  }
+  const CaseDescription c = load_case(file);
+  EXPECT_EQ(c.output.name, "plate");
+  EXPECT_EQ(c.origin, file.string());
+  {
+    std::ofstream out(file);
+    out << replaced(kValid2d, "poisson = 0.3", "poisson = 0.5");
+  }
+  try {
+    (void)load_case(file);
+    ADD_FAILURE() << "no InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find(file.string() + ":13: material.poisson = 0.5"),
+              std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(LoadCase, MissingFileIsInvalidInputNamingThePath) {
+  EXPECT_THROW((void)load_case("/nonexistent/frictopt/case.toml"), InvalidInput);
+}
+
+TEST(CaseEnums, SpellingsRoundTrip) {
+  for (Face f : {Face::kLeft, Face::kRight, Face::kFront, Face::kBack, Face::kTop})
+    EXPECT_EQ(parse_face(to_string(f)), f);
+  for (FrictionKind k : {FrictionKind::kNone, FrictionKind::kIsotropic, FrictionKind::kPolygon,
+                         FrictionKind::kEllipse, FrictionKind::kEllipseExact,
+                         FrictionKind::kDiscExact})
+    EXPECT_EQ(parse_friction_kind(to_string(k)), k);
+  EXPECT_EQ(parse_plane_model("plane_stress"), PlaneModel::kPlaneStress);
+  EXPECT_EQ(parse_slope_scaling("exact"), SlopeScaling::kExact);
+  EXPECT_EQ(parse_contact_law("coulomb"), ContactLaw::kCoulomb);
+  EXPECT_THROW((void)parse_face("bottom"), InvalidInput);
+}
+
+}  // namespace
+}  // namespace frictopt::io
