@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+// Linear elasticity on the morphed mesh: assembly with a fixed sparsity pattern, CHOLMOD
+// factorization with one symbolic analysis per mesh, and the shape-derivative kernel.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "frictopt/core/status.hpp"
+#include "frictopt/fem/boundary_conditions.hpp"
+#include "frictopt/fem/material.hpp"
+#include "frictopt/fem/sparse_cholesky.hpp"
+#include "frictopt/mesh/structured_mesh.hpp"
+
+namespace frictopt::fem {
+
+/// A(α) u = l(α) on the free DOFs of a StructuredMesh (Q1, 2×2(×2) Gauss), 2D plane strain or
+/// stress per unit thickness, or 3D.
+///
+/// Conventions: full vectors have mesh.num_dofs() entries, node-major (node·dim + component);
+/// "free" vectors follow dofs().free_dofs(). The reduced load contains the tractions on Γ_p and
+/// the lifting −A_fd u_d of nonzero Dirichlet values, so for a full u with u_d prescribed,
+///   A_ff u_f − l_f = (A_full u − l_traction)_f.
+/// Lifetime: `mesh` must outlive this object. The sparsity pattern and the symbolic analysis
+/// are built once; assemble() and factorize() are per design. Not thread-safe.
+class LinearElasticity {
+ public:
+  /// Throws InvalidInput for an invalid material or traction vectors of the wrong size.
+  LinearElasticity(const mesh::StructuredMesh& mesh, const IsotropicMaterial& material,
+                   const PrescribedDofs& dirichlet, std::vector<FaceTraction> tractions);
+
+  const mesh::StructuredMesh& mesh() const { return mesh_; }
+  const DofMap& dofs() const { return dofs_; }
+  const IsotropicMaterial& material() const { return material_; }
+
+  /// Assembles A(X) and l(X) for node positions X (num_nodes × dim), reusing the pattern.
+  void assemble(const Eigen::Ref<const Eigen::MatrixXd>& X);
+  const Eigen::SparseMatrix<double>& stiffness() const { return A_; }  ///< free × free, full symmetric storage
+  const Eigen::VectorXd& load() const { return l_; }                   ///< free
+  /// Factorizes the last assembled A (symbolic analysis on the first call only).
+  [[nodiscard]] Status factorize();
+  const SparseCholesky& factorization() const { return cholesky_; }
+  /// The full displacement for the assembled load: u_f = A⁻¹ l, u_d prescribed.
+  Eigen::VectorXd solve() const;
+
+  /// Full traction load vector l_traction(X) (num_dofs), without Dirichlet lifting.
+  Eigen::VectorXd traction_load(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
+  /// Full residual A_full(X) u − l_traction(X) (num_dofs), element by element: at prescribed
+  /// DOFs these are the reaction forces; at contact DOFs, minus the contact forces.
+  Eigen::VectorXd residual(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u) const;
+
+  /// The shape-derivative kernel: ∇_α [pᵀ(A_full(α) u − l_traction(α))] for fixed full vectors
+  /// u, p (d entries), = Vᵀ ∂/∂X[…], computed element by element (never a 3-tensor). With p
+  /// zero on prescribed DOFs this is the α-derivative of the reduced residual tested with p —
+  /// the term Ξᵀp of the adjoint sensitivity (spec 03, §9).
+  Eigen::VectorXd shape_derivative(const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                   const Eigen::Ref<const Eigen::VectorXd>& u,
+                                   const Eigen::Ref<const Eigen::VectorXd>& p) const;
+  /// The same derivative with respect to the node coordinates X (num_dofs, node-major).
+  Eigen::VectorXd coordinate_derivative(const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                        const Eigen::Ref<const Eigen::VectorXd>& u,
+                                        const Eigen::Ref<const Eigen::VectorXd>& p) const;
+
+  /// Strain energy ½ uᵀ A_full u [J] and work of the tractions l_tractionᵀ u [J] (full u).
+  double strain_energy(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u) const;
+  double external_work(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u) const;
+
+ private:
+  template <int Dim> void assemble_impl(const Eigen::Ref<const Eigen::MatrixXd>& X);
+  template <int Dim> Eigen::VectorXd residual_impl(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u) const;
+  template <int Dim> Eigen::VectorXd coordinate_derivative_impl(const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                                                const Eigen::Ref<const Eigen::VectorXd>& u,
+                                                                const Eigen::Ref<const Eigen::VectorXd>& p) const;
+  template <int Dim> Eigen::VectorXd traction_load_impl(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
+  void build_pattern();
+
+  const mesh::StructuredMesh& mesh_;
+  IsotropicMaterial material_;
+  DofMap dofs_;
+  std::vector<FaceTraction> tractions_;
+  Eigen::SparseMatrix<double> A_;
+  Eigen::VectorXd l_;
+  std::vector<int> scatter_;  // per element, per (local i, local j): index into A_'s values or −1
+  SparseCholesky cholesky_;
+};
+
+}  // namespace frictopt::fem

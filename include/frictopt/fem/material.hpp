@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: MIT
+// Isotropic linear elastic material (spec 01, §2.5).
+#pragma once
+
+#include <string_view>
+
+namespace frictopt::fem {
+
+/// 2D model (spec 01, A-PS): plane strain (default, unit thickness) or plane stress.
+enum class PlaneModel { kPlaneStrain, kPlaneStress };
+std::string_view to_string(PlaneModel model);
+PlaneModel parse_plane_model(std::string_view name);  ///< throws InvalidInput
+
+/// Hooke's law τ = λ tr(ε) I + 2μ ε with Lamé constants from E and ν.
+struct IsotropicMaterial {
+  double young = 0.0;    ///< E > 0 [Pa]
+  double poisson = 0.0;  ///< 0 <= ν < 0.5
+  PlaneModel plane_model = PlaneModel::kPlaneStrain;  ///< used in 2D only
+
+  /// Throws InvalidInput naming the field when E <= 0 or ν outside [0, 0.5).
+  void validate() const;
+  /// μ = E / (2(1+ν)).
+  double shear_modulus() const { return young / (2.0 * (1.0 + poisson)); }
+  /// λ = Eν/((1+ν)(1−2ν)); in 2D plane stress λ* = 2λμ/(λ+2μ) (spec 01, §2.5).
+  double lame_lambda(int dim) const;
+};
+
+}  // namespace frictopt::fem

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/fem/boundary_conditions.hpp"
+
+#include <fmt/format.h>
+
+#include <map>
+
+#include "frictopt/core/error.hpp"
+
+namespace frictopt::fem {
+
+PrescribedDofs expand_dirichlet(const mesh::StructuredMesh& mesh,
+                                const std::vector<FaceDirichlet>& conditions) {
+  const int dim = mesh.dim();
+  std::map<int, double> values;
+  for (std::size_t i = 0; i < conditions.size(); ++i) {
+    const FaceDirichlet& c = conditions[i];
+    if (c.displacement.size() != 0 && c.displacement.size() != dim)
+      throw InvalidInput(fmt::format("dirichlet[{}].displacement has {} entries; expected {}", i,
+                                     c.displacement.size(), dim));
+    std::vector<int> components = c.components;
+    if (components.empty())
+      for (int k = 0; k < dim; ++k) components.push_back(k);
+    for (int k : components)
+      if (k < 0 || k >= dim)
+        throw InvalidInput(fmt::format("dirichlet[{}].components contains {}; expected 0..{}", i, k, dim - 1));
+    for (int node : mesh.face_nodes(c.face))
+      for (int k : components) values[node * dim + k] = c.displacement.size() ? c.displacement(k) : 0.0;
+  }
+  PrescribedDofs out;
+  for (const auto& [dof, value] : values) {
+    out.dofs.push_back(dof);
+    out.values.push_back(value);
+  }
+  return out;
+}
+
+DofMap::DofMap(int num_dofs, const PrescribedDofs& prescribed)
+    : free_index_(num_dofs, 0), prescribed_values_(Eigen::VectorXd::Zero(num_dofs)) {
+  for (std::size_t i = 0; i < prescribed.dofs.size(); ++i) {
+    const int dof = prescribed.dofs[i];
+    if (dof < 0 || dof >= num_dofs)
+      throw InvalidInput(fmt::format("prescribed dof {} out of range [0, {})", dof, num_dofs));
+    free_index_[dof] = -1;
+    prescribed_values_(dof) = prescribed.values[i];
+  }
+  for (int dof = 0; dof < num_dofs; ++dof)
+    if (free_index_[dof] >= 0) {
+      free_index_[dof] = static_cast<int>(free_dofs_.size());
+      free_dofs_.push_back(dof);
+    }
+}
+
+Eigen::VectorXd DofMap::expand(const Eigen::Ref<const Eigen::VectorXd>& free_values) const {
+  FRICTOPT_ASSERT(free_values.size() == num_free(), "free vector size");
+  Eigen::VectorXd full = prescribed_values_;
+  for (int i = 0; i < num_free(); ++i) full(free_dofs_[i]) = free_values(i);
+  return full;
+}
+
+Eigen::VectorXd DofMap::restrict(const Eigen::Ref<const Eigen::VectorXd>& full) const {
+  FRICTOPT_ASSERT(full.size() == num_dofs(), "full vector size");
+  Eigen::VectorXd out(num_free());
+  for (int i = 0; i < num_free(); ++i) out(i) = full(free_dofs_[i]);
+  return out;
+}
+
+}  // namespace frictopt::fem

@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: MIT
+// Element-level kernels of Q1 linear elasticity (private to fem): stiffness, stresses, and the
+// derivative of pᵀK_e(X)u with respect to the element's node coordinates.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include "frictopt/mesh/q1_element.hpp"
+
+namespace frictopt::fem::detail {
+
+template <int Dim>
+struct ElasticityKernel {
+  using Element = mesh::Q1Element<Dim>;
+  static constexpr int kNodes = Element::kNodes;
+  static constexpr int kDofs = kNodes * Dim;
+  using Coordinates = Eigen::Matrix<double, kNodes, Dim>;  ///< row a = node a
+  using Matrix = Eigen::Matrix<double, kDofs, kDofs>;
+  using Vector = Eigen::Matrix<double, kDofs, 1>;
+  using Tensor = Eigen::Matrix<double, Dim, Dim>;
+
+  double lambda;  // Lamé λ (plane-stress corrected in 2D)
+  double mu;      // shear modulus
+
+  /// Physical gradients G (row a = ∇_x N_a) and det J at reference point xi.
+  static void physical_gradients(const Coordinates& Xe, const typename Element::Point& xi,
+                                 Eigen::Matrix<double, kNodes, Dim>& G, double& det) {
+    const auto dN = Element::gradients(xi);
+    const Tensor J = Xe.transpose() * dN;  // J_ij = ∂x_i/∂ξ_j
+    det = J.determinant();
+    G = dN * J.inverse();  // ∇_x N_a = J⁻ᵀ ∇_ξ N_a, as rows
+  }
+
+  /// Displacement gradient H_ij = ∂u_i/∂x_j from element DOFs (node-major).
+  static Tensor gradient(const Vector& ue, const Eigen::Matrix<double, kNodes, Dim>& G) {
+    Tensor H = Tensor::Zero();
+    for (int a = 0; a < kNodes; ++a) H += ue.template segment<Dim>(a * Dim) * G.row(a);
+    return H;
+  }
+
+  Tensor stress(const Tensor& H) const {
+    return lambda * H.trace() * Tensor::Identity() + mu * (H + H.transpose());
+  }
+
+  /// K_e = Σ_q w_q Bᵀ C B det J over the 2^Dim Gauss points (full integration).
+  Matrix stiffness(const Coordinates& Xe) const {
+    Matrix K = Matrix::Zero();
+    Eigen::Matrix<double, kNodes, Dim> G;
+    double det;
+    for (const auto& [xi, w] : Element::gauss2()) {
+      physical_gradients(Xe, xi, G, det);
+      // Exploit isotropy: K_ab,ij = (λ G_ai G_bj + μ G_aj G_bi + μ δ_ij G_a·G_b) w det J.
+      const Eigen::Matrix<double, kNodes, kNodes> GG = G * G.transpose();
+      const double s = w * det;
+      for (int a = 0; a < kNodes; ++a)
+        for (int b = 0; b < kNodes; ++b)
+          for (int i = 0; i < Dim; ++i)
+            for (int j = 0; j < Dim; ++j)
+              K(a * Dim + i, b * Dim + j) +=
+                  s * (lambda * G(a, i) * G(b, j) + mu * G(a, j) * G(b, i) + (i == j ? mu * GG(a, b) : 0.0));
+    }
+    return K;
+  }
+
+  /// ∂(p_eᵀ K_e(X) u_e)/∂X_e (kNodes × Dim). Isoparametric shape calculus: moving node b in
+  /// direction c is the velocity θ = e_c N_b, with δ(∇N_a) = −(∇θ)ᵀ∇N_a and δ det J = det J
+  /// div θ, so for the bilinear density e = σ(u):∇p,
+  ///   ∂/∂X_b = Σ_q w det J (e I − H_pᵀ σ(u) − H_uᵀ σ(p)) ∇N_b   (the Eshelby-type tensor).
+  Coordinates energy_coordinate_gradient(const Coordinates& Xe, const Vector& ue, const Vector& pe) const {
+    Coordinates g = Coordinates::Zero();
+    Eigen::Matrix<double, kNodes, Dim> G;
+    double det;
+    for (const auto& [xi, w] : Element::gauss2()) {
+      physical_gradients(Xe, xi, G, det);
+      const Tensor Hu = gradient(ue, G), Hp = gradient(pe, G);
+      const Tensor su = stress(Hu), sp = stress(Hp);
+      const double e = (su.array() * Hp.array()).sum();
+      const Tensor T = e * Tensor::Identity() - Hp.transpose() * su - Hu.transpose() * sp;
+      g += (w * det) * G * T.transpose();
+    }
+    return g;
+  }
+};
+
+/// Q1 facet (segment in 2D, quadrilateral in 3D) for tractions.
+template <int Dim>
+struct FacetKernel {
+  static constexpr int kNodes = Dim == 2 ? 2 : 4;
+  using Coordinates = Eigen::Matrix<double, kNodes, Dim>;
+
+  /// Facet shape functions and their ∂/∂(η1[, η2]) at Gauss point q of the 2^(Dim−1) rule.
+  static void shape(int q, Eigen::Matrix<double, kNodes, 1>& N, Eigen::Matrix<double, kNodes, Dim - 1>& dN,
+                    double& weight) {
+    const double g = 1.0 / std::sqrt(3.0);
+    weight = 1.0;
+    if constexpr (Dim == 2) {
+      const double eta = q == 0 ? -g : g;
+      N << 0.5 * (1 - eta), 0.5 * (1 + eta);
+      dN << -0.5, 0.5;
+    } else {
+      const double e1 = (q == 0 || q == 3) ? -g : g, e2 = q < 2 ? -g : g;
+      const double c[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+      for (int a = 0; a < 4; ++a) {
+        N(a) = 0.25 * (1 + c[a][0] * e1) * (1 + c[a][1] * e2);
+        dN(a, 0) = 0.25 * c[a][0] * (1 + c[a][1] * e2);
+        dN(a, 1) = 0.25 * c[a][1] * (1 + c[a][0] * e1);
+      }
+    }
+  }
+  static constexpr int kPoints = Dim == 2 ? 2 : 4;
+
+  /// Nodal forces ∫ N_a t dS (kNodes × Dim) for a constant traction t.
+  static Coordinates load(const Coordinates& Xf, const Eigen::Matrix<double, Dim, 1>& t) {
+    Coordinates f = Coordinates::Zero();
+    for (int q = 0; q < kPoints; ++q) {
+      Eigen::Matrix<double, kNodes, 1> N;
+      Eigen::Matrix<double, kNodes, Dim - 1> dN;
+      double w;
+      shape(q, N, dN, w);
+      f += (w * area_density(Xf, dN)) * N * t.transpose();
+    }
+    return f;
+  }
+
+  /// ∂/∂X_f of ∫ (p_h · t) dS (kNodes × Dim): only dS depends on X.
+  /// 2D: δ|x_η| = τ̂·δx_η; 3D: δ|x_1 × x_2| = n̂·(δx_1 × x_2 + x_1 × δx_2).
+  static Coordinates load_coordinate_gradient(const Coordinates& Xf, const Eigen::Matrix<double, Dim, 1>& t,
+                                              const Coordinates& pf) {
+    Coordinates g = Coordinates::Zero();
+    for (int q = 0; q < kPoints; ++q) {
+      Eigen::Matrix<double, kNodes, 1> N;
+      Eigen::Matrix<double, kNodes, Dim - 1> dN;
+      double w;
+      shape(q, N, dN, w);
+      const double pt = (N.transpose() * pf * t)(0);
+      if constexpr (Dim == 2) {
+        const Eigen::Vector2d x1 = Xf.transpose() * dN.col(0);
+        const Eigen::Vector2d tau = x1 / x1.norm();
+        for (int b = 0; b < kNodes; ++b) g.row(b) += w * pt * dN(b, 0) * tau.transpose();
+      } else {
+        const Eigen::Vector3d x1 = Xf.transpose() * dN.col(0), x2 = Xf.transpose() * dN.col(1);
+        const Eigen::Vector3d n = x1.cross(x2).normalized();
+        const Eigen::Vector3d c1 = x2.cross(n), c2 = n.cross(x1);
+        for (int b = 0; b < kNodes; ++b) g.row(b) += w * pt * (dN(b, 0) * c1 + dN(b, 1) * c2).transpose();
+      }
+    }
+    return g;
+  }
+
+  static double area_density(const Coordinates& Xf, const Eigen::Matrix<double, kNodes, Dim - 1>& dN) {
+    if constexpr (Dim == 2) {
+      return (Xf.transpose() * dN.col(0)).norm();
+    } else {
+      const Eigen::Vector3d x1 = Xf.transpose() * dN.col(0), x2 = Xf.transpose() * dN.col(1);
+      return x1.cross(x2).norm();
+    }
+  }
+};
+
+}  // namespace frictopt::fem::detail
