@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// The only thing the optimizers know about a problem (spec 04 §1): at a point x, the value f(x)
+// and one arbitrary Clarke subgradient g ∈ ∂f(x) — or the news that f cannot be evaluated
+// there (e.g. the contact solver failed), in which case the method shortens its step.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <utility>
+
+namespace frictopt::optim {
+
+/// One oracle answer. When `ok` is false, `value` and `subgradient` are ignored and `message`
+/// says why; a non-finite value or subgradient with `ok == true` is treated the same way by the
+/// optimizers (counted in Summary::failed_evaluations).
+struct OracleResult {
+  bool ok = true;
+  double value = 0.0;
+  Eigen::VectorXd subgradient;  ///< size n; one element of ∂f(x) (or of a pseudodifferential)
+  std::string message;
+
+  /// A successful answer.
+  [[nodiscard]] static OracleResult success(double value, Eigen::VectorXd subgradient) {
+    return OracleResult{true, value, std::move(subgradient), {}};
+  }
+  /// "Could not evaluate here", with the reason.
+  [[nodiscard]] static OracleResult failure(std::string reason) {
+    return OracleResult{false, 0.0, {}, std::move(reason)};
+  }
+};
+
+/// A function f: ℝⁿ → ℝ seen through values and subgradients. Implementations may cache
+/// (`study` caches per design); `evaluate` is not const for that reason. The optimizers call it
+/// from one thread and only at points inside the feasible set.
+class Oracle {
+ public:
+  virtual ~Oracle() = default;
+  [[nodiscard]] virtual OracleResult evaluate(const Eigen::Ref<const Eigen::VectorXd>& x) = 0;
+};
+
+/// Adapts a callable (lambda) to Oracle. The callable is copied into the adapter.
+class FunctionOracle final : public Oracle {
+ public:
+  using Function = std::function<OracleResult(const Eigen::Ref<const Eigen::VectorXd>&)>;
+  explicit FunctionOracle(Function f) : f_(std::move(f)) {}
+  [[nodiscard]] OracleResult evaluate(const Eigen::Ref<const Eigen::VectorXd>& x) override {
+    return f_(x);
+  }
+
+ private:
+  Function f_;
+};
+
+}  // namespace frictopt::optim
