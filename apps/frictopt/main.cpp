@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: MIT
+// The frictopt command line: parses arguments (CLI11), loads the case through io, calls study,
+// prints one-line reports and maps statuses to exit codes. No numerics live here.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+
+#include "frictopt/core/error.hpp"
+#include "frictopt/io/case_file.hpp"
+#include "frictopt/io/json.hpp"
+#include "frictopt/io/state_output.hpp"
+#include "frictopt/io/study_setup.hpp"
+#include "frictopt/study/elastic_body.hpp"
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitInvalidInput = 2;
+constexpr int kExitNumericalFailure = 3;
+
+int run_solve(const std::filesystem::path& case_path, const std::filesystem::path& out_dir) {
+  using namespace frictopt;
+  const io::CaseDescription description = io::load_case(case_path);
+  study::ElasticBody body(io::make_body_definition(description));
+  const auto& mesh = body.mesh();
+  fmt::print("{}: {}D body, {} nodes, {} elements, {} unknowns, {} design variables\n", case_path.string(),
+             mesh.dim(), mesh.num_nodes(), mesh.num_elements(), body.elasticity().dofs().num_free(),
+             body.definition().shape.num_controls());
+  const std::string violation = body.admissible_set().describe_violation(body.definition().initial_design, 1e-9);
+  if (!violation.empty()) fmt::print("warning: the initial design is outside the admissible set: {}\n", violation);
+  if (description.contact)
+    fmt::print("note: [contact] is read but this build solves elasticity only (contact: issue 3)\n");
+
+  study::BodyState state = body.solve(body.definition().initial_design, "initial design");
+  fmt::print("{}\n", state.summary.brief_report());
+  if (state.summary.status != Status::kConverged) return kExitNumericalFailure;
+  fmt::print("strain energy {:.6e} J, work of loads {:.6e} J, volume {:.6e}, max von Mises {:.6e} Pa\n",
+             state.strain_energy, state.external_work, state.volume, state.stress.nodal_von_mises.maxCoeff());
+
+  std::filesystem::create_directories(out_dir);
+  const std::string name = body.definition().name;
+  if (description.output.vtk) {
+    const auto vtu = out_dir / (name + ".vtu");
+    io::write_state_vtu(vtu, body, state);
+    fmt::print("wrote {}\n", vtu.string());
+  }
+  io::JsonValue summary = io::JsonValue::object();
+  summary["case"] = case_path.string();
+  summary["command"] = "solve";
+  summary["status"] = std::string(to_string(state.summary.status));
+  summary["message"] = state.summary.message;
+  summary["dim"] = mesh.dim();
+  summary["num_nodes"] = mesh.num_nodes();
+  summary["num_unknowns"] = body.elasticity().dofs().num_free();
+  summary["alpha"] = state.alpha;
+  summary["relative_residual"] = state.summary.relative_residual;
+  summary["strain_energy"] = state.strain_energy;
+  summary["external_work"] = state.external_work;
+  summary["volume"] = state.volume;
+  summary["max_von_mises"] = state.stress.nodal_von_mises.maxCoeff();
+  summary["assembly_seconds"] = state.summary.assembly_seconds;
+  summary["factorization_seconds"] = state.summary.factorization_seconds;
+  summary["solve_seconds"] = state.summary.solve_seconds;
+  io::write_json(out_dir / "summary.json", summary);
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"frictopt: shape optimization of elastic bodies in contact with (anisotropic) Coulomb friction"};
+  app.require_subcommand(1);
+  std::filesystem::path case_path, out_dir = "out";
+  CLI::App* solve = app.add_subcommand("solve", "Solve the state problem of a case at its initial design and write VTK");
+  solve->add_option("case", case_path, "case file (TOML), see docs/case-format.md")->required()->check(CLI::ExistingFile);
+  solve->add_option("-o,--output", out_dir, "output directory (created if missing)");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*solve) return run_solve(case_path, out_dir);
+  } catch (const frictopt::InvalidInput& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kExitInvalidInput;
+  }
+  return kExitOk;
+}

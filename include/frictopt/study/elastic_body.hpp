@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+// One body on a fixed mesh: solves the elasticity state for any design α, reusing the mesh,
+// the sparsity pattern and the symbolic factorization across designs.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+#include "frictopt/core/status.hpp"
+#include "frictopt/fem/linear_elasticity.hpp"
+#include "frictopt/fem/stress_recovery.hpp"
+#include "frictopt/mesh/structured_mesh.hpp"
+#include "frictopt/shape/admissible_set.hpp"
+#include "frictopt/study/body_definition.hpp"
+
+namespace frictopt::study {
+
+/// Outcome of one state solve.
+struct StateSummary {
+  Status status = Status::kNotRun;
+  std::string message = "solve() has not been called";
+  double relative_residual = kNaN;    ///< ‖A u_f − l_f‖ / ‖l_f‖ on the free DOFs
+  double assembly_seconds = 0.0;
+  double factorization_seconds = 0.0;  ///< numeric (and on the first call symbolic) factorization
+  double solve_seconds = 0.0;
+  std::string brief_report() const;
+};
+
+/// The state of the body at one design.
+struct BodyState {
+  Eigen::VectorXd alpha;         ///< the design
+  Eigen::MatrixXd positions;     ///< X(α), num_nodes × dim [m]
+  Eigen::VectorXd displacement;  ///< full u, num_dofs, node-major [m]
+  fem::StressField stress;
+  double strain_energy = kNaN;   ///< ½ uᵀAu [J] (2D: per metre of thickness)
+  double external_work = kNaN;   ///< lᵀu [J]
+  double volume = kNaN;          ///< meas Ω(α) of the mesh [m³ or m²]
+  StateSummary summary;
+};
+
+/// Lifetime: holds the mesh and the FE problem; not thread-safe (the factorization is reused).
+class ElasticBody {
+ public:
+  /// Validates the definition (throws InvalidInput naming the field); builds mesh and pattern.
+  explicit ElasticBody(BodyDefinition definition);
+
+  const BodyDefinition& definition() const { return definition_; }
+  const mesh::StructuredMesh& mesh() const { return *mesh_; }
+  const fem::LinearElasticity& elasticity() const { return *fem_; }
+  const shape::LinearConstraints& admissible_set() const { return admissible_; }
+
+  /// Solves the elasticity problem at design α. Throws InvalidInput when α has the wrong size
+  /// or inverts an element (naming `design_label`); a failed factorization is a status.
+  [[nodiscard]] BodyState solve(const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                                const std::string& design_label = "design");
+
+ private:
+  BodyDefinition definition_;
+  std::unique_ptr<mesh::StructuredMesh> mesh_;
+  std::unique_ptr<fem::LinearElasticity> fem_;
+  shape::LinearConstraints admissible_;
+};
+
+}  // namespace frictopt::study
