@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: MIT
+// Elasticity phases on 3D meshes of ~20k, ~100k and ~200k unknowns: assembly, symbolic
+// analysis, numeric factorization and solve (CHOLMOD supernodal), with peak memory and the
+// ratio assembly / factorization (issue 2, target <= 0.25 at the largest size).
+//   build/bench/fem/elasticity_benchmark --benchmark_repetitions=3
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include <chrono>
+
+#include "frictopt/fem/linear_elasticity.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+double peak_rss_megabytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports kilobytes
+}
+
+// A cube of n³ hexahedra with a curved Bézier bottom, clamped on the left face and pressed on top.
+void BM_ElasticityPhases(benchmark::State& state) {
+  using namespace frictopt;
+  const int n = static_cast<int>(state.range(0));
+  const auto surface = shape::BezierShape::surface(1.0, 1.0, 4, 4);
+  mesh::StructuredMesh mesh(surface, 1.0, {{n, n, n}, 1.5});
+  Eigen::VectorXd alpha(16);
+  for (int k = 0; k < 16; ++k) alpha(k) = 0.05 + 0.03 * std::sin(1.3 * k);
+  const Eigen::MatrixXd X = mesh.positions(alpha);
+  const fem::IsotropicMaterial steel{2.1e11, 0.3, fem::PlaneModel::kPlaneStrain};
+  double assembly = 0, analysis = 0, factorization = 0, solve = 0;
+  double factor_nnz = 0;
+  int unknowns = 0;
+  for (auto _ : state) {
+    fem::LinearElasticity problem(mesh, steel, fem::expand_dirichlet(mesh, {{mesh::Face::kLeft, {}, {}}}),
+                                  {{mesh::Face::kTop, Eigen::Vector3d(0, 0, -1e7)}});
+    unknowns = problem.dofs().num_free();
+    auto t0 = Clock::now();
+    problem.assemble(X);
+    auto t1 = Clock::now();
+    fem::SparseCholesky cholesky;
+    cholesky.analyze(problem.stiffness());
+    auto t2 = Clock::now();
+    if (cholesky.factorize(problem.stiffness()) != Status::kConverged) state.SkipWithError("factorization failed");
+    auto t3 = Clock::now();
+    const Eigen::VectorXd u = cholesky.solve(problem.load());
+    auto t4 = Clock::now();
+    benchmark::DoNotOptimize(u.data());
+    assembly += seconds(t0, t1);
+    analysis += seconds(t1, t2);
+    factorization += seconds(t2, t3);
+    solve += seconds(t3, t4);
+    factor_nnz = cholesky.factor_nonzeros();
+  }
+  const double runs = static_cast<double>(state.iterations());
+  state.counters["unknowns"] = unknowns;
+  state.counters["assembly_s"] = assembly / runs;
+  state.counters["analysis_s"] = analysis / runs;
+  state.counters["factorization_s"] = factorization / runs;
+  state.counters["solve_s"] = solve / runs;
+  state.counters["assembly_over_factorization"] = assembly / factorization;
+  state.counters["factor_nnz_M"] = factor_nnz / 1e6;
+  state.counters["peak_rss_MB"] = peak_rss_megabytes();
+}
+
+// n = 18, 31, 40: 3·19³ ≈ 20.6k, 3·32³ ≈ 98k, 3·41³ ≈ 207k DOFs (minus the clamped face).
+BENCHMARK(BM_ElasticityPhases)->Arg(18)->Arg(31)->Arg(40)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
