@@ -1,0 +1,252 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/optim/bundle_trust.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "frictopt/core/error.hpp"
+
+namespace fo = frictopt::optim;
+using frictopt::Status;
+
+namespace {
+
+// The stopping test bounds ‖z + ω‖ and the aggregate error by ε; on these piecewise-linear
+// and quadratic problems with O(1) slopes that puts f within a small multiple of ε of f*.
+constexpr double kEpsilon = 1e-6;
+constexpr double kFTol = 1e-5;
+// Iterates are QP solutions; constraint violations are round-off of the direction QP.
+constexpr double kFeasTol = 1e-9;
+
+// f(x) = Σ_i w_i |x_i − c_i| (convex, kinks at the minimizer).
+fo::FunctionOracle weighted_l1(Eigen::VectorXd w, Eigen::VectorXd c) {
+  return fo::FunctionOracle([w, c](const Eigen::Ref<const Eigen::VectorXd>& x) {
+    const Eigen::VectorXd r = x - c;
+    Eigen::VectorXd g(r.size());
+    for (Eigen::Index i = 0; i < r.size(); ++i) g(i) = w(i) * (r(i) >= 0 ? 1.0 : -1.0);
+    return fo::OracleResult::success(w.dot(r.cwiseAbs()), g);
+  });
+}
+
+// f(x) = max_i x_i.
+fo::FunctionOracle max_oracle() {
+  return fo::FunctionOracle([](const Eigen::Ref<const Eigen::VectorXd>& x) {
+    Eigen::Index k = 0;
+    const double f = x.maxCoeff(&k);
+    return fo::OracleResult::success(f, Eigen::VectorXd::Unit(x.size(), k));
+  });
+}
+
+fo::BundleTrust::Options tight() {
+  fo::BundleTrust::Options o;
+  o.epsilon = kEpsilon;
+  return o;
+}
+
+}  // namespace
+
+TEST(BundleTrust, MinimizesAConvexPiecewiseLinearFunctionToAlmostStationarity) {
+  auto oracle = weighted_l1(Eigen::Vector3d(1.0, 2.0, 0.5), Eigen::Vector3d(1.0, -2.0, 3.0));
+  const auto s = fo::BundleTrust(tight()).minimize(oracle, Eigen::Vector3d(5.0, 5.0, 5.0));
+  ASSERT_EQ(s.status, Status::kConverged) << s.brief_report();
+  EXPECT_NEAR(s.f, 0.0, kFTol);
+  EXPECT_LE(s.stationarity, kEpsilon);
+  EXPECT_LE(s.aggregate_error, kEpsilon);
+  EXPECT_EQ(s.iterations, s.serious_steps + s.null_steps);
+  EXPECT_EQ(static_cast<int>(s.history.size()), s.iterations);
+}
+
+TEST(BundleTrust, ConvergesWithTheThesisVariantThatNeverEnlargesT) {
+  auto o = tight();
+  o.enlarge_t = false;
+  auto oracle = weighted_l1(Eigen::Vector2d(1.0, 3.0), Eigen::Vector2d(-1.0, 2.0));
+  const auto s = fo::BundleTrust(o).minimize(oracle, Eigen::Vector2d(3.0, -3.0));
+  ASSERT_EQ(s.status, Status::kConverged) << s.brief_report();
+  EXPECT_NEAR(s.f, 0.0, kFTol);
+}
+
+TEST(BundleTrust, KeepsEveryIterateFeasibleUnderInequalitiesAndBounds) {
+  // min |x1 − 2| + |x2 − 2| s.t. x1 + x2 ≤ 1, x ≥ 0: f* = 3 on the whole edge x1 + x2 = 1.
+  fo::LinearConstraints k;
+  k.lower = Eigen::Vector2d(0.0, 0.0);
+  k.A_in = Eigen::MatrixXd{{1.0, 1.0}};
+  k.b_in = Eigen::VectorXd::Ones(1);
+  auto o = tight();
+  double worst = 0.0;
+  o.on_iteration = [&](const fo::BundleTrust::IterationSummary& it) {
+    worst = std::max(worst, k.max_violation(it.x));
+    for (const auto& b : it.bundle)
+      if (!b.is_aggregate()) worst = std::max(worst, k.max_violation(b.y));
+    return frictopt::CallbackResult::kContinue;
+  };
+  auto oracle = weighted_l1(Eigen::Vector2d(1.0, 1.0), Eigen::Vector2d(2.0, 2.0));
+  const auto s = fo::BundleTrust(o, k).minimize(oracle, Eigen::Vector2d(0.0, 0.0));
+  ASSERT_EQ(s.status, Status::kConverged) << s.brief_report();
+  EXPECT_NEAR(s.f, 3.0, kFTol);
+  EXPECT_LE(worst, kFeasTol);
+  EXPECT_FALSE(s.start_projected);
+}
+
+TEST(BundleTrust, KeepsEqualityConstraintsExactlyAlongTheRun) {
+  // min max_i x_i s.t. Σx = 3: f* = 1 at (1,1,1).
+  fo::LinearConstraints k;
+  k.A_eq = Eigen::MatrixXd::Ones(1, 3);
+  k.b_eq = Eigen::VectorXd::Constant(1, 3.0);
+  auto o = tight();
+  double worst = 0.0;
+  o.on_iteration = [&](const fo::BundleTrust::IterationSummary& it) {
+    worst = std::max(worst, k.max_violation(it.x));
+    return frictopt::CallbackResult::kContinue;
+  };
+  auto oracle = max_oracle();
+  const auto s = fo::BundleTrust(o, k).minimize(oracle, Eigen::Vector3d(3.0, 0.0, 0.0));
+  ASSERT_EQ(s.status, Status::kConverged) << s.brief_report();
+  EXPECT_NEAR(s.f, 1.0, kFTol);
+  EXPECT_LE(worst, kFeasTol);
+}
+
+TEST(BundleTrust, ProjectsAnInfeasibleStartAndReportsIt) {
+  fo::LinearConstraints k;
+  k.upper = Eigen::Vector2d(-1.0, 10.0);  // x1 ≤ −1: minimizer of |x1| + |x2| is (−1, 0)
+  auto oracle = weighted_l1(Eigen::Vector2d(1.0, 1.0), Eigen::Vector2d(0.0, 0.0));
+  const auto s = fo::BundleTrust(tight(), k).minimize(oracle, Eigen::Vector2d(2.0, 1.0));
+  ASSERT_EQ(s.status, Status::kConverged) << s.brief_report();
+  EXPECT_TRUE(s.start_projected);
+  EXPECT_NEAR(s.projection_distance, 3.0, 1e-12);  // (2,1) → (−1,1); one QP solve, round-off
+  EXPECT_NEAR(s.f, 1.0, kFTol);
+}
+
+TEST(BundleTrust, RejectsAnEmptyFeasibleSetWithAClearError) {
+  fo::LinearConstraints k;
+  k.A_in = Eigen::MatrixXd{{1.0, 0.0}, {-1.0, 0.0}};
+  k.b_in = Eigen::Vector2d(-1.0, -1.0);  // x1 ≤ −1 and x1 ≥ 1
+  auto oracle = max_oracle();
+  try {
+    (void)fo::BundleTrust(tight(), k).minimize(oracle, Eigen::Vector2d(0.0, 0.0));
+    FAIL() << "expected InvalidInput";
+  } catch (const frictopt::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("feasible set is empty"), std::string::npos) << e.what();
+  }
+}
+
+TEST(BundleTrust, RejectsInconsistentDimensions) {
+  fo::LinearConstraints k;
+  k.lower = Eigen::VectorXd::Zero(3);
+  auto oracle = max_oracle();
+  EXPECT_THROW((void)fo::BundleTrust(tight(), k).minimize(oracle, Eigen::Vector2d(1.0, 1.0)),
+               frictopt::InvalidInput);
+  fo::FunctionOracle wrong([](const Eigen::Ref<const Eigen::VectorXd>&) {
+    return fo::OracleResult::success(0.0, Eigen::VectorXd::Zero(5));
+  });
+  EXPECT_THROW((void)fo::BundleTrust(tight()).minimize(wrong, Eigen::Vector2d(1.0, 1.0)),
+               frictopt::InvalidInput);
+}
+
+TEST(BundleTrust, OptionsValidationNamesFieldValueAndExpectation) {
+  auto o = tight();
+  o.m2 = 0.05;  // < m1 = 0.1
+  try {
+    fo::BundleTrust bt(o);
+    FAIL() << "expected InvalidInput";
+  } catch (const frictopt::InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("BundleTrust::Options::m2 = 0.05; expected in (m1, 1)"),
+              std::string::npos)
+        << e.what();
+  }
+  o = tight();
+  o.max_bundle_size = 2;
+  EXPECT_THROW(fo::BundleTrust{o}, frictopt::InvalidInput);
+}
+
+TEST(BundleTrust, ShrinksTheStepWhereTheOracleCannotEvaluate) {
+  // f = ‖x − (1,1)‖₁ but the oracle fails outside the ball ‖x‖ ≤ 2 (think: contact solve fails).
+  int failures = 0;
+  fo::FunctionOracle oracle([&](const Eigen::Ref<const Eigen::VectorXd>& x) {
+    if (x.norm() > 2.0) {
+      ++failures;
+      return fo::OracleResult::failure("outside the solver's domain");
+    }
+    const Eigen::Vector2d r = x - Eigen::Vector2d(1.0, 1.0);
+    return fo::OracleResult::success(r.cwiseAbs().sum(),
+                                     Eigen::Vector2d(r(0) >= 0 ? 1 : -1, r(1) >= 0 ? 1 : -1));
+  });
+  auto o = tight();
+  o.t_max = 100.0;  // first trial step of length ~140: far outside the domain
+  const auto s = fo::BundleTrust(o).minimize(oracle, Eigen::Vector2d(-1.0, -1.0));
+  ASSERT_EQ(s.status, Status::kConverged) << s.brief_report();
+  EXPECT_NEAR(s.f, 0.0, kFTol);
+  EXPECT_GT(s.failed_evaluations, 0);
+  EXPECT_EQ(s.failed_evaluations, failures);
+}
+
+TEST(BundleTrust, TreatsNonFiniteOracleOutputAsAFailedEvaluation) {
+  fo::FunctionOracle nan_at_start([](const Eigen::Ref<const Eigen::VectorXd>& x) {
+    return fo::OracleResult::success(std::numeric_limits<double>::quiet_NaN(), Eigen::VectorXd::Zero(x.size()));
+  });
+  const auto s0 = fo::BundleTrust(tight()).minimize(nan_at_start, Eigen::Vector2d(1.0, 1.0));
+  EXPECT_EQ(s0.status, Status::kNumericalFailure) << s0.brief_report();
+
+  // Finite at the start, infinite everywhere else: the inner iteration must give up (limits).
+  const Eigen::Vector2d x0(1.0, 1.0);
+  fo::FunctionOracle inf_elsewhere([x0](const Eigen::Ref<const Eigen::VectorXd>& x) {
+    const double f = (x - x0).norm() == 0.0 ? 1.0 : std::numeric_limits<double>::infinity();
+    return fo::OracleResult::success(f, Eigen::Vector2d(1.0, 0.0));
+  });
+  const auto s = fo::BundleTrust(tight()).minimize(inf_elsewhere, x0);
+  EXPECT_EQ(s.status, Status::kStalled) << s.brief_report();
+  EXPECT_EQ(s.failed_evaluations, s.evaluations - 1);
+  EXPECT_LE(s.evaluations, 1 + tight().max_inner_iterations);
+  EXPECT_EQ(s.f, 1.0);
+}
+
+TEST(BundleTrust, StopsAtTheEvaluationAndIterationLimits) {
+  auto o = tight();
+  o.epsilon = 0.0;  // never "almost stationary": only limits can end the run
+  o.max_evaluations = 7;
+  auto oracle = weighted_l1(Eigen::Vector2d(1.0, 1.0), Eigen::Vector2d(0.3, 0.7));
+  const auto s = fo::BundleTrust(o).minimize(oracle, Eigen::Vector2d(5.0, 5.0));
+  EXPECT_EQ(s.status, Status::kMaxIterations);
+  EXPECT_LE(s.evaluations, 7);
+  o.max_evaluations = 100000;
+  o.max_iterations = 4;
+  const auto s2 = fo::BundleTrust(o).minimize(oracle, Eigen::Vector2d(5.0, 5.0));
+  EXPECT_EQ(s2.status, Status::kMaxIterations);
+  EXPECT_EQ(s2.iterations, 4);
+}
+
+TEST(BundleTrust, CallbackCanStopTheRunAndTheRunResumesFromItsState) {
+  auto oracle = weighted_l1(Eigen::Vector3d(1.0, 2.0, 0.5), Eigen::Vector3d(1.0, -2.0, 3.0));
+  const Eigen::Vector3d x0(5.0, 5.0, 5.0);
+  const auto full = fo::BundleTrust(tight()).minimize(oracle, x0);
+  ASSERT_EQ(full.status, Status::kConverged);
+  ASSERT_GT(full.iterations, 5);
+
+  auto o = tight();
+  o.on_iteration = [](const fo::BundleTrust::IterationSummary& it) {
+    return it.iteration >= 5 ? frictopt::CallbackResult::kStop : frictopt::CallbackResult::kContinue;
+  };
+  const auto first = fo::BundleTrust(o).minimize(oracle, x0);
+  EXPECT_EQ(first.status, Status::kStoppedByCallback);
+  EXPECT_EQ(first.iterations, 5);
+
+  // Same state, same arithmetic: the resumed run ends exactly where the uninterrupted one did.
+  const auto rest = fo::BundleTrust(tight()).resume(oracle, first.last_state);
+  ASSERT_EQ(rest.status, Status::kConverged) << rest.brief_report();
+  EXPECT_EQ(rest.iterations, full.iterations);
+  EXPECT_EQ(rest.evaluations, full.evaluations);
+  EXPECT_EQ(rest.f, full.f);
+  EXPECT_EQ(rest.x, full.x);
+}
+
+TEST(BundleTrust, BriefReportNamesStatusAndCounters) {
+  auto oracle = max_oracle();
+  fo::LinearConstraints k;
+  k.lower = Eigen::Vector2d(0.0, 0.0);
+  const auto s = fo::BundleTrust(tight(), k).minimize(oracle, Eigen::Vector2d(1.0, 2.0));
+  const std::string r = s.brief_report();
+  EXPECT_NE(r.find("converged"), std::string::npos) << r;
+  EXPECT_NE(r.find("evaluations"), std::string::npos) << r;
+  EXPECT_NEAR(s.f, 0.0, kFTol);
+}
