@@ -68,11 +68,11 @@ Eigen::VectorXd ContactState::normal_forces() const {
 }
 
 void classify_nodes(ContactState& state, std::span<const FrictionLaw> laws,
-                    double relative_tolerance) {
+                    double relative_tolerance, double c_scale) {
   const Eigen::Index p = state.num_nodes();
   FRICTOPT_ASSERT(laws.size() == 1 || static_cast<Eigen::Index>(laws.size()) == p,
                   "classify_nodes: laws must have 1 or p entries");
-  double force_scale = kTiny, disp_scale = kTiny;
+  double force_scale = kTiny, disp_scale = std::max(kTiny, c_scale);
   for (Eigen::Index i = 0; i < p; ++i) {
     force_scale = std::max({force_scale, state.lambda(i), state.q(i).norm()});
     disp_scale = std::max({disp_scale, state.u_t(i).norm(), std::abs(state.normal_gap(i))});

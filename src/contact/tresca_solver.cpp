@@ -216,8 +216,9 @@ class Engine {
     }
   }
 
-  double reduced_gradient_norm(const Eigen::VectorXd& z, const Eigen::VectorXd& g) const {
-    return std::sqrt(analyze(z, g, Part::kBoth, nullptr, nullptr).reduced_gradient_norm2);
+  double reduced_gradient_norm(const Eigen::VectorXd& z, const Eigen::VectorXd& g,
+                               Part part = Part::kBoth) const {
+    return std::sqrt(analyze(z, g, part, nullptr, nullptr).reduced_gradient_norm2);
   }
 
  private:
@@ -353,6 +354,39 @@ TrescaSolver::TrescaSolver(const LinearOperator& delassus, std::vector<FrictionL
 TrescaSolver::Summary TrescaSolver::solve(const Eigen::Ref<const Eigen::VectorXd>& c,
                                           const Eigen::Ref<const Eigen::VectorXd>& slip_bound,
                                           ContactState& state) const {
+  return solve_impl(c, slip_bound, state, options_.relative_tolerance, static_cast<int>(Part::kBoth));
+}
+
+TrescaSolver::Summary TrescaSolver::solve_to(const Eigen::Ref<const Eigen::VectorXd>& c,
+                                             const Eigen::Ref<const Eigen::VectorXd>& slip_bound,
+                                             ContactState& state, double relative_tolerance) const {
+  if (!(relative_tolerance > 0.0 && relative_tolerance < 1.0))
+    throw InvalidInput("TrescaSolver::solve_to: relative_tolerance = " + num(relative_tolerance) +
+                       "; expected a value in (0, 1)");
+  return solve_impl(c, slip_bound, state, relative_tolerance, static_cast<int>(Part::kBoth));
+}
+
+TrescaSolver::Summary TrescaSolver::solve_block(Block block,
+                                                const Eigen::Ref<const Eigen::VectorXd>& c,
+                                                const Eigen::Ref<const Eigen::VectorXd>& slip_bound,
+                                                ContactState& state,
+                                                double relative_tolerance) const {
+  if (!(relative_tolerance > 0.0 && relative_tolerance < 1.0))
+    throw InvalidInput("TrescaSolver::solve_block: relative_tolerance = " +
+                       num(relative_tolerance) + "; expected a value in (0, 1)");
+  if (state.z.size() != delassus_.size() || state.dim != dim_)
+    throw InvalidInput("TrescaSolver::solve_block: state.z has size " +
+                       std::to_string(state.z.size()) + "; expected " +
+                       std::to_string(delassus_.size()) + " (the fixed block is read from it)");
+  const Part part = block == Block::kTangential ? Part::kTangential : Part::kNormal;
+  return solve_impl(c, slip_bound, state, relative_tolerance, static_cast<int>(part));
+}
+
+TrescaSolver::Summary TrescaSolver::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& c,
+                                               const Eigen::Ref<const Eigen::VectorXd>& slip_bound,
+                                               ContactState& state, double relative_tolerance,
+                                               int part_code) const {
+  const Part part = static_cast<Part>(part_code);
   const auto start = std::chrono::steady_clock::now();
   const Eigen::Index n = delassus_.size();
   if (c.size() != n)
@@ -381,17 +415,20 @@ TrescaSolver::Summary TrescaSolver::solve(const Eigen::Ref<const Eigen::VectorXd
                                                                 : Eigen::VectorXd::Zero(n);
   const double c_norm = cc.norm();
   Eigen::VectorXd g(n);
-  if (c_norm == 0.0) {
+  if (c_norm == 0.0 && part == Part::kBoth) {
     // ½zᵀMz is minimized by z = 0, which is feasible.
     z.setZero();
     g.setZero();
     summary.status = Status::kConverged;
   } else {
-    engine.project(z, Part::kBoth);
+    engine.project(z, part);
     engine.recompute_gradient(z, cc, g);
-    const double eps = options_.relative_tolerance * c_norm;
+    const double eps = relative_tolerance * c_norm;
     int budget = options_.max_iterations;
-    if (summary.algorithm_used == TrescaAlgorithm::kJointMpgp) {
+    if (part != Part::kBoth) {
+      summary.algorithm_used = TrescaAlgorithm::kSplit;
+      summary.status = engine.run(z, g, cc, part, eps, budget);
+    } else if (summary.algorithm_used == TrescaAlgorithm::kJointMpgp) {
       summary.status = engine.run(z, g, cc, Part::kBoth, eps, budget);
     } else {
       // Block Gauss–Seidel (spec 02, §8, steps I/II): each block is solved to a tolerance a
@@ -422,12 +459,13 @@ TrescaSolver::Summary TrescaSolver::solve(const Eigen::Ref<const Eigen::VectorXd
       }
     }
     engine.recompute_gradient(z, cc, g);
-    summary.relative_projected_gradient = engine.reduced_gradient_norm(z, g) / c_norm;
+    summary.relative_projected_gradient =
+        c_norm > 0.0 ? engine.reduced_gradient_norm(z, g, part) / c_norm : 0.0;
   }
   switch (summary.status) {
     case Status::kConverged:
       summary.message = "relative projected gradient " + num(summary.relative_projected_gradient) +
-                        " <= " + num(options_.relative_tolerance);
+                        " <= " + num(relative_tolerance);
       break;
     case Status::kMaxIterations:
       summary.message = "iteration limit reached (max_iterations = " +
@@ -438,7 +476,7 @@ TrescaSolver::Summary TrescaSolver::solve(const Eigen::Ref<const Eigen::VectorXd
       summary.message = "non-finite values or a non-positive curvature pᵀMp: the Delassus "
                         "operator is not SPD or the data are not finite";
   }
-  const ContactResiduals res = contact_residuals(laws_, s, z, g, dim_, cc.cwiseAbs().maxCoeff());
+  const ContactResiduals res = contact_residuals(laws_, s, z, g, dim_, (cc.size() ? cc.cwiseAbs().maxCoeff() : 0.0));
   summary.kkt_residual = res.kkt_residual;
   summary.complementarity_gap = res.complementarity_gap;
   summary.objective = 0.5 * z.dot(g + cc);
@@ -446,7 +484,7 @@ TrescaSolver::Summary TrescaSolver::solve(const Eigen::Ref<const Eigen::VectorXd
   state.z = std::move(z);
   state.gradient = std::move(g);
   state.slip_bound = s;
-  classify_nodes(state, laws_, options_.classification_tolerance);
+  classify_nodes(state, laws_, options_.classification_tolerance, (cc.size() ? cc.cwiseAbs().maxCoeff() : 0.0));
   summary.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

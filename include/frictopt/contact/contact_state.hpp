@@ -92,12 +92,14 @@ struct ContactState {
 
 /// Classifies every node of `state` (z, gradient, slip_bound must be set) into
 /// separated/stick/slip and friction faces, following spec 03, §3.2: with
-/// Λ = max(max_i λ_i, max_i |q_i|, tiny) and U = max(max_i |u_t^i|, max_i |w_i|, tiny),
+/// Λ = max(max_i λ_i, max_i |q_i|, tiny) and U = max(max_i |u_t^i|, max_i |w_i|, c_scale, tiny)
+/// (c_scale = ‖c‖_∞ carries the gaps g and the free elastic response, so a state where every
+/// node sticks with closed gaps still has a displacement scale),
 /// τ_λ = τ_q = ε_cl·Λ and τ_u = ε_cl·U; the slip-ray angle tolerance is max(ε_cl, τ_u/|u_t^i|)
 /// (the direction uncertainty an absolute error τ_u in u_t induces). ε_cl must exceed the
 /// solver's relative KKT residual. `laws` has 1 (shared) or p entries.
 void classify_nodes(ContactState& state, std::span<const FrictionLaw> laws,
-                    double relative_tolerance);
+                    double relative_tolerance, double c_scale);
 
 /// The residuals of ContactResiduals for forces z, gradient ∇ = Mz + c and slip bounds s.
 /// `c_scale` = ‖c‖_∞. `laws` has 1 (shared) or p entries.

@@ -106,6 +106,23 @@ class TrescaSolver {
                               const Eigen::Ref<const Eigen::VectorXd>& slip_bound,
                               ContactState& state) const;
 
+  /// As solve(), with the stopping tolerance `relative_tolerance` in (0, 1) instead of
+  /// Options::relative_tolerance (used by the Coulomb fixed point to tighten as it converges).
+  [[nodiscard]] Summary solve_to(const Eigen::Ref<const Eigen::VectorXd>& c,
+                                 const Eigen::Ref<const Eigen::VectorXd>& slip_bound,
+                                 ContactState& state, double relative_tolerance) const;
+
+  /// Which block solve_block() minimizes over.
+  enum class Block {
+    kTangential,  ///< step (I) of spec 02, §8: q ∈ s·W with λ fixed (MPGP)
+    kNormal       ///< step (II) of spec 02, §8: λ >= 0 with q fixed (MPRGP)
+  };
+  /// Minimizes the QP over one block with the other fixed at state.z (which must have size
+  /// dim·p), to ‖g̃_ᾱ‖ <= relative_tolerance·‖c‖ on that block. The split Coulomb method.
+  [[nodiscard]] Summary solve_block(Block block, const Eigen::Ref<const Eigen::VectorXd>& c,
+                                    const Eigen::Ref<const Eigen::VectorXd>& slip_bound,
+                                    ContactState& state, double relative_tolerance) const;
+
   int dim() const { return dim_; }
   Eigen::Index num_nodes() const { return num_nodes_; }
   const Options& options() const { return options_; }
@@ -116,6 +133,10 @@ class TrescaSolver {
   double step_length() const { return alpha_bar_; }
 
  private:
+  Summary solve_impl(const Eigen::Ref<const Eigen::VectorXd>& c,
+                     const Eigen::Ref<const Eigen::VectorXd>& slip_bound, ContactState& state,
+                     double relative_tolerance, int part) const;
+
   const LinearOperator& delassus_;
   std::vector<FrictionLaw> laws_;
   Options options_;

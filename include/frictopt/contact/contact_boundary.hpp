@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+// The potential contact nodes Γ_c of a finite element body and the maps between the dual
+// contact variables z and the FE degrees of freedom (spec 02, §0.1, §7, §9.2).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "frictopt/fem/boundary_conditions.hpp"
+#include "frictopt/mesh/structured_mesh.hpp"
+
+namespace frictopt::contact {
+
+/// Contact nodes are the bottom nodes (layer 0, on the Bézier surface) whose DOFs are all free:
+/// a bottom node on Γ_u is not a contact node (spec 01, A-BC). Frame = global axes: tangential
+/// components x1 (, x2), normal x_dim upward (DESIGN.md).
+///
+/// The dual variable z has per-node blocks z_i = (q_i, λ_i) (dim−1 tangential, then normal),
+/// where q_i = −τ_i is the friction resistance and λ_i ≥ 0 the normal force. The operator
+/// G (dim·p × n_free) has rows −T_i (tangential) and N_i (normal), so the contact forces on the
+/// body are Gᵀz = Nᵀλ + Tᵀτ and G u = (−u_t, u_ν) per node.
+///
+/// Lifetime: keeps no reference; built from the mesh and DOF map once.
+class ContactBoundary {
+ public:
+  ContactBoundary(const mesh::StructuredMesh& mesh, const fem::DofMap& dofs);
+
+  int dim() const { return dim_; }
+  Eigen::Index num_nodes() const { return static_cast<Eigen::Index>(nodes_.size()); }
+  Eigen::Index num_unknowns() const { return dim_ * num_nodes(); }
+  /// Number of free FE DOFs (columns of G).
+  Eigen::Index num_free() const { return num_free_; }
+  /// Mesh node index of contact node i.
+  const std::vector<int>& nodes() const { return nodes_; }
+  /// In-plane coordinates x' of the contact nodes (p × dim−1); constant in α.
+  const Eigen::MatrixXd& plane_coordinates() const { return plane_; }
+  /// Initial gaps g_i = G_α(x'_i) = X(node_i, dim−1) (spec 01, §2.4).
+  Eigen::VectorXd gaps(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
+
+  /// w_free += Gᵀ z.
+  void add_transpose_times(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> w_free) const;
+  /// G v for a free-DOF vector v: per node (−v_t, v_ν).
+  Eigen::VectorXd times(const Eigen::Ref<const Eigen::VectorXd>& v_free) const;
+  /// The same from a full DOF vector (num_dofs).
+  Eigen::VectorXd times_full(const Eigen::Ref<const Eigen::VectorXd>& v_full) const;
+  /// G as a sparse matrix (dim·p × n_free).
+  Eigen::SparseMatrix<double> matrix() const;
+  /// Free-DOF index of contact node i, component c.
+  int free_dof(Eigen::Index i, int c) const { return free_dofs_[static_cast<std::size_t>(dim_ * i + c)]; }
+
+ private:
+  int dim_;
+  Eigen::Index num_free_;
+  std::vector<int> nodes_;
+  std::vector<int> free_dofs_;  // per contact unknown, node-major
+  Eigen::MatrixXd plane_;
+};
+
+}  // namespace frictopt::contact

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: MIT
+// Coulomb friction as a fixed point over given-friction (Tresca) problems (spec 02, §3, §8,
+// §9.3): the slip bound s ← λ (the coefficient μ is absorbed in the friction set W), each step
+// a warm-started dual QP; and the split variant of spec 02, §8 (steps I/II alternating).
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "frictopt/contact/contact_state.hpp"
+#include "frictopt/contact/friction_law.hpp"
+#include "frictopt/contact/linear_operator.hpp"
+#include "frictopt/contact/tresca_solver.hpp"
+#include "frictopt/core/status.hpp"
+
+namespace frictopt::contact {
+
+/// How the Coulomb problem is solved.
+enum class CoulombMethod {
+  kFixedPoint,  ///< s_{k+1} = λ(s_k): a full Tresca QP per step (thesis §5.1, §6.1.3)
+  kSplit        ///< spec 02, §8: per step one tangential solve (I) and one normal solve (II)
+};
+/// "fixed_point", "split".
+std::string_view to_string(CoulombMethod method);
+/// Inverse of to_string; throws InvalidInput listing the accepted spellings.
+CoulombMethod parse_coulomb_method(std::string_view text);
+
+/// What the callback sees after each fixed-point iteration.
+struct CoulombIterationSummary {
+  int iteration = 0;                 ///< 1-based
+  double relative_increment = kNaN;  ///< ‖s_{k+1} − s_k‖ / ‖s_k‖ (∞ when s_k = 0 ≠ s_{k+1})
+  int qp_iterations = 0;             ///< QP steps of this iteration
+  Status qp_status = Status::kNotRun;
+};
+/// Called after every fixed-point iteration; returning kStop ends the solve with
+/// Status::kStoppedByCallback.
+using CoulombIterationCallback = std::function<CallbackResult(const CoulombIterationSummary&)>;
+
+/// Solver of the discrete Coulomb problem q_i ∈ λ_i ∂N_W(u_t^i), λ ⟂ u_ν + g >= 0, in the dual
+/// variables of TrescaSolver (whose Options it carries). `delassus` must outlive the solver.
+class CoulombSolver {
+ public:
+  struct Options {
+    /// Stop when ‖s_{k+1} − s_k‖₂ <= relative_tolerance·‖s_k‖₂ (s_k = 0 = s_{k+1} counts as
+    /// converged: no contact anywhere). Split method: the increment of (q, λ) relative to
+    /// ‖(q, λ)‖. In (0, 1).
+    double relative_tolerance = 1e-10;
+    /// Cap on fixed-point iterations. >= 1.
+    int max_iterations = 50;
+    /// ω ∈ (0, 1]: s_{k+1} = (1 − ω) s_k + ω λ(s_k). ω = 1 is plain successive approximation.
+    double relaxation = 1.0;
+    CoulombMethod method = CoulombMethod::kFixedPoint;
+    /// kDiverged when the increment grows in this many consecutive iterations. >= 2.
+    int divergence_window = 5;
+    /// Inner QP solver. Its relative_tolerance is the floor of the adaptive inner tolerance:
+    /// iteration k solves to max(floor, min(1e-6, 1e-2·(last relative increment))), so early
+    /// iterations are cheap and the final ones are as accurate as a standalone Tresca solve.
+    TrescaSolver::Options tresca;
+    /// Optional observer.
+    CoulombIterationCallback on_iteration;
+    /// Throws InvalidInput naming the field, its value and the expectation (also for `tresca`).
+    void validate() const;
+  };
+
+  struct Summary {
+    Status status = Status::kNotRun;
+    std::string message = "solve() has not been called";
+    int iterations = 0;                 ///< fixed-point iterations
+    int qp_iterations = 0;              ///< QP steps summed over all inner solves
+    int operator_applications = 0;      ///< applies of M (not counting the norm estimate)
+    int inner_not_converged = 0;        ///< inner solves that stopped on their iteration cap
+    double last_relative_increment = kNaN;
+    double kkt_residual = kNaN;         ///< ContactResiduals with s = λ (Coulomb conditions)
+    double complementarity_gap = kNaN;  ///< idem
+    double time_seconds = 0.0;
+    CoulombMethod method_given = CoulombMethod::kFixedPoint;
+    CoulombMethod method_used = CoulombMethod::kFixedPoint;
+    bool converged() const { return status == Status::kConverged; }
+    std::string brief_report() const;
+  };
+
+  /// One friction law for all nodes (W includes μ). Throws InvalidInput on bad options or
+  /// sizes; estimates ‖M‖ once (TrescaSolver).
+  CoulombSolver(const LinearOperator& delassus, const FrictionLaw& law, Options options);
+  CoulombSolver(const LinearOperator& delassus, const FrictionLaw& law);
+  /// One law per node.
+  CoulombSolver(const LinearOperator& delassus, std::vector<FrictionLaw> laws, Options options);
+
+  /// Solves for the linear term c (size dim·p). Warm start: if state.z has size dim·p the
+  /// fixed point starts from s_0 = λ(state.z) and z = state.z; otherwise from the frictionless
+  /// problem (s_0 = 0). On return `state` holds z, ∇ = Mz + c, slip_bound = λ and the node
+  /// classification.
+  [[nodiscard]] Summary solve(const Eigen::Ref<const Eigen::VectorXd>& c, ContactState& state) const;
+
+  const TrescaSolver& tresca() const { return tresca_; }
+  const Options& options() const { return options_; }
+
+ private:
+  Summary solve_fixed_point(const Eigen::VectorXd& c, ContactState& state) const;
+  Summary solve_split(const Eigen::VectorXd& c, ContactState& state) const;
+  double inner_tolerance(double last_increment) const;
+
+  Options options_;
+  TrescaSolver tresca_;
+};
+
+}  // namespace frictopt::contact

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/contact/contact_boundary.hpp"
+
+namespace frictopt::contact {
+
+ContactBoundary::ContactBoundary(const mesh::StructuredMesh& mesh, const fem::DofMap& dofs) : dim_(mesh.dim()), num_free_(dofs.num_free()) {
+  const std::vector<int> bottom = mesh.bottom_nodes();
+  const Eigen::MatrixXd plane = mesh.bottom_plane_coordinates();
+  std::vector<Eigen::Index> kept;
+  for (std::size_t k = 0; k < bottom.size(); ++k) {
+    bool all_free = true;
+    for (int c = 0; c < dim_; ++c) all_free = all_free && dofs.is_free(bottom[k] * dim_ + c);
+    if (!all_free) continue;
+    nodes_.push_back(bottom[k]);
+    kept.push_back(static_cast<Eigen::Index>(k));
+    for (int c = 0; c < dim_; ++c) free_dofs_.push_back(dofs.free_index(bottom[k] * dim_ + c));
+  }
+  plane_.resize(static_cast<Eigen::Index>(kept.size()), dim_ - 1);
+  for (std::size_t i = 0; i < kept.size(); ++i) plane_.row(static_cast<Eigen::Index>(i)) = plane.row(kept[i]);
+}
+
+Eigen::VectorXd ContactBoundary::gaps(const Eigen::Ref<const Eigen::MatrixXd>& X) const {
+  Eigen::VectorXd g(num_nodes());
+  for (Eigen::Index i = 0; i < num_nodes(); ++i) g(i) = X(nodes_[static_cast<std::size_t>(i)], dim_ - 1);
+  return g;
+}
+
+void ContactBoundary::add_transpose_times(const Eigen::Ref<const Eigen::VectorXd>& z,
+                                          Eigen::Ref<Eigen::VectorXd> w_free) const {
+  for (Eigen::Index k = 0; k < num_unknowns(); ++k) {
+    const bool normal = (k % dim_) == dim_ - 1;
+    w_free(free_dofs_[static_cast<std::size_t>(k)]) += normal ? z(k) : -z(k);
+  }
+}
+
+Eigen::VectorXd ContactBoundary::times(const Eigen::Ref<const Eigen::VectorXd>& v_free) const {
+  Eigen::VectorXd y(num_unknowns());
+  for (Eigen::Index k = 0; k < num_unknowns(); ++k) {
+    const bool normal = (k % dim_) == dim_ - 1;
+    const double v = v_free(free_dofs_[static_cast<std::size_t>(k)]);
+    y(k) = normal ? v : -v;
+  }
+  return y;
+}
+
+Eigen::VectorXd ContactBoundary::times_full(const Eigen::Ref<const Eigen::VectorXd>& v_full) const {
+  Eigen::VectorXd y(num_unknowns());
+  for (Eigen::Index i = 0; i < num_nodes(); ++i)
+    for (int c = 0; c < dim_; ++c) {
+      const double v = v_full(nodes_[static_cast<std::size_t>(i)] * dim_ + c);
+      y(dim_ * i + c) = c == dim_ - 1 ? v : -v;
+    }
+  return y;
+}
+
+Eigen::SparseMatrix<double> ContactBoundary::matrix() const {
+  std::vector<Eigen::Triplet<double>> t;
+  for (Eigen::Index k = 0; k < num_unknowns(); ++k)
+    t.emplace_back(k, free_dofs_[static_cast<std::size_t>(k)], (k % dim_) == dim_ - 1 ? 1.0 : -1.0);
+  Eigen::SparseMatrix<double> G(num_unknowns(), num_free_);
+  G.setFromTriplets(t.begin(), t.end());
+  return G;
+}
+
+}  // namespace frictopt::contact
