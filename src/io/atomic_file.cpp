@@ -16,8 +16,8 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out)
-      throw InvalidInput(fmt::format("cannot write '{}' (does its directory exist?)",
-                                     path.string()));
+      throw InvalidInput(
+          fmt::format("cannot write '{}' (does its directory exist?)", path.string()));
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
     out.flush();
     if (!out) throw InvalidInput(fmt::format("writing '{}' failed", temporary.string()));

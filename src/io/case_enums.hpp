@@ -8,18 +8,16 @@
 
 namespace frictopt::io::detail {
 
-inline constexpr auto kFaceTable =
-    make_enum_table<Face>(std::pair{Face::kLeft, "left"}, std::pair{Face::kRight, "right"},
-                          std::pair{Face::kFront, "front"}, std::pair{Face::kBack, "back"},
-                          std::pair{Face::kTop, "top"});
+inline constexpr auto kFaceTable = make_enum_table<Face>(
+    std::pair{Face::kLeft, "left"}, std::pair{Face::kRight, "right"},
+    std::pair{Face::kFront, "front"}, std::pair{Face::kBack, "back"}, std::pair{Face::kTop, "top"});
 
 inline constexpr auto kPlaneModelTable =
     make_enum_table<PlaneModel>(std::pair{PlaneModel::kPlaneStrain, "plane_strain"},
                                 std::pair{PlaneModel::kPlaneStress, "plane_stress"});
 
-inline constexpr auto kSlopeScalingTable =
-    make_enum_table<SlopeScaling>(std::pair{SlopeScaling::kThesis, "thesis"},
-                                  std::pair{SlopeScaling::kExact, "exact"});
+inline constexpr auto kSlopeScalingTable = make_enum_table<SlopeScaling>(
+    std::pair{SlopeScaling::kThesis, "thesis"}, std::pair{SlopeScaling::kExact, "exact"});
 
 inline constexpr auto kContactLawTable =
     make_enum_table<ContactLaw>(std::pair{ContactLaw::kCoulomb, "coulomb"});

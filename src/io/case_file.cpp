@@ -6,12 +6,12 @@
 #include "frictopt/io/case_file.hpp"
 
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <algorithm>
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <toml++/toml.h>
 #include <utility>
 
 #include "case_enums.hpp"
@@ -61,8 +61,8 @@ Face read_face(const TableReader& r, int dim) {
 // A list of exactly `dim` numbers at `key`; `meaning` says what it is ("traction [N/m²]").
 Eigen::VectorXd read_dim_vector(const TableReader& r, std::string_view key, int dim,
                                 std::string_view meaning) {
-  const std::string what = fmt::format("a list of {} numbers ({}) in {}", dim, meaning,
-                                       dim_name(dim));
+  const std::string what =
+      fmt::format("a list of {} numbers ({}) in {}", dim, meaning, dim_name(dim));
   const std::vector<double> v = r.number_list(key, what);
   if (static_cast<int>(v.size()) != dim) r.fail_value(key, what);
   return Eigen::Map<const Eigen::VectorXd>(v.data(), dim);
@@ -111,8 +111,8 @@ MeshSpec read_mesh(const TableReader& r, int dim) {
     if (m.cells[i] < 1) r.fail_entry("cells", i, "an integer >= 1");
   if (auto grading = r.optional_number("grading")) {
     if (!(*grading >= kMinGrading && *grading <= kMaxGrading))
-      r.fail_value("grading", fmt::format("{} <= grading <= {} (1 = uniform)", kMinGrading,
-                                          kMaxGrading));
+      r.fail_value("grading",
+                   fmt::format("{} <= grading <= {} (1 = uniform)", kMinGrading, kMaxGrading));
     m.grading = *grading;
   }
   return m;
@@ -145,18 +145,22 @@ DirichletSpec read_dirichlet(const TableReader& r, int dim) {
                        ? read_dim_vector(r, "displacement", dim, "displacement, m")
                        : Eigen::VectorXd::Zero(dim);
   if (r.has("components")) {
-    const std::string what = fmt::format("a non-empty list of distinct component indices in "
-                                         "0..{}", dim - 1);
+    const std::string what = fmt::format(
+        "a non-empty list of distinct component indices in "
+        "0..{}",
+        dim - 1);
     d.components = r.int_list("components", what);
     if (d.components.empty()) r.fail_value("components", what);
     for (std::size_t i = 0; i < d.components.size(); ++i) {
       if (d.components[i] < 0 || d.components[i] >= dim)
-        r.fail_entry("components", i, fmt::format("an index in 0..{} in {}", dim - 1,
-                                                  dim_name(dim)));
+        r.fail_entry("components", i,
+                     fmt::format("an index in 0..{} in {}", dim - 1, dim_name(dim)));
       for (std::size_t j = 0; j < i; ++j)
         if (d.components[j] == d.components[i])
-          r.fail_entry("components", i, fmt::format("distinct indices, but it repeats "
-                                                    "components[{}]", j));
+          r.fail_entry("components", i,
+                       fmt::format("distinct indices, but it repeats "
+                                   "components[{}]",
+                                   j));
     }
     std::sort(d.components.begin(), d.components.end());
   } else {
@@ -168,8 +172,8 @@ DirichletSpec read_dirichlet(const TableReader& r, int dim) {
 DesignSpec read_design(const TableReader& r, const GeometrySpec& g) {
   DesignSpec d;
   const int dim = g.dim;
-  const std::string what = dim == 2 ? "a list [m1] of 1 integer >= 2 in 2D"
-                                    : "a list [m1, m2] of 2 integers >= 2 in 3D";
+  const std::string what =
+      dim == 2 ? "a list [m1] of 1 integer >= 2 in 2D" : "a list [m1, m2] of 2 integers >= 2 in 3D";
   d.control_points = r.int_list("control_points", what);
   if (static_cast<int>(d.control_points.size()) != dim - 1) r.fail_value("control_points", what);
   for (std::size_t i = 0; i < d.control_points.size(); ++i)
@@ -211,11 +215,10 @@ DesignSpec read_design(const TableReader& r, const GeometrySpec& g) {
     const double lo = base * (g.height - d.upper_bound);
     const double hi = base * g.height;
     if (!(*c2 >= lo && *c2 <= hi))
-      r.fail_value("volume",
-                   fmt::format("{} <= volume <= {} (the {} reachable with 0 <= α <= C0: "
-                               "{}·(height − C0) to {}·height)",
-                               lo, hi, dim == 2 ? "area" : "volume", dim == 2 ? "a" : "a·b",
-                               dim == 2 ? "a" : "a·b"));
+      r.fail_value("volume", fmt::format("{} <= volume <= {} (the {} reachable with 0 <= α <= C0: "
+                                         "{}·(height − C0) to {}·height)",
+                                         lo, hi, dim == 2 ? "area" : "volume",
+                                         dim == 2 ? "a" : "a·b", dim == 2 ? "a" : "a·b"));
     d.volume = c2;
   }
   if (auto s = read_enum(r, "slope_scaling", detail::kSlopeScalingTable)) d.slope_scaling = *s;
@@ -224,9 +227,9 @@ DesignSpec read_design(const TableReader& r, const GeometrySpec& g) {
 
 FrictionSpec read_friction(const TableReader& r, int dim) {
   FrictionSpec f;
-  const std::string kinds =
-      dim == 2 ? "none, isotropic, polygon"
-               : "none, isotropic, polygon, ellipse, ellipse_exact, disc_exact";
+  const std::string kinds = dim == 2
+                                ? "none, isotropic, polygon"
+                                : "none, isotropic, polygon, ellipse, ellipse_exact, disc_exact";
   const std::string kind_text = r.required_string("kind", fmt::format("one of {}", kinds));
   const std::optional<FrictionKind> kind = detail::kFrictionKindTable.find(kind_text);
   const bool kind_in_2d = kind == FrictionKind::kNone || kind == FrictionKind::kIsotropic ||
@@ -238,7 +241,9 @@ FrictionSpec read_friction(const TableReader& r, int dim) {
   // The keys each kind uses; a key another kind would use is an error, not silently ignored.
   std::vector<std::string_view> used;
   switch (f.kind) {
-    case FrictionKind::kNone: used = {"kind"}; break;
+    case FrictionKind::kNone:
+      used = {"kind"};
+      break;
     case FrictionKind::kIsotropic:
       used = dim == 2 ? std::vector<std::string_view>{"kind", "mu"}
                       : std::vector<std::string_view>{"kind", "mu", "n"};
@@ -247,18 +252,24 @@ FrictionSpec read_friction(const TableReader& r, int dim) {
       used = dim == 2 ? std::vector<std::string_view>{"kind", "mu_plus", "mu_minus"}
                       : std::vector<std::string_view>{"kind", "mu_vertices", "n"};
       break;
-    case FrictionKind::kEllipse: used = {"kind", "mu_x", "mu_y", "n"}; break;
-    case FrictionKind::kEllipseExact: used = {"kind", "mu_x", "mu_y"}; break;
-    case FrictionKind::kDiscExact: used = {"kind", "mu"}; break;
+    case FrictionKind::kEllipse:
+      used = {"kind", "mu_x", "mu_y", "n"};
+      break;
+    case FrictionKind::kEllipseExact:
+      used = {"kind", "mu_x", "mu_y"};
+      break;
+    case FrictionKind::kDiscExact:
+      used = {"kind", "mu"};
+      break;
   }
   for (auto&& [key, value] : r.table()) {
     if (std::find(used.begin(), used.end(), key.str()) != used.end()) continue;
     std::string list;
     for (std::string_view u : used) list += (list.empty() ? "" : ", ") + std::string(u);
-    r.fail(key.str(), fmt::format("{} = {} is not used by kind = \"{}\" in {}; that kind "
-                                  "takes {}",
-                                  r.field(key.str()), describe(value), kind_text,
-                                  dim_name(dim), list));
+    r.fail(key.str(),
+           fmt::format("{} = {} is not used by kind = \"{}\" in {}; that kind "
+                       "takes {}",
+                       r.field(key.str()), describe(value), kind_text, dim_name(dim), list));
   }
 
   const auto coefficient = [&](std::string_view key, std::string_view meaning) {
@@ -273,12 +284,15 @@ FrictionSpec read_friction(const TableReader& r, int dim) {
   };
 
   switch (f.kind) {
-    case FrictionKind::kNone: break;
+    case FrictionKind::kNone:
+      break;
     case FrictionKind::kIsotropic:
       f.mu = coefficient("mu", "the friction coefficient");
       if (dim == 3) f.n = sides().value_or(kDefaultPolygonSides);
       break;
-    case FrictionKind::kDiscExact: f.mu = coefficient("mu", "the friction coefficient"); break;
+    case FrictionKind::kDiscExact:
+      f.mu = coefficient("mu", "the friction coefficient");
+      break;
     case FrictionKind::kPolygon:
       if (dim == 2) {
         f.mu_plus = coefficient("mu_plus", "the coefficient for slip in +x1");
@@ -363,21 +377,20 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   try {
     root = toml::parse(toml_text, origin_name);
   } catch (const toml::parse_error& e) {
-    throw InvalidInput(fmt::format("{}:{}:{}: TOML syntax error: {}", origin,
-                                   e.source().begin.line, e.source().begin.column,
-                                   e.description()));
+    throw InvalidInput(fmt::format("{}:{}:{}: TOML syntax error: {}", origin, e.source().begin.line,
+                                   e.source().begin.column, e.description()));
   }
   for (std::string_view reserved : kReservedTables)
     if (const toml::node* n = root.get(reserved))
-      throw InvalidInput(detail::located(
-          origin, n,
-          fmt::format("[{}] is reserved for a later version of the case format and "
-                      "accepts nothing yet; remove it",
-                      reserved)));
+      throw InvalidInput(
+          detail::located(origin, n,
+                          fmt::format("[{}] is reserved for a later version of the case format and "
+                                      "accepts nothing yet; remove it",
+                                      reserved)));
 
   const TableReader top(root, "", origin,
-                        {"geometry", "mesh", "material", "load", "dirichlet", "design",
-                         "contact", "solver", "output"});
+                        {"geometry", "mesh", "material", "load", "dirichlet", "design", "contact",
+                         "solver", "output"});
   const auto table = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
     const toml::table* t = top.optional_table(key);
     if (t == nullptr) top.fail_missing(key, fmt::format("a table [{}]", key));
@@ -393,15 +406,16 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
 
   if (const toml::array* loads = top.optional_table_array("load"))
     for (std::size_t i = 0; i < loads->size(); ++i)
-      c.loads.push_back(read_load(TableReader(*loads->get(i)->as_table(),
-                                              fmt::format("load[{}]", i), origin,
-                                              {"face", "traction"}),
-                                  dim));
+      c.loads.push_back(
+          read_load(TableReader(*loads->get(i)->as_table(), fmt::format("load[{}]", i), origin,
+                                {"face", "traction"}),
+                    dim));
 
   const toml::array* dirichlet = top.optional_table_array("dirichlet");
   if (dirichlet == nullptr || dirichlet->empty())
-    top.fail_missing("dirichlet", "at least one [[dirichlet]] table (a body without a "
-                                  "Dirichlet part has rigid-body modes)");
+    top.fail_missing("dirichlet",
+                     "at least one [[dirichlet]] table (a body without a "
+                     "Dirichlet part has rigid-body modes)");
   // (face, component) -> index of the [[dirichlet]] entry that fixes it first.
   std::map<std::pair<Face, int>, std::size_t> fixed_by;
   for (std::size_t i = 0; i < dirichlet->size(); ++i) {
@@ -419,17 +433,16 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     c.dirichlet.push_back(std::move(d));
   }
 
-  c.design = read_design(
-      table("design", {"control_points", "initial", "upper_bound", "slope_bound", "volume",
-                       "slope_scaling"}),
-      c.geometry);
+  c.design = read_design(table("design", {"control_points", "initial", "upper_bound", "slope_bound",
+                                          "volume", "slope_scaling"}),
+                         c.geometry);
 
   if (const toml::table* contact = top.optional_table("contact"))
-    c.contact = read_contact(TableReader(*contact, "contact", origin, {"law", "friction"}), dim,
-                             origin);
+    c.contact =
+        read_contact(TableReader(*contact, "contact", origin, {"law", "friction"}), dim, origin);
   if (const toml::table* solver = top.optional_table("solver"))
-    c.solver = read_solver(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem"}),
-                           origin);
+    c.solver =
+        read_solver(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem"}), origin);
 
   std::string default_name = std::filesystem::path(origin).stem().string();
   if (const toml::table* output = top.optional_table("output"))
@@ -443,8 +456,8 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
 CaseDescription load_case(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    throw InvalidInput(fmt::format("{}: case file not found (or not a regular file)",
-                                   path.string()));
+    throw InvalidInput(
+        fmt::format("{}: case file not found (or not a regular file)", path.string()));
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();

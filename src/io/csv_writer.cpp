@@ -38,8 +38,7 @@ std::string join(std::span<const std::string> fields) {
 
 }  // namespace
 
-CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> header,
-                     Mode mode)
+CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> header, Mode mode)
     : path_(path), header_(std::move(header)) {
   if (header_.empty())
     throw InvalidInput(fmt::format("CsvWriter({}): the header is empty", path_.string()));
@@ -59,9 +58,10 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string>
     std::getline(in, existing);
     if (!existing.empty() && existing.back() == '\r') existing.pop_back();
     if (existing != header_line)
-      throw InvalidInput(fmt::format("CsvWriter({}): existing header '{}'; expected '{}' to "
-                                     "append",
-                                     path_.string(), existing, header_line));
+      throw InvalidInput(
+          fmt::format("CsvWriter({}): existing header '{}'; expected '{}' to "
+                      "append",
+                      path_.string(), existing, header_line));
     write_header = false;
   }
   out_.open(path_, mode == Mode::kAppend ? std::ios::app : std::ios::trunc);

@@ -37,16 +37,21 @@ Json to_nlohmann(const JsonValue& v) {
 
 JsonValue from_nlohmann(const Json& j) {
   switch (j.type()) {
-    case Json::value_t::null: return JsonValue();
-    case Json::value_t::boolean: return JsonValue(j.get<bool>());
-    case Json::value_t::number_integer: return JsonValue(j.get<std::int64_t>());
+    case Json::value_t::null:
+      return JsonValue();
+    case Json::value_t::boolean:
+      return JsonValue(j.get<bool>());
+    case Json::value_t::number_integer:
+      return JsonValue(j.get<std::int64_t>());
     case Json::value_t::number_unsigned: {
       const auto u = j.get<std::uint64_t>();
       if (u > static_cast<std::uint64_t>(INT64_MAX)) return JsonValue(static_cast<double>(u));
       return JsonValue(static_cast<std::int64_t>(u));
     }
-    case Json::value_t::number_float: return JsonValue(j.get<double>());
-    case Json::value_t::string: return JsonValue(j.get<std::string>());
+    case Json::value_t::number_float:
+      return JsonValue(j.get<double>());
+    case Json::value_t::string:
+      return JsonValue(j.get<std::string>());
     case Json::value_t::array: {
       JsonValue::Array out;
       for (const Json& e : j) out.push_back(from_nlohmann(e));
@@ -57,7 +62,8 @@ JsonValue from_nlohmann(const Json& j) {
       for (const auto& [key, e] : j.items()) out.emplace_back(key, from_nlohmann(e));
       return JsonValue(std::move(out));
     }
-    default: throw InvalidInput("parse_json: binary values are not supported");
+    default:
+      throw InvalidInput("parse_json: binary values are not supported");
   }
 }
 

@@ -19,11 +19,20 @@ std::string xml_escaped(std::string_view text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -39,16 +48,18 @@ void write_pvd(const std::filesystem::path& pvd_path, std::span<const PvdEntry> 
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const PvdEntry& e = entries[i];
     if (!std::isfinite(e.time))
-      throw InvalidInput(fmt::format("write_pvd({}): entry {} has time {}; expected a finite "
-                                     "number",
-                                     pvd_path.string(), i, e.time));
+      throw InvalidInput(
+          fmt::format("write_pvd({}): entry {} has time {}; expected a finite "
+                      "number",
+                      pvd_path.string(), i, e.time));
     if (e.file.empty() || e.file.is_absolute())
-      throw InvalidInput(fmt::format("write_pvd({}): entry {} has file '{}'; expected a path "
-                                     "relative to the .pvd's directory",
-                                     pvd_path.string(), i, e.file.string()));
+      throw InvalidInput(
+          fmt::format("write_pvd({}): entry {} has file '{}'; expected a path "
+                      "relative to the .pvd's directory",
+                      pvd_path.string(), i, e.file.string()));
     // "{}" prints the shortest decimal that reads back as the same double.
-    xml += fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n",
-                       e.time, xml_escaped(e.file.generic_string()));
+    xml += fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", e.time,
+                       xml_escaped(e.file.generic_string()));
   }
   xml += "  </Collection>\n</VTKFile>\n";
   detail::write_file_atomically(pvd_path, xml);
@@ -60,9 +71,10 @@ PvdWriter::PvdWriter(std::filesystem::path pvd_path) : pvd_path_(std::move(pvd_p
 
 void PvdWriter::add(double time, const std::filesystem::path& dataset) {
   if (!entries_.empty() && !(time > entries_.back().time))
-    throw InvalidInput(fmt::format("PvdWriter({}): time {} after time {}; expected increasing "
-                                   "times",
-                                   pvd_path_.string(), time, entries_.back().time));
+    throw InvalidInput(
+        fmt::format("PvdWriter({}): time {} after time {}; expected increasing "
+                    "times",
+                    pvd_path_.string(), time, entries_.back().time));
   std::filesystem::path relative = dataset;
   if (dataset.is_absolute()) {
     const std::filesystem::path base =

@@ -17,13 +17,20 @@ constexpr std::size_t kMaxListedEntries = 8;
 
 std::string type_name(const toml::node& n) {
   switch (n.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a float";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::array: return "a list";
-    case toml::node_type::table: return "a table";
-    default: return "a date/time";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a float";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::array:
+      return "a list";
+    case toml::node_type::table:
+      return "a table";
+    default:
+      return "a date/time";
   }
 }
 
@@ -99,9 +106,9 @@ TableReader::TableReader(const toml::table& table, std::string path, std::string
     std::string hint;
     if (const std::string_view guess = closest_key(k, allowed); !guess.empty())
       hint = fmt::format(" (did you mean '{}'?)", guess);
-    throw InvalidInput(located(
-        origin_, &value,
-        fmt::format("unknown key '{}'{}; expected one of {}", field(k), hint, expected)));
+    throw InvalidInput(
+        located(origin_, &value,
+                fmt::format("unknown key '{}'{}; expected one of {}", field(k), hint, expected)));
   }
 }
 
@@ -146,8 +153,9 @@ int TableReader::to_int(const toml::node& n, std::string_view field_name) const 
   if (!i) fail_type(n, field_name, "an integer");
   const std::int64_t v = i->get();
   if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
-    throw InvalidInput(located(
-        origin_, &n, fmt::format("{} = {}; expected an integer that fits in 32 bits", field_name, v)));
+    throw InvalidInput(
+        located(origin_, &n,
+                fmt::format("{} = {}; expected an integer that fits in 32 bits", field_name, v)));
   return static_cast<int>(v);
 }
 
@@ -242,10 +250,10 @@ void TableReader::fail_entry(std::string_view key, std::size_t index,
                              std::string_view expectation) const {
   const toml::node* n = node(key);
   const toml::node* entry = (n != nullptr && n->as_array()) ? n->as_array()->get(index) : nullptr;
-  throw InvalidInput(located(origin_, entry != nullptr ? entry : &table_,
-                             fmt::format("{}[{}] = {}; expected {}", field(key), index,
-                                         entry != nullptr ? describe(*entry) : "(absent)",
-                                         expectation)));
+  throw InvalidInput(
+      located(origin_, entry != nullptr ? entry : &table_,
+              fmt::format("{}[{}] = {}; expected {}", field(key), index,
+                          entry != nullptr ? describe(*entry) : "(absent)", expectation)));
 }
 
 void TableReader::fail_missing(std::string_view key, std::string_view what) const {

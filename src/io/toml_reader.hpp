@@ -5,12 +5,13 @@
 // one TableReader per case-file table, so adding a table is adding one function.
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <toml++/toml.h>
 #include <vector>
 
 namespace frictopt::io::detail {

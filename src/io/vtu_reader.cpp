@@ -58,14 +58,14 @@ VtuContents read_vtu_arrays(const std::filesystem::path& path) {
   vtkNew<vtkXMLUnstructuredGridReader> reader;
   detail::VtkErrorCapture capture(reader);
   if (reader->CanReadFile(path.c_str()) == 0)
-    throw InvalidInput(fmt::format("read_vtu_arrays: '{}' is not a VTK XML unstructured grid",
-                                   path.string()));
+    throw InvalidInput(
+        fmt::format("read_vtu_arrays: '{}' is not a VTK XML unstructured grid", path.string()));
   reader->SetFileName(path.c_str());
   reader->Update();
   vtkUnstructuredGrid* grid = reader->GetOutput();
   if (capture.has_error() || grid == nullptr)
-    throw InvalidInput(fmt::format("read_vtu_arrays: could not read '{}': {}", path.string(),
-                                   capture.errors()));
+    throw InvalidInput(
+        fmt::format("read_vtu_arrays: could not read '{}': {}", path.string(), capture.errors()));
 
   VtuContents out;
   out.num_points = grid->GetNumberOfPoints();
@@ -81,8 +81,7 @@ VtuContents read_vtu_arrays(const std::filesystem::path& path) {
   for (vtkIdType c = 0; c < out.num_cells; ++c) {
     out.cell_types.push_back(grid->GetCellType(c));
     grid->GetCellPoints(c, ids);
-    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
-      out.connectivity.push_back(ids->GetId(k));
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) out.connectivity.push_back(ids->GetId(k));
     out.offsets.push_back(static_cast<std::int64_t>(out.connectivity.size()));
   }
   out.point_arrays = read_arrays(grid->GetPointData());

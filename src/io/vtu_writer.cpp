@@ -29,19 +29,18 @@ void check_array(const DataArray& array, Eigen::Index expected_rows, std::string
   if (!names.insert(array.name).second)
     throw InvalidInput(fmt::format("write_vtu: {} array '{}' appears twice", kind, array.name));
   if (array.rows() != expected_rows)
-    throw InvalidInput(fmt::format("write_vtu: {} array '{}' has {} rows; expected {} (one per "
-                                   "{})",
-                                   kind, array.name, array.rows(), expected_rows,
-                                   kind == "point" ? "point" : "cell"));
+    throw InvalidInput(fmt::format(
+        "write_vtu: {} array '{}' has {} rows; expected {} (one per "
+        "{})",
+        kind, array.name, array.rows(), expected_rows, kind == "point" ? "point" : "cell"));
   if (array.num_components() < 1)
-    throw InvalidInput(fmt::format("write_vtu: {} array '{}' has no components", kind,
-                                   array.name));
+    throw InvalidInput(fmt::format("write_vtu: {} array '{}' has no components", kind, array.name));
   if (!array.component_names.empty() &&
       static_cast<Eigen::Index>(array.component_names.size()) != array.num_components())
-    throw InvalidInput(fmt::format("write_vtu: {} array '{}' has {} component names for {} "
-                                   "components",
-                                   kind, array.name, array.component_names.size(),
-                                   array.num_components()));
+    throw InvalidInput(
+        fmt::format("write_vtu: {} array '{}' has {} component names for {} "
+                    "components",
+                    kind, array.name, array.component_names.size(), array.num_components()));
 }
 
 // Copies an Eigen matrix (rows = tuples) into a VTK array of the matching value type.
@@ -72,12 +71,18 @@ void add_arrays(const std::vector<DataArray>& arrays, vtkFieldData* target) {
 
 int num_cell_points(VtkCellType type) {
   switch (type) {
-    case VtkCellType::kVertex: return 1;
-    case VtkCellType::kLine: return 2;
-    case VtkCellType::kTriangle: return 3;
-    case VtkCellType::kQuad: return 4;
-    case VtkCellType::kTetra: return 4;
-    case VtkCellType::kHexahedron: return 8;
+    case VtkCellType::kVertex:
+      return 1;
+    case VtkCellType::kLine:
+      return 2;
+    case VtkCellType::kTriangle:
+      return 3;
+    case VtkCellType::kQuad:
+      return 4;
+    case VtkCellType::kTetra:
+      return 4;
+    case VtkCellType::kHexahedron:
+      return 8;
   }
   throw InvalidInput(fmt::format("unknown VTK cell type {}", static_cast<int>(type)));
 }
@@ -88,8 +93,8 @@ DataArray DataArray::scalars(std::string name, const Eigen::VectorXd& values) {
 
 DataArray DataArray::vectors(std::string name, const Eigen::MatrixXd& values) {
   if (values.cols() != 2 && values.cols() != 3)
-    throw InvalidInput(fmt::format("DataArray::vectors('{}'): {} columns; expected 2 or 3", name,
-                                   values.cols()));
+    throw InvalidInput(
+        fmt::format("DataArray::vectors('{}'): {} columns; expected 2 or 3", name, values.cols()));
   Eigen::MatrixXd padded = Eigen::MatrixXd::Zero(values.rows(), 3);
   padded.leftCols(values.cols()) = values;
   return DataArray{std::move(name), std::move(padded), {}};
@@ -97,15 +102,16 @@ DataArray DataArray::vectors(std::string name, const Eigen::MatrixXd& values) {
 
 DataArray DataArray::symmetric_tensors(std::string name, const Eigen::MatrixXd& voigt) {
   if (voigt.cols() != 6)
-    throw InvalidInput(fmt::format("DataArray::symmetric_tensors('{}'): {} columns; expected 6 "
-                                   "(XX, YY, ZZ, XY, YZ, XZ)",
-                                   name, voigt.cols()));
+    throw InvalidInput(
+        fmt::format("DataArray::symmetric_tensors('{}'): {} columns; expected 6 "
+                    "(XX, YY, ZZ, XY, YZ, XZ)",
+                    name, voigt.cols()));
   // Full row-major tensor [XX XY XZ; XY YY YZ; XZ YZ ZZ] from (XX, YY, ZZ, XY, YZ, XZ).
   constexpr int kVoigtOfFull[9] = {0, 3, 5, 3, 1, 4, 5, 4, 2};
   Eigen::MatrixXd full(voigt.rows(), 9);
   for (int k = 0; k < 9; ++k) full.col(k) = voigt.col(kVoigtOfFull[k]);
-  return DataArray{std::move(name), std::move(full),
-                   {"XX", "XY", "XZ", "YX", "YY", "YZ", "ZX", "ZY", "ZZ"}};
+  return DataArray{
+      std::move(name), std::move(full), {"XX", "XY", "XZ", "YX", "YY", "YZ", "ZX", "ZY", "ZZ"}};
 }
 
 DataArray DataArray::integers(std::string name, const Eigen::VectorXi& values) {
@@ -126,8 +132,8 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
     throw InvalidInput(fmt::format("write_vtu({}): points have {} columns; expected 2 or 3",
                                    path.string(), grid.points.cols()));
   if (!grid.points.allFinite())
-    throw InvalidInput(fmt::format("write_vtu({}): a point coordinate is not finite",
-                                   path.string()));
+    throw InvalidInput(
+        fmt::format("write_vtu({}): a point coordinate is not finite", path.string()));
 
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -152,18 +158,19 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
     const CellBlock& block = grid.cells[b];
     const int width = num_cell_points(block.type);
     if (block.connectivity.rows() > 0 && block.connectivity.cols() != width)
-      throw InvalidInput(fmt::format("write_vtu({}): cell block {} has {} points per cell; "
-                                     "expected {} for VTK cell type {}",
-                                     path.string(), b, block.connectivity.cols(), width,
-                                     static_cast<int>(block.type)));
+      throw InvalidInput(fmt::format(
+          "write_vtu({}): cell block {} has {} points per cell; "
+          "expected {} for VTK cell type {}",
+          path.string(), b, block.connectivity.cols(), width, static_cast<int>(block.type)));
     ids.resize(static_cast<std::size_t>(width));
     for (Eigen::Index i = 0; i < block.connectivity.rows(); ++i, ++cell) {
       for (int k = 0; k < width; ++k) {
         const int id = block.connectivity(i, k);
         if (id < 0 || id >= n_points)
-          throw InvalidInput(fmt::format("write_vtu({}): cell {} of block {} refers to point {}; "
-                                         "expected 0 <= index < {}",
-                                         path.string(), i, b, id, n_points));
+          throw InvalidInput(
+              fmt::format("write_vtu({}): cell {} of block {} refers to point {}; "
+                          "expected 0 <= index < {}",
+                          path.string(), i, b, id, n_points));
         ids[static_cast<std::size_t>(k)] = id;
       }
       cells->InsertNextCell(width, ids.data());

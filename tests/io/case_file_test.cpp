@@ -208,7 +208,8 @@ TEST(ParseCase, Valid3dCaseGivesTheWrittenValuesAndDefaults) {
 }
 
 TEST(ParseCase, AbsentContactTableMeansNoContact) {
-  const std::string text = replaced(kValid2d, "[contact]\n[contact.friction]\nkind = \"isotropic\"\nmu = 0.3\n", "");
+  const std::string text =
+      replaced(kValid2d, "[contact]\n[contact.friction]\nkind = \"isotropic\"\nmu = 0.3\n", "");
   EXPECT_FALSE(parse_case(text, "case.toml").contact.has_value());
 }
 
@@ -221,8 +222,9 @@ TEST(ParseCase, ContactWithoutFrictionTableIsFrictionless) {
 }
 
 TEST(ParseCase, IsotropicAndEllipticLawsIn3dDefaultToSixteenSides) {
-  const std::string iso = replaced(kValid3d, "kind = \"polygon\"\nmu_vertices = [0.3, 0.2, 0.3, 0.2]",
-                                   "kind = \"isotropic\"\nmu = 0.5");
+  const std::string iso =
+      replaced(kValid3d, "kind = \"polygon\"\nmu_vertices = [0.3, 0.2, 0.3, 0.2]",
+               "kind = \"isotropic\"\nmu = 0.5");
   EXPECT_EQ(parse_case(iso, "case.toml").contact->friction.n, 16);
   const std::string ellipse =
       replaced(kValid3d, "kind = \"polygon\"\nmu_vertices = [0.3, 0.2, 0.3, 0.2]",
@@ -235,9 +237,8 @@ TEST(ParseCase, IsotropicAndEllipticLawsIn3dDefaultToSixteenSides) {
 }
 
 TEST(ParseCase, DirectionDependentFrictionIn2dReadsBothCoefficients) {
-  const std::string text =
-      replaced(kValid2d, "kind = \"isotropic\"\nmu = 0.3",
-               "kind = \"polygon\"\nmu_plus = 0.4\nmu_minus = 0.1");
+  const std::string text = replaced(kValid2d, "kind = \"isotropic\"\nmu = 0.3",
+                                    "kind = \"polygon\"\nmu_plus = 0.4\nmu_minus = 0.1");
   const FrictionSpec f = parse_case(text, "case.toml").contact->friction;
   EXPECT_EQ(f.kind, FrictionKind::kPolygon);
   EXPECT_EQ(f.mu_plus, 0.4);
@@ -245,7 +246,8 @@ TEST(ParseCase, DirectionDependentFrictionIn2dReadsBothCoefficients) {
 }
 
 TEST(ParseCase, PlaneStressIsAccepted) {
-  const std::string text = replaced(kValid2d, "poisson = 0.3", "poisson = 0.3\nmodel = \"plane_stress\"");
+  const std::string text =
+      replaced(kValid2d, "poisson = 0.3", "poisson = 0.3\nmodel = \"plane_stress\"");
   EXPECT_EQ(parse_case(text, "case.toml").material.model, PlaneModel::kPlaneStress);
 }
 
@@ -270,8 +272,7 @@ TEST(ParseCase, ReservedTablesAreRejectedAsNotYetSupported) {
 }
 
 TEST(ParseCase, UnknownKeyInNestedTablesIsNamedWithItsPath) {
-  expect_invalid(replaced(kValid2d, "mu = 0.3", "mu = 0.3\nmuu = 0.1"),
-                 {"contact.friction.muu"});
+  expect_invalid(replaced(kValid2d, "mu = 0.3", "mu = 0.3\nmuu = 0.1"), {"contact.friction.muu"});
   expect_invalid(replaced(kValid2d, "max_iterations = 40", "max_iter = 40"),
                  {"solver.coulomb.max_iter"});
   expect_invalid(replaced(kValid3d, "[solver.fem]", "[solver.fem]\nordering = \"amd\""),
@@ -288,8 +289,7 @@ TEST(ParseCase, WrongTypeNamesFieldValueAndExpectedType) {
   expect_invalid(replaced(kValid2d, "cells = [29, 14]", "cells = [29, 14.5]"),
                  {"mesh.cells[1] = 14.5 (a float); expected an integer"});
   expect_invalid(replaced(kValid2d, "every = 5", "every = 5\nvtk = \"yes\""), {"output.vtk"});
-  expect_invalid(replaced(kValid2d, "[mesh]\ncells", "mesh = 3\n[mesh2]\ncells"),
-                 {"mesh"});
+  expect_invalid(replaced(kValid2d, "[mesh]\ncells", "mesh = 3\n[mesh2]\ncells"), {"mesh"});
 }
 
 TEST(ParseCase, NonFiniteNumbersAreRejected) {
@@ -410,9 +410,9 @@ TEST(ParseCase, FrictionLawsAreValidated) {
                  {"contact.friction.n = 8 is not used by kind = \"isotropic\" in 2D"});
   expect_invalid(replaced(kValid3d, poly, std::string(poly) + "\nmu = 0.3"),
                  {"contact.friction.mu = 0.3 is not used by kind = \"polygon\""});
-  expect_invalid(replaced(kValid2d, "kind = \"isotropic\"\nmu = 0.3",
-                          "kind = \"polygon\"\nmu_plus = 0.3"),
-                 {"contact.friction.mu_minus is missing"});
+  expect_invalid(
+      replaced(kValid2d, "kind = \"isotropic\"\nmu = 0.3", "kind = \"polygon\"\nmu_plus = 0.3"),
+      {"contact.friction.mu_minus is missing"});
   expect_invalid(replaced(kValid3d, "law = \"coulomb\"", "law = \"tresca\""),
                  {"contact.law = \"tresca\"; expected one of coulomb"});
 }
@@ -450,9 +450,9 @@ TEST(LoadCase, MissingFileIsInvalidInputNamingThePath) {
 TEST(CaseEnums, SpellingsRoundTrip) {
   for (Face f : {Face::kLeft, Face::kRight, Face::kFront, Face::kBack, Face::kTop})
     EXPECT_EQ(parse_face(to_string(f)), f);
-  for (FrictionKind k : {FrictionKind::kNone, FrictionKind::kIsotropic, FrictionKind::kPolygon,
-                         FrictionKind::kEllipse, FrictionKind::kEllipseExact,
-                         FrictionKind::kDiscExact})
+  for (FrictionKind k :
+       {FrictionKind::kNone, FrictionKind::kIsotropic, FrictionKind::kPolygon,
+        FrictionKind::kEllipse, FrictionKind::kEllipseExact, FrictionKind::kDiscExact})
     EXPECT_EQ(parse_friction_kind(to_string(k)), k);
   EXPECT_EQ(parse_plane_model("plane_stress"), PlaneModel::kPlaneStress);
   EXPECT_EQ(parse_slope_scaling("exact"), SlopeScaling::kExact);

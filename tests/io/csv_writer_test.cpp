@@ -45,8 +45,7 @@ TEST_F(CsvFiles, EachRowIsOnDiskBeforeTheWriterCloses) {
   csv.write_row({std::int64_t{0}, 1.25, std::string("converged")});
   EXPECT_EQ(read_text(file), "iteration,theta,status\n0,1.25,converged\n");
   csv.write_row({1, 0.1, "max_iterations"});
-  EXPECT_EQ(read_text(file),
-            "iteration,theta,status\n0,1.25,converged\n1,0.1,max_iterations\n");
+  EXPECT_EQ(read_text(file), "iteration,theta,status\n0,1.25,converged\n1,0.1,max_iterations\n");
   EXPECT_EQ(csv.rows_written(), 2);
 }
 

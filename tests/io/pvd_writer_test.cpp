@@ -38,8 +38,8 @@ class PvdFiles : public ::testing::Test {
 };
 
 TEST_F(PvdFiles, CollectionListsEveryDatasetWithItsTime) {
-  const std::vector<PvdEntry> entries = {{0, "run_0000.vtu"}, {1.5, "sub dir/run_0001.vtu"},
-                                         {2, "a&b.vtu"}};
+  const std::vector<PvdEntry> entries = {
+      {0, "run_0000.vtu"}, {1.5, "sub dir/run_0001.vtu"}, {2, "a&b.vtu"}};
   write_pvd(dir_ / "run.pvd", entries);
   EXPECT_EQ(read_text(dir_ / "run.pvd"),
             "<?xml version=\"1.0\"?>\n"

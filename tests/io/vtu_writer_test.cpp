@@ -76,7 +76,8 @@ TEST_F(VtuFiles, HexahedralGridRoundTripsExactly) {
   EXPECT_EQ(back.cell_types, (std::vector<int>{12, 12}));
   ASSERT_EQ(back.offsets, (std::vector<std::int64_t>{0, 8, 16}));
   for (int e = 0; e < 2; ++e)
-    for (int k = 0; k < 8; ++k) EXPECT_EQ(back.connectivity[8 * e + k], grid.cells[0].connectivity(e, k));
+    for (int k = 0; k < 8; ++k)
+      EXPECT_EQ(back.connectivity[8 * e + k], grid.cells[0].connectivity(e, k));
 
   ASSERT_EQ(back.point_arrays.size(), 2u);
   EXPECT_EQ(back.point_arrays[0].name, "displacement");
@@ -172,16 +173,13 @@ TEST_F(VtuFiles, MissingDirectoryIsNamed) {
 
 TEST_F(VtuFiles, ReadingAFileThatIsNotAVtuIsInvalidInput) {
   EXPECT_THROW((void)read_vtu_arrays(dir_ / "absent.vtu"), InvalidInput);
-  {
-    std::ofstream(dir_ / "text.vtu") << "not xml at all\n";
-  }
+  { std::ofstream(dir_ / "text.vtu") << "not xml at all\n"; }
   EXPECT_THROW((void)read_vtu_arrays(dir_ / "text.vtu"), InvalidInput);
 }
 
 TEST(DataArray, VectorsRejectAWrongNumberOfColumns) {
   EXPECT_THROW((void)DataArray::vectors("u", Eigen::MatrixXd::Zero(3, 4)), InvalidInput);
-  EXPECT_THROW((void)DataArray::symmetric_tensors("s", Eigen::MatrixXd::Zero(3, 3)),
-               InvalidInput);
+  EXPECT_THROW((void)DataArray::symmetric_tensors("s", Eigen::MatrixXd::Zero(3, 3)), InvalidInput);
 }
 
 }  // namespace

@@ -49,8 +49,8 @@ struct Fields {
 // radius r (0 at the centre of the patch, 1 at its rim).
 void fill_node(Fields& f, int i, int dim, double s, double r, double depth) {
   f.u.row(i).setZero();
-  f.u(i, 0) = 0.3 * kIndentation * s * s;       // a little shear toward +x1
-  f.u(i, dim - 1) = -kIndentation * s;          // the top moves down, the patch stays
+  f.u(i, 0) = 0.3 * kIndentation * s * s;  // a little shear toward +x1
+  f.u(i, dim - 1) = -kIndentation * s;     // the top moves down, the patch stays
   f.von_mises(i) = kPeakPressure * (0.15 + 0.85 * std::exp(-(r * r + 4 * depth * depth)));
   if (s > 0) {
     f.pressure(i) = kNaN;

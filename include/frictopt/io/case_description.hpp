@@ -79,8 +79,8 @@ struct MeshSpec {
 
 /// [material]: isotropic linear elasticity.
 struct MaterialSpec {
-  double young = 0.0;    ///< Young's modulus E [Pa], > 0
-  double poisson = 0.0;  ///< Poisson's ratio ν, 0 <= ν < 0.5
+  double young = 0.0;                           ///< Young's modulus E [Pa], > 0
+  double poisson = 0.0;                         ///< Poisson's ratio ν, 0 <= ν < 0.5
   PlaneModel model = PlaneModel::kPlaneStrain;  ///< 2D only
 };
 

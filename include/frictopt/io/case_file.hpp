@@ -18,8 +18,7 @@ namespace frictopt::io {
 /// does not match geometry.dim; the message names the field, its value and what was
 /// expected, with the line where known, e.g.
 /// "case.toml:7: material.poisson = 0.6; expected 0 <= poisson < 0.5".
-[[nodiscard]] CaseDescription parse_case(std::string_view toml_text,
-                                         std::string_view origin_name);
+[[nodiscard]] CaseDescription parse_case(std::string_view toml_text, std::string_view origin_name);
 
 /// Reads `path` and calls parse_case with origin_name = path.string().
 /// Throws InvalidInput if the file cannot be read, and as parse_case.

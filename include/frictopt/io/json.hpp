@@ -31,8 +31,7 @@ class JsonValue {
   JsonValue(std::nullptr_t) {}
   JsonValue(bool b) : value_(b) {}
   template <std::integral T>
-    requires(!std::same_as<T, bool>)
-  JsonValue(T i) : value_(static_cast<std::int64_t>(i)) {}
+  requires(!std::same_as<T, bool>) JsonValue(T i) : value_(static_cast<std::int64_t>(i)) {}
   template <std::floating_point T>
   JsonValue(T x) : value_(static_cast<double>(x)) {}
   JsonValue(const char* s) : value_(std::string(s)) {}

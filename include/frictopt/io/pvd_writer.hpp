@@ -11,8 +11,8 @@ namespace frictopt::io {
 
 /// One dataset of a collection.
 struct PvdEntry {
-  double time = 0.0;             ///< the time step or iteration number shown by ParaView
-  std::filesystem::path file;    ///< the dataset, relative to the .pvd's directory
+  double time = 0.0;           ///< the time step or iteration number shown by ParaView
+  std::filesystem::path file;  ///< the dataset, relative to the .pvd's directory
 };
 
 /// Writes the collection `entries` to `pvd_path`, replacing it atomically (a temporary file

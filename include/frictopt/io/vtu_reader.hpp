@@ -15,7 +15,7 @@ namespace frictopt::io {
 struct VtuArray {
   std::string name;
   int num_components = 0;
-  Eigen::MatrixXd values;  ///< n_points (or n_cells) × num_components
+  Eigen::MatrixXd values;   ///< n_points (or n_cells) × num_components
   bool is_integer = false;  ///< stored as an integer type in the file
 };
 
@@ -23,9 +23,10 @@ struct VtuArray {
 struct VtuContents {
   Eigen::Index num_points = 0;
   Eigen::Index num_cells = 0;
-  Eigen::MatrixXd points;              ///< num_points × 3
-  std::vector<int> cell_types;         ///< VTK cell type id per cell
-  std::vector<std::int64_t> offsets;   ///< num_cells + 1; cell i is connectivity[offsets[i]..offsets[i+1])
+  Eigen::MatrixXd points;       ///< num_points × 3
+  std::vector<int> cell_types;  ///< VTK cell type id per cell
+  std::vector<std::int64_t>
+      offsets;  ///< num_cells + 1; cell i is connectivity[offsets[i]..offsets[i+1])
   std::vector<std::int64_t> connectivity;
   std::vector<VtuArray> point_arrays;  ///< in file order
   std::vector<VtuArray> cell_arrays;   ///< in file order

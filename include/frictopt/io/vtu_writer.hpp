@@ -51,8 +51,7 @@ struct DataArray {
   /// A symmetric tensor per row, given as n × 6 in the order XX, YY, ZZ, XY, YZ, XZ (ParaView's
   /// order for symmetric tensors), written as 9 components (row-major full tensor), which
   /// every VTK reader treats as a tensor. In 2D pass ZZ (plane strain) or 0 and YZ = XZ = 0.
-  [[nodiscard]] static DataArray symmetric_tensors(std::string name,
-                                                   const Eigen::MatrixXd& voigt);
+  [[nodiscard]] static DataArray symmetric_tensors(std::string name, const Eigen::MatrixXd& voigt);
   /// Integer tags, one per row.
   [[nodiscard]] static DataArray integers(std::string name, const Eigen::VectorXi& values);
 
