@@ -444,7 +444,13 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     c.solver =
         read_solver(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem"}), origin);
 
-  std::string default_name = std::filesystem::path(origin).stem().string();
+  // Default output name: the file stem, or the case directory's name for the
+  // cases*/<name>/case.toml layout (every case file there is called case.toml).
+  const std::filesystem::path origin_path(origin);
+  std::string default_name = origin_path.stem() == "case" && origin_path.has_parent_path() &&
+                                     !origin_path.parent_path().filename().empty()
+                                 ? origin_path.parent_path().filename().string()
+                                 : origin_path.stem().string();
   if (const toml::table* output = top.optional_table("output"))
     c.output = read_output(TableReader(*output, "output", origin, {"vtk", "every", "name"}),
                            std::move(default_name));

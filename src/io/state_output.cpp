@@ -1,7 +1,68 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/io/state_output.hpp"
 
+#include "frictopt/io/csv_writer.hpp"
+
+#include <limits>
+#include <map>
+
 namespace frictopt::io {
+
+Eigen::VectorXd contact_tributary_areas(const study::ElasticBody& body) {
+  // Projected (x'-plane) area per contact node: the foundation normal is e_dim, so the nodal
+  // force λ spreads over the projection of the surrounding bottom facets (2D: length).
+  const mesh::StructuredMesh& m = body.mesh();
+  const contact::ContactBoundary& boundary = *body.contact_boundary();
+  std::map<int, Eigen::Index> index;
+  for (Eigen::Index i = 0; i < boundary.num_nodes(); ++i) index[boundary.nodes()[static_cast<std::size_t>(i)]] = i;
+  const Eigen::MatrixXd X = m.positions(Eigen::VectorXd::Zero(m.shape().num_controls()));
+  Eigen::VectorXd area = Eigen::VectorXd::Zero(boundary.num_nodes());
+  const mesh::Connectivity facets = m.face_facets(mesh::Face::kBottom);
+  for (Eigen::Index f = 0; f < facets.rows(); ++f) {
+    double a;
+    if (m.dim() == 2) {
+      a = std::abs(X(facets(f, 1), 0) - X(facets(f, 0), 0));
+    } else {
+      a = std::abs((X(facets(f, 1), 0) - X(facets(f, 0), 0)) * (X(facets(f, 3), 1) - X(facets(f, 0), 1)));
+    }
+    for (Eigen::Index k = 0; k < facets.cols(); ++k) {
+      const auto it = index.find(facets(f, k));
+      if (it != index.end()) area(it->second) += a / static_cast<double>(facets.cols());
+    }
+  }
+  return area;
+}
+
+void add_contact_fields(VtuGrid& grid, const study::ElasticBody& body, const study::ContactResult& result) {
+  const mesh::StructuredMesh& m = body.mesh();
+  const contact::ContactBoundary& boundary = *body.contact_boundary();
+  const int dim = m.dim();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Eigen::VectorXd area = contact_tributary_areas(body);
+  Eigen::VectorXd pressure = Eigen::VectorXd::Constant(m.num_nodes(), nan);
+  Eigen::VectorXd gap = Eigen::VectorXd::Constant(m.num_nodes(), nan);
+  Eigen::MatrixXd traction = Eigen::MatrixXd::Constant(m.num_nodes(), 3, nan);
+  Eigen::MatrixXd slip = Eigen::MatrixXd::Constant(m.num_nodes(), 3, nan);
+  Eigen::VectorXi status = Eigen::VectorXi::Constant(m.num_nodes(), -1);
+  const contact::ContactState& cs = result.state;
+  for (Eigen::Index i = 0; i < boundary.num_nodes(); ++i) {
+    const int n = boundary.nodes()[static_cast<std::size_t>(i)];
+    pressure(n) = cs.lambda(i) / area(i);
+    gap(n) = cs.normal_gap(i);
+    traction.row(n).setZero();
+    slip.row(n).setZero();
+    for (int c = 0; c < dim - 1; ++c) {
+      traction(n, c) = -cs.z(dim * i + c) / area(i);  // τ = −q: the traction the foundation exerts
+      slip(n, c) = -cs.gradient(dim * i + c);          // ∇_q K = −u_t
+    }
+    status(n) = static_cast<int>(cs.nodes[static_cast<std::size_t>(i)].status);
+  }
+  grid.point_data.push_back(DataArray::scalars("contact_pressure", pressure));
+  grid.point_data.push_back(DataArray::vectors("contact_traction", traction));
+  grid.point_data.push_back(DataArray::vectors("slip", slip));
+  grid.point_data.push_back(DataArray::scalars("contact_gap", gap));
+  grid.point_data.push_back(DataArray::integers("contact_status", status));
+}
 
 VtuGrid make_state_grid(const study::ElasticBody& body, const study::BodyState& state) {
   const mesh::StructuredMesh& m = body.mesh();
@@ -10,7 +71,8 @@ VtuGrid make_state_grid(const study::ElasticBody& body, const study::BodyState& 
   grid.points = state.positions;
   grid.cells.push_back({dim == 2 ? VtkCellType::kQuad : VtkCellType::kHexahedron, m.elements()});
   Eigen::MatrixXd u(m.num_nodes(), dim);
-  for (int n = 0; n < m.num_nodes(); ++n) u.row(n) = state.displacement.segment(n * dim, dim).transpose();
+  for (int n = 0; n < m.num_nodes(); ++n)
+    u.row(n) = state.displacement.segment(n * dim, dim).transpose();
   grid.point_data.push_back(DataArray::vectors("displacement", u));
   grid.point_data.push_back(DataArray::symmetric_tensors("stress", state.stress.nodal));
   grid.point_data.push_back(DataArray::scalars("von_mises", state.stress.nodal_von_mises));
@@ -21,13 +83,34 @@ VtuGrid make_state_grid(const study::ElasticBody& body, const study::BodyState& 
   for (const auto& t : body.definition().tractions)
     for (int n : m.face_nodes(t.face)) tags(n) |= kTractionTag;
   grid.point_data.push_back(DataArray::integers("boundary_tag", tags));
+  if (state.contact && body.contact_boundary()) add_contact_fields(grid, body, *state.contact);
   grid.cell_data.push_back(DataArray::symmetric_tensors("stress", state.stress.element));
   grid.cell_data.push_back(DataArray::scalars("von_mises", state.stress.element_von_mises));
   return grid;
 }
 
-void write_state_vtu(const std::filesystem::path& path, const study::ElasticBody& body, const study::BodyState& state) {
+void write_state_vtu(const std::filesystem::path& path, const study::ElasticBody& body,
+                     const study::BodyState& state) {
   write_vtu(path, make_state_grid(body, state));
+}
+
+}  // namespace frictopt::io
+
+namespace frictopt::io {
+
+void write_contact_csv(const std::filesystem::path& path, const study::ElasticBody& body,
+                       const study::ContactResult& result) {
+  const contact::ContactBoundary& boundary = *body.contact_boundary();
+  const Eigen::VectorXd area = contact_tributary_areas(body);
+  const contact::ContactState& cs = result.state;
+  CsvWriter csv(path, {"x1", "initial_gap", "normal_force", "pressure", "tangential_force", "tangential_traction",
+                       "tangential_displacement", "gap_after_deformation", "status"});
+  for (Eigen::Index i = 0; i < boundary.num_nodes(); ++i) {
+    const double tau = -cs.z(2 * i);
+    csv.write_row({boundary.plane_coordinates()(i, 0), result.gaps(i), cs.lambda(i), cs.lambda(i) / area(i), tau,
+                   tau / area(i), -cs.gradient(2 * i), cs.normal_gap(i),
+                   std::string(contact::to_string(cs.nodes[static_cast<std::size_t>(i)].status))});
+  }
 }
 
 }  // namespace frictopt::io

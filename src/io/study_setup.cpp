@@ -1,37 +1,74 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/io/study_setup.hpp"
 
+#include <fmt/format.h>
+
 #include <filesystem>
+
+#include "frictopt/core/error.hpp"
 
 namespace frictopt::io {
 namespace {
 mesh::Face to_mesh_face(Face face) {
   switch (face) {
-    case Face::kLeft: return mesh::Face::kLeft;
-    case Face::kRight: return mesh::Face::kRight;
-    case Face::kFront: return mesh::Face::kFront;
-    case Face::kBack: return mesh::Face::kBack;
-    case Face::kTop: return mesh::Face::kTop;
+    case Face::kLeft:
+      return mesh::Face::kLeft;
+    case Face::kRight:
+      return mesh::Face::kRight;
+    case Face::kFront:
+      return mesh::Face::kFront;
+    case Face::kBack:
+      return mesh::Face::kBack;
+    case Face::kTop:
+      return mesh::Face::kTop;
   }
   return mesh::Face::kTop;
+}
+
+// FrictionSpec → FrictionLaw (DESIGN.md, "Friction sets"); the law validates convexity itself.
+contact::FrictionLaw make_friction_law(const CaseDescription& c) {
+  const FrictionSpec& f = c.contact->friction;
+  const int dim = c.geometry.dim;
+  const int n = f.n.value_or(16);
+  try {
+    switch (f.kind) {
+      case FrictionKind::kNone:
+        return dim == 2 ? contact::FrictionLaw::interval(0.0, 0.0) : contact::FrictionLaw::disc(0.0);
+      case FrictionKind::kIsotropic:
+        return dim == 2 ? contact::FrictionLaw::interval(*f.mu, *f.mu) : contact::FrictionLaw::regular_polygon(*f.mu, n);
+      case FrictionKind::kPolygon:
+        return dim == 2 ? contact::FrictionLaw::interval(*f.mu_minus, *f.mu_plus)
+                        : contact::FrictionLaw::polygon(f.mu_vertices);
+      case FrictionKind::kEllipse: return contact::FrictionLaw::ellipse_polygon(*f.mu_x, *f.mu_y, n);
+      case FrictionKind::kEllipseExact: return contact::FrictionLaw::ellipse(*f.mu_x, *f.mu_y);
+      case FrictionKind::kDiscExact: return contact::FrictionLaw::disc(*f.mu);
+    }
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("{}: contact.friction: {}", c.origin, e.what()));
+  }
+  return contact::FrictionLaw::disc(0.0);
 }
 }  // namespace
 
 study::BodyDefinition make_body_definition(const CaseDescription& c) {
   study::BodyDefinition body;
-  body.name = c.output.name.empty() ? std::filesystem::path(c.origin).stem().string() : c.output.name;
+  body.name =
+      c.output.name.empty() ? std::filesystem::path(c.origin).stem().string() : c.output.name;
   const int dim = c.geometry.dim;
-  body.shape = dim == 2 ? shape::BezierShape::curve(c.geometry.a, c.design.control_points[0])
-                        : shape::BezierShape::surface(c.geometry.a, c.geometry.b, c.design.control_points[0],
-                                                      c.design.control_points[1]);
+  body.shape =
+      dim == 2 ? shape::BezierShape::curve(c.geometry.a, c.design.control_points[0])
+               : shape::BezierShape::surface(c.geometry.a, c.geometry.b, c.design.control_points[0],
+                                             c.design.control_points[1]);
   body.height = c.geometry.height;
-  body.resolution.cells = dim == 2 ? std::array<int, 3>{c.mesh.cells[0], 0, c.mesh.cells[1]}
-                                   : std::array<int, 3>{c.mesh.cells[0], c.mesh.cells[1], c.mesh.cells[2]};
+  body.resolution.cells =
+      dim == 2 ? std::array<int, 3>{c.mesh.cells[0], 0, c.mesh.cells[1]}
+               : std::array<int, 3>{c.mesh.cells[0], c.mesh.cells[1], c.mesh.cells[2]};
   body.resolution.grading = c.mesh.grading;
   body.material.young = c.material.young;
   body.material.poisson = c.material.poisson;
-  body.material.plane_model =
-      c.material.model == PlaneModel::kPlaneStress ? fem::PlaneModel::kPlaneStress : fem::PlaneModel::kPlaneStrain;
+  body.material.plane_model = c.material.model == PlaneModel::kPlaneStress
+                                  ? fem::PlaneModel::kPlaneStress
+                                  : fem::PlaneModel::kPlaneStrain;
   for (const DirichletSpec& d : c.dirichlet)
     body.dirichlet.push_back({to_mesh_face(d.face), d.components, d.displacement});
   for (const LoadSpec& l : c.loads) body.tractions.push_back({to_mesh_face(l.face), l.traction});
@@ -39,9 +76,20 @@ study::BodyDefinition make_body_definition(const CaseDescription& c) {
   body.admissible.slope_bound = c.design.slope_bound;
   body.admissible.volume = c.design.volume;
   body.admissible.height = c.geometry.height;
-  body.admissible.slope_scaling =
-      c.design.slope_scaling == SlopeScaling::kExact ? shape::SlopeScaling::kExact : shape::SlopeScaling::kThesis;
+  body.admissible.slope_scaling = c.design.slope_scaling == SlopeScaling::kExact
+                                      ? shape::SlopeScaling::kExact
+                                      : shape::SlopeScaling::kThesis;
   body.initial_design = c.design.initial;
+  if (c.contact) {
+    study::ContactDefinition contact_definition;
+    contact_definition.law = make_friction_law(c);
+    auto& coulomb = contact_definition.coulomb;
+    if (c.solver.coulomb.max_iterations) coulomb.max_iterations = *c.solver.coulomb.max_iterations;
+    if (c.solver.coulomb.relative_tolerance) coulomb.relative_tolerance = *c.solver.coulomb.relative_tolerance;
+    if (c.solver.qp.max_iterations) coulomb.tresca.max_iterations = *c.solver.qp.max_iterations;
+    if (c.solver.qp.relative_tolerance) coulomb.tresca.relative_tolerance = *c.solver.qp.relative_tolerance;
+    body.contact = contact_definition;
+  }
   return body;
 }
 

@@ -5,6 +5,8 @@
 
 #include <chrono>
 
+#include "frictopt/contact/delassus.hpp"
+#include "frictopt/contact/linear_operator.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::study {
@@ -30,6 +32,13 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
                                                  fem::expand_dirichlet(*mesh_, definition_.dirichlet),
                                                  definition_.tractions);
   admissible_ = shape::make_admissible_set(definition_.shape, definition_.admissible);
+  if (definition_.contact) {
+    if (definition_.contact->law.dim() != mesh_->dim())
+      throw InvalidInput(fmt::format("contact.friction: a {}D friction law for a {}D body",
+                                     definition_.contact->law.dim(), mesh_->dim()));
+    definition_.contact->coulomb.validate();
+    boundary_ = std::make_unique<contact::ContactBoundary>(*mesh_, fem_->dofs());
+  }
 }
 
 BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, const std::string& design_label) {
@@ -54,18 +63,54 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
     return state;
   }
   start = std::chrono::steady_clock::now();
-  state.displacement = fem_->solve();
+  const fem::SparseCholesky& cholesky = fem_->factorization();
+  Eigen::VectorXd u_free = cholesky.solve(fem_->load());  // the free body's response A⁻¹l
+  Eigen::VectorXd rhs = fem_->load();
+  if (boundary_) {
+    // Dual contact QP (spec 02, §7/§9.2): min ½zᵀMz + zᵀc with c = G A⁻¹ l + (0, g).
+    ContactResult result;
+    result.gaps = boundary_->gaps(state.positions);
+    const int dim = mesh_->dim();
+    Eigen::VectorXd c = boundary_->times(u_free);
+    for (Eigen::Index i = 0; i < boundary_->num_nodes(); ++i) c(dim * i + dim - 1) += result.gaps(i);
+    const ContactDefinition& cd = *definition_.contact;
+    std::unique_ptr<contact::LinearOperator> delassus;
+    result.dense_delassus = boundary_->num_unknowns() <= cd.dense_delassus_max_unknowns;
+    if (result.dense_delassus)
+      delassus = std::make_unique<contact::DenseOperator>(contact::dense_delassus(cholesky, *boundary_));
+    else
+      delassus = std::make_unique<contact::FactorizedDelassus>(cholesky, *boundary_);
+    result.state = warm_start_ && warm_start_->z.size() == boundary_->num_unknowns()
+                       ? *warm_start_
+                       : contact::ContactState(dim, boundary_->num_nodes());
+    const contact::CoulombSolver solver(*delassus, cd.law, cd.coulomb);
+    result.summary = solver.solve(c, result.state);
+    if (result.summary.converged()) warm_start_ = result.state;
+    // u_f = A⁻¹(l + Gᵀz): the body under its loads and the contact forces.
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(fem_->dofs().num_free());
+    boundary_->add_transpose_times(result.state.z, w);
+    u_free += cholesky.solve(w);
+    rhs += w;
+    if (!result.summary.converged()) {
+      state.summary.status = result.summary.status;
+      state.summary.message = "contact: " + result.summary.message;
+    }
+    state.contact = std::move(result);
+  }
+  state.displacement = fem_->dofs().expand(u_free);
   state.summary.solve_seconds = seconds_since(start);
 
-  const Eigen::VectorXd u_free = fem_->dofs().restrict(state.displacement);
-  const double load_norm = fem_->load().norm();
+  const double load_norm = rhs.norm();
   state.summary.relative_residual =
-      (fem_->stiffness() * u_free - fem_->load()).norm() / (load_norm > 0 ? load_norm : 1.0);
+      (fem_->stiffness() * u_free - rhs).norm() / (load_norm > 0 ? load_norm : 1.0);
   state.stress = fem::recover_stresses(*mesh_, definition_.material, state.positions, state.displacement);
   state.strain_energy = fem_->strain_energy(state.positions, state.displacement);
   state.external_work = fem_->external_work(state.positions, state.displacement);
-  state.summary.status = Status::kConverged;
-  state.summary.message = "linear elasticity solved by sparse Cholesky";
+  if (state.summary.status == Status::kNotRun) {
+    state.summary.status = Status::kConverged;
+    state.summary.message = boundary_ ? "contact with Coulomb friction solved (dual QP fixed point)"
+                                      : "linear elasticity solved by sparse Cholesky";
+  }
   return state;
 }
 

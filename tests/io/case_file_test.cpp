@@ -174,7 +174,7 @@ TEST(ParseCase, Valid2dCaseGivesTheWrittenValuesAndDefaults) {
   EXPECT_FALSE(c.solver.qp.relative_tolerance.has_value());
   EXPECT_TRUE(c.output.vtk);
   EXPECT_EQ(c.output.every, 5);
-  EXPECT_EQ(c.output.name, "case") << "default name is the stem of the origin";
+  EXPECT_EQ(c.output.name, "thesis") << "default name: the case directory for <dir>/case.toml";
 }
 
 TEST(ParseCase, Valid3dCaseGivesTheWrittenValuesAndDefaults) {

@@ -4,9 +4,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "frictopt/contact/coulomb_solver.hpp"
+#include "frictopt/contact/friction_law.hpp"
 #include "frictopt/fem/boundary_conditions.hpp"
 #include "frictopt/fem/material.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
@@ -14,6 +17,17 @@
 #include "frictopt/shape/bezier_shape.hpp"
 
 namespace frictopt::study {
+
+/// Unilateral contact with Coulomb friction on Γ_c against the foundation x_dim <= 0.
+struct ContactDefinition {
+  /// The friction law at every contact node (2D: an interval law; 3D: disc, polygon, ellipse).
+  contact::FrictionLaw law = contact::FrictionLaw::disc(0.0);
+  contact::CoulombSolver::Options coulomb;
+  /// Largest number of contact unknowns dim·p for which M = G A⁻¹ Gᵀ is assembled densely
+  /// (dim·p solves once per design, then cheap products); above it M is applied through the
+  /// sparse factorization (one solve per product). See bench/contact for the crossover.
+  int dense_delassus_max_unknowns = 1500;
+};
 
 struct BodyDefinition {
   std::string name = "body";                 ///< used in output file names
@@ -25,6 +39,7 @@ struct BodyDefinition {
   std::vector<fem::FaceTraction> tractions;   ///< Γ_p
   shape::AdmissibleSetParameters admissible;  ///< Υ
   Eigen::VectorXd initial_design;             ///< α⁰
+  std::optional<ContactDefinition> contact;   ///< absent: no foundation (pure elasticity)
 };
 
 }  // namespace frictopt::study

@@ -5,8 +5,12 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "frictopt/contact/contact_boundary.hpp"
+#include "frictopt/contact/contact_state.hpp"
+#include "frictopt/contact/coulomb_solver.hpp"
 #include "frictopt/core/status.hpp"
 #include "frictopt/fem/linear_elasticity.hpp"
 #include "frictopt/fem/stress_recovery.hpp"
@@ -27,6 +31,14 @@ struct StateSummary {
   std::string brief_report() const;
 };
 
+/// The contact part of a state: dual variables per contact node, gaps, the solver's report.
+struct ContactResult {
+  contact::ContactState state;       ///< z = (q, λ) per node, u_t and u_ν + g, node statuses
+  Eigen::VectorXd gaps;              ///< initial gaps g = B̃α at the contact nodes [m]
+  contact::CoulombSolver::Summary summary;
+  bool dense_delassus = false;       ///< used: dense M (true) or factorization-applied M
+};
+
 /// The state of the body at one design.
 struct BodyState {
   Eigen::VectorXd alpha;         ///< the design
@@ -36,6 +48,7 @@ struct BodyState {
   double strain_energy = kNaN;   ///< ½ uᵀAu [J] (2D: per metre of thickness)
   double external_work = kNaN;   ///< lᵀu [J]
   double volume = kNaN;          ///< meas Ω(α) of the mesh [m³ or m²]
+  std::optional<ContactResult> contact;  ///< present when the body has a foundation
   StateSummary summary;
 };
 
@@ -49,9 +62,13 @@ class ElasticBody {
   const mesh::StructuredMesh& mesh() const { return *mesh_; }
   const fem::LinearElasticity& elasticity() const { return *fem_; }
   const shape::LinearConstraints& admissible_set() const { return admissible_; }
+  /// The contact nodes (null without a foundation).
+  const contact::ContactBoundary* contact_boundary() const { return boundary_.get(); }
 
-  /// Solves the elasticity problem at design α. Throws InvalidInput when α has the wrong size
-  /// or inverts an element (naming `design_label`); a failed factorization is a status.
+  /// Solves the state problem at design α: elasticity, and with a foundation the Coulomb
+  /// contact problem (dual QP fixed point, spec 02 §9.3) warm-started from the last solve.
+  /// Throws InvalidInput when α has the wrong size or inverts an element (naming
+  /// `design_label`); a failed factorization or contact solve is a status.
   [[nodiscard]] BodyState solve(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                 const std::string& design_label = "design");
 
@@ -60,6 +77,8 @@ class ElasticBody {
   std::unique_ptr<mesh::StructuredMesh> mesh_;
   std::unique_ptr<fem::LinearElasticity> fem_;
   shape::LinearConstraints admissible_;
+  std::unique_ptr<contact::ContactBoundary> boundary_;
+  std::optional<contact::ContactState> warm_start_;  // last converged contact state
 };
 
 }  // namespace frictopt::study
