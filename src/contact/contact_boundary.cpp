@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/contact/contact_boundary.hpp"
 
+#include <cmath>
+#include <map>
+
 namespace frictopt::contact {
 
 ContactBoundary::ContactBoundary(const mesh::StructuredMesh& mesh, const fem::DofMap& dofs) : dim_(mesh.dim()), num_free_(dofs.num_free()) {
@@ -17,6 +20,22 @@ ContactBoundary::ContactBoundary(const mesh::StructuredMesh& mesh, const fem::Do
   }
   plane_.resize(static_cast<Eigen::Index>(kept.size()), dim_ - 1);
   for (std::size_t i = 0; i < kept.size(); ++i) plane_.row(static_cast<Eigen::Index>(i)) = plane.row(kept[i]);
+
+  std::map<int, Eigen::Index> index;
+  for (std::size_t i = 0; i < nodes_.size(); ++i) index[nodes_[i]] = static_cast<Eigen::Index>(i);
+  std::map<int, Eigen::Index> bottom_row;
+  for (std::size_t k = 0; k < bottom.size(); ++k) bottom_row[bottom[k]] = static_cast<Eigen::Index>(k);
+  areas_ = Eigen::VectorXd::Zero(num_nodes());
+  const mesh::Connectivity facets = mesh.face_facets(mesh::Face::kBottom);
+  for (Eigen::Index f = 0; f < facets.rows(); ++f) {
+    const auto x = [&](Eigen::Index k) { return plane.row(bottom_row.at(facets(f, k))); };
+    const double area = dim_ == 2 ? std::abs(x(1)(0) - x(0)(0))
+                                  : std::abs((x(1)(0) - x(0)(0)) * (x(3)(1) - x(0)(1)));
+    for (Eigen::Index k = 0; k < facets.cols(); ++k) {
+      const auto it = index.find(facets(f, k));
+      if (it != index.end()) areas_(it->second) += area / static_cast<double>(facets.cols());
+    }
+  }
 }
 
 Eigen::VectorXd ContactBoundary::gaps(const Eigen::Ref<const Eigen::MatrixXd>& X) const {

@@ -9,28 +9,7 @@
 namespace frictopt::io {
 
 Eigen::VectorXd contact_tributary_areas(const study::ElasticBody& body) {
-  // Projected (x'-plane) area per contact node: the foundation normal is e_dim, so the nodal
-  // force λ spreads over the projection of the surrounding bottom facets (2D: length).
-  const mesh::StructuredMesh& m = body.mesh();
-  const contact::ContactBoundary& boundary = *body.contact_boundary();
-  std::map<int, Eigen::Index> index;
-  for (Eigen::Index i = 0; i < boundary.num_nodes(); ++i) index[boundary.nodes()[static_cast<std::size_t>(i)]] = i;
-  const Eigen::MatrixXd X = m.positions(Eigen::VectorXd::Zero(m.shape().num_controls()));
-  Eigen::VectorXd area = Eigen::VectorXd::Zero(boundary.num_nodes());
-  const mesh::Connectivity facets = m.face_facets(mesh::Face::kBottom);
-  for (Eigen::Index f = 0; f < facets.rows(); ++f) {
-    double a;
-    if (m.dim() == 2) {
-      a = std::abs(X(facets(f, 1), 0) - X(facets(f, 0), 0));
-    } else {
-      a = std::abs((X(facets(f, 1), 0) - X(facets(f, 0), 0)) * (X(facets(f, 3), 1) - X(facets(f, 0), 1)));
-    }
-    for (Eigen::Index k = 0; k < facets.cols(); ++k) {
-      const auto it = index.find(facets(f, k));
-      if (it != index.end()) area(it->second) += a / static_cast<double>(facets.cols());
-    }
-  }
-  return area;
+  return body.contact_boundary()->tributary_areas();
 }
 
 void add_contact_fields(VtuGrid& grid, const study::ElasticBody& body, const study::ContactResult& result) {

@@ -76,9 +76,10 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
     const ContactDefinition& cd = *definition_.contact;
     std::unique_ptr<contact::LinearOperator> delassus;
     result.dense_delassus = boundary_->num_unknowns() <= cd.dense_delassus_max_unknowns;
-    if (result.dense_delassus)
-      delassus = std::make_unique<contact::DenseOperator>(contact::dense_delassus(cholesky, *boundary_));
-    else
+    if (result.dense_delassus) {
+      result.delassus_matrix = std::make_shared<const Eigen::MatrixXd>(contact::dense_delassus(cholesky, *boundary_));
+      delassus = std::make_unique<contact::DenseOperator>(*result.delassus_matrix);
+    } else
       delassus = std::make_unique<contact::FactorizedDelassus>(cholesky, *boundary_);
     result.state = warm_start_ && warm_start_->z.size() == boundary_->num_unknowns()
                        ? *warm_start_

@@ -35,6 +35,10 @@ class ContactBoundary {
   const std::vector<int>& nodes() const { return nodes_; }
   /// In-plane coordinates x' of the contact nodes (p × dim−1); constant in α.
   const Eigen::MatrixXd& plane_coordinates() const { return plane_; }
+  /// Projected (x'-plane) area of Γ_c attributed to each contact node [m²; 2D: m per metre of
+  /// thickness]: a quarter (3D) or half (2D) of each adjacent bottom facet. The foundation
+  /// normal is e_dim, so the pressure at node i is λ_i / area_i. Constant in α.
+  const Eigen::VectorXd& tributary_areas() const { return areas_; }
   /// Initial gaps g_i = G_α(x'_i) = X(node_i, dim−1) (spec 01, §2.4).
   Eigen::VectorXd gaps(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
 
@@ -55,6 +59,7 @@ class ContactBoundary {
   std::vector<int> nodes_;
   std::vector<int> free_dofs_;  // per contact unknown, node-major
   Eigen::MatrixXd plane_;
+  Eigen::VectorXd areas_;
 };
 
 }  // namespace frictopt::contact

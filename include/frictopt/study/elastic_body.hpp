@@ -37,6 +37,8 @@ struct ContactResult {
   Eigen::VectorXd gaps;              ///< initial gaps g = B̃α at the contact nodes [m]
   contact::CoulombSolver::Summary summary;
   bool dense_delassus = false;       ///< used: dense M (true) or factorization-applied M
+  /// The dense M = G A⁻¹ Gᵀ when it was assembled (reused by the sensitivity analysis).
+  std::shared_ptr<const Eigen::MatrixXd> delassus_matrix;
 };
 
 /// The state of the body at one design.

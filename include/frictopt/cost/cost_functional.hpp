@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// Cost functionals J(α, u, z) with value and partial gradients (spec 03 §9.2, spec 05 §2.4).
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+#include "frictopt/contact/contact_boundary.hpp"
+#include "frictopt/contact/contact_state.hpp"
+#include "frictopt/fem/linear_elasticity.hpp"
+#include "frictopt/sensitivity/adjoint.hpp"
+
+namespace frictopt::cost {
+
+/// What a cost may read at one state. References must outlive the call.
+struct CostInput {
+  const fem::LinearElasticity& fem;
+  const contact::ContactBoundary& boundary;
+  const Eigen::VectorXd& alpha;               ///< design (d)
+  const Eigen::MatrixXd& positions;           ///< X(α)
+  const Eigen::VectorXd& displacement;        ///< full u (num_dofs)
+  const contact::ContactState& contact;       ///< z = (q, λ) per node, gradient (−u_t, u_ν + g)
+  const Eigen::VectorXd& tributary_areas;     ///< projected Γ_c area per contact node (p)
+};
+
+/// J(α, u, z) with ∇_α J, ∇_u J and ∇_z J at fixed state (sensitivity::CostPartials).
+class CostFunctional {
+ public:
+  virtual ~CostFunctional() = default;
+  virtual std::string name() const = 0;
+  virtual sensitivity::CostPartials evaluate(const CostInput& input) const = 0;
+};
+
+/// J₁ = Σ_i (λ̄_i − λ_i)² (thesis ex. 5.2.1): the normal nodal forces toward a target [N²].
+/// The target λ̄ has one entry per contact node.
+std::unique_ptr<CostFunctional> make_target_normal_force(Eigen::VectorXd target);
+
+/// J₂ = Σ_i λ_i^p (thesis ex. 5.2.2 with p = 4, spec 05 §2.3's default reading Σλ⁴).
+std::unique_ptr<CostFunctional> make_normal_force_power(double exponent = 4.0);
+
+/// J₃ = −uᵀA u + lᵀu over all DOFs (thesis ex. 5.2.3, spec 03 §9.2): at a solution
+/// J₃ = λᵀg + Σ λ_i N_W(u_t^i) >= 0 (minus twice the strain energy plus the work of loads).
+std::unique_ptr<CostFunctional> make_compliance();
+
+/// A smooth peak-pressure surrogate: the discrete L^p norm of the contact pressure
+/// P_p = (Σ_i a_i (λ_i/a_i)^p)^{1/p} [Pa·m^{2/p}] with a_i the tributary areas; p → ∞ gives
+/// the peak pressure up to the factor (Σa)^{1/p}.
+std::unique_ptr<CostFunctional> make_pressure_norm(double exponent = 8.0);
+
+/// Total slip Σ_i √(|u_t^i|² + δ²) − δ [m]: the smoothed total tangential displacement of the
+/// contact nodes (δ > 0 smooths |·| at 0).
+std::unique_ptr<CostFunctional> make_total_slip(double smoothing);
+
+}  // namespace frictopt::cost

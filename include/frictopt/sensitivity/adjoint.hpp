@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: MIT
+// One Clarke subgradient (or pseudodifferential element) of Θ(α) = J(α, S(α)) for a chosen
+// piece, by one adjoint solve on the full FE system (spec 03, §6–§9, 3D §14.5–§14.6).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+#include "frictopt/contact/contact_boundary.hpp"
+#include "frictopt/contact/contact_state.hpp"
+#include "frictopt/contact/friction_law.hpp"
+#include "frictopt/core/status.hpp"
+#include "frictopt/fem/linear_elasticity.hpp"
+#include "frictopt/sensitivity/piece.hpp"
+
+namespace frictopt::sensitivity {
+
+/// Partial derivatives of a cost J(α, u, z) at a state (what the cost module returns).
+struct CostPartials {
+  double value = kNaN;
+  Eigen::VectorXd d_alpha;         ///< ∇_α J at fixed state (d)
+  Eigen::VectorXd d_displacement;  ///< ∇_u J over all DOFs (num_dofs); prescribed entries are ignored
+  Eigen::VectorXd d_contact;       ///< ∇_z J, per node (q, λ) (dim·p); empty = zero
+};
+
+/// The contact rows of the piece's linear system in the unknowns (u_free, z): per node dim
+/// rows, r = S (G u) + C_z z (+ g_i for gap rows), where G u = (−u_t, u_ν) per node
+/// (contact::ContactBoundary). This is (GE2) without the equilibrium rows, written for every
+/// law: vertex slip q − λw_j = 0; stick u_t = 0; ray slip on edge j as the unnormalized pair
+/// (w_{j+1} − w_j) × (q − λw_j) = 0 and ⟨w_{j+1} − w_j, u_t⟩ = 0 (equivalent to spec 03, §14.4
+/// but polynomial in the vertices, so also differentiable in μ); smooth slip q − λ w(u_t) = 0
+/// linearized at the current u_t; zero force λ = 0; zero friction q = 0; gap u_ν + g = 0.
+struct PieceLinearization {
+  Eigen::SparseMatrix<double> S;   ///< m × m, m = dim·p
+  Eigen::SparseMatrix<double> Cz;  ///< m × m
+  std::vector<Eigen::Index> gap_rows;  ///< rows "u_ν + g_i = 0" (node = row / dim)
+  /// Residual of the piece's equations at the current state, relative to the state's scales
+  /// (should be at the level of the solver/classification tolerance: the piece passes here).
+  double relative_residual = kNaN;
+};
+
+/// Builds the contact rows of `piece` at `state` (z, gradient = (−u_t, u_ν + g)).
+PieceLinearization linearize_piece(const Piece& piece, const contact::FrictionLaw& law,
+                                   const contact::ContactState& state);
+
+/// The adjoint sensitivity on a fixed body and design. With J_piece = [[A, −Gᵀ], [S G, C_z]],
+/// the adjoint (Π_iᵀ ψ = −∇_state J of T4.4.1, on the full system) is reduced by the
+/// factorization of A to the contact-sized system
+///   (M Sᵀ + C_zᵀ) ψ_z = −∇_z J − G A⁻¹ ∇_u J,      ψ_u = −A⁻¹(∇_u J + Gᵀ Sᵀ ψ_z),
+/// with M = G A⁻¹ Gᵀ the Delassus matrix; then (spec 03, §9, ξ = ∇_α J + Ξᵀψ)
+///   ξ = ∇_α J + ∇_α[ψ_uᵀ(A(α)u − l(α))] + Σ_{gap rows} ψ_z,r B̃_{node(r)}.
+/// Two sparse solves with the existing factorization plus one dense LU of size dim·p: never a
+/// dense inverse of the stiffness matrix.
+/// Lifetime: `fem` (factorized at the design) and `boundary` must outlive this object.
+class AdjointSensitivity {
+ public:
+  struct Summary {
+    Status status = Status::kNotRun;
+    std::string message = "not computed";
+    double reciprocal_condition = kNaN;   ///< of the contact-sized matrix (LU estimate)
+    double relative_residual = kNaN;      ///< of the contact-sized adjoint system
+    double piece_residual = kNaN;         ///< PieceLinearization::relative_residual
+    double time_seconds = 0.0;
+    std::string brief_report() const;
+  };
+  struct Result {
+    Eigen::VectorXd subgradient;  ///< ξ (d)
+    Eigen::VectorXd psi_u;        ///< adjoint on the free DOFs
+    Eigen::VectorXd psi_z;        ///< adjoint on the contact rows (dim·p)
+    Summary summary;
+  };
+
+  /// `gap_matrix` is B̃ at the contact nodes (p × d): g = B̃α.
+  AdjointSensitivity(const fem::LinearElasticity& fem, const contact::ContactBoundary& boundary,
+                     Eigen::MatrixXd gap_matrix, contact::FrictionLaw law);
+
+  /// ξ for `piece` at the state (positions X, full displacement u, contact state) with the
+  /// cost's partials. `delassus` is the dense M = G A⁻¹ Gᵀ at this design.
+  [[nodiscard]] Result subgradient(const Piece& piece, const Eigen::MatrixXd& delassus,
+                                   const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                   const Eigen::Ref<const Eigen::VectorXd>& u, const contact::ContactState& state,
+                                   const CostPartials& partials) const;
+
+ private:
+  const fem::LinearElasticity& fem_;
+  const contact::ContactBoundary& boundary_;
+  Eigen::MatrixXd gap_matrix_;
+  contact::FrictionLaw law_;
+};
+
+}  // namespace frictopt::sensitivity

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+// The shape problem as an oracle: Θ(α) = J(α, S(α)) and one subgradient ξ (spec 03, §13/§15),
+// with the index sets and reports a user needs to trust them; results are cached per design.
+#pragma once
+
+#include <Eigen/Core>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frictopt/cost/cost_functional.hpp"
+#include "frictopt/optim/oracle.hpp"
+#include "frictopt/sensitivity/adjoint.hpp"
+#include "frictopt/sensitivity/index_sets.hpp"
+#include "frictopt/sensitivity/piece.hpp"
+#include "frictopt/study/elastic_body.hpp"
+
+namespace frictopt::study {
+
+/// One evaluation of the oracle at a design.
+struct Evaluation {
+  bool ok = false;
+  std::string message;          ///< why not ok (state solve failed, adjoint singular, ...)
+  double value = kNaN;          ///< Θ(α)
+  Eigen::VectorXd subgradient;  ///< ξ for the default piece (empty when not requested / not ok)
+  sensitivity::IndexSets index_sets;
+  sensitivity::AdjointSensitivity::Summary adjoint;
+  StateSummary state;
+  contact::CoulombSolver::Summary contact;
+  double state_seconds = 0.0;
+  double subgradient_seconds = 0.0;
+};
+
+/// Θ(α) and ξ ∈ ∂Θ(α) (or of the pseudodifferential, spec 03 §8) for a body with contact and a
+/// cost. Lifetime: `body` must outlive the oracle; the oracle owns the cost. Not thread-safe.
+class ShapeOracle final : public optim::Oracle {
+ public:
+  /// Throws InvalidInput when the body has no contact definition.
+  ShapeOracle(ElasticBody& body, std::unique_ptr<cost::CostFunctional> cost);
+
+  /// Solves the state at α (throws InvalidInput for an inverting design), evaluates the cost
+  /// and, if requested, the default piece's subgradient. Cached: the same α returns the same
+  /// Evaluation without solving again.
+  const Evaluation& evaluate_design(const Eigen::Ref<const Eigen::VectorXd>& alpha, bool with_subgradient = true);
+  /// optim::Oracle: a failed or inverting evaluation reports "could not evaluate here".
+  [[nodiscard]] optim::OracleResult evaluate(const Eigen::Ref<const Eigen::VectorXd>& x) override;
+
+  /// ξ_i for the given pieces at α (the state is re-solved if α is not the cached design).
+  std::vector<Eigen::VectorXd> subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                                            const std::vector<sensitivity::Piece>& pieces);
+  /// The index sets and 𝕃 at α.
+  sensitivity::PieceEnumeration pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int cap = 256);
+
+  const ElasticBody& body() const { return body_; }
+  const cost::CostFunctional& cost() const { return *cost_; }
+  /// The state of the last solved design.
+  const BodyState& last_state() const { return *state_; }
+  int num_state_solves() const { return state_solves_; }
+
+ private:
+  void solve_state(const Eigen::VectorXd& alpha);
+  sensitivity::CostPartials partials() const;
+  const Eigen::MatrixXd& delassus();
+
+  ElasticBody& body_;
+  std::unique_ptr<cost::CostFunctional> cost_;
+  Eigen::MatrixXd gap_matrix_;  // B̃ at the contact nodes
+  std::optional<BodyState> state_;
+  Eigen::VectorXd state_alpha_;
+  std::shared_ptr<const Eigen::MatrixXd> delassus_;
+  std::map<std::vector<double>, Evaluation> cache_;
+  int state_solves_ = 0;
+};
+
+}  // namespace frictopt::study

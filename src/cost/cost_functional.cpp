@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/cost/cost_functional.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "frictopt/core/error.hpp"
+
+namespace frictopt::cost {
+namespace {
+
+sensitivity::CostPartials zero_partials(const CostInput& in) {
+  sensitivity::CostPartials out;
+  out.d_alpha = Eigen::VectorXd::Zero(in.alpha.size());
+  out.d_displacement = Eigen::VectorXd::Zero(in.displacement.size());
+  out.d_contact = Eigen::VectorXd::Zero(in.contact.z.size());
+  return out;
+}
+
+class TargetNormalForce final : public CostFunctional {
+ public:
+  explicit TargetNormalForce(Eigen::VectorXd target) : target_(std::move(target)) {}
+  std::string name() const override { return "target_normal_force"; }
+  sensitivity::CostPartials evaluate(const CostInput& in) const override {
+    const Eigen::VectorXd lambda = in.contact.normal_forces();
+    if (lambda.size() != target_.size())
+      throw InvalidInput(fmt::format("cost target_normal_force: target has {} entries; expected {} (contact nodes)",
+                                     target_.size(), lambda.size()));
+    sensitivity::CostPartials out = zero_partials(in);
+    const Eigen::VectorXd r = lambda - target_;
+    out.value = r.squaredNorm();
+    const int dim = in.contact.dim;
+    for (Eigen::Index i = 0; i < r.size(); ++i) out.d_contact(dim * i + dim - 1) = 2.0 * r(i);
+    return out;
+  }
+
+ private:
+  Eigen::VectorXd target_;
+};
+
+class NormalForcePower final : public CostFunctional {
+ public:
+  explicit NormalForcePower(double p) : p_(p) {
+    if (!(p >= 2.0)) throw InvalidInput(fmt::format("cost normal_force_power: exponent = {}; expected >= 2", p));
+  }
+  std::string name() const override { return "normal_force_power"; }
+  sensitivity::CostPartials evaluate(const CostInput& in) const override {
+    sensitivity::CostPartials out = zero_partials(in);
+    const int dim = in.contact.dim;
+    out.value = 0.0;
+    for (Eigen::Index i = 0; i < in.contact.num_nodes(); ++i) {
+      const double lambda = std::max(in.contact.lambda(i), 0.0);
+      out.value += std::pow(lambda, p_);
+      out.d_contact(dim * i + dim - 1) = p_ * std::pow(lambda, p_ - 1.0);
+    }
+    return out;
+  }
+
+ private:
+  double p_;
+};
+
+class Compliance final : public CostFunctional {
+ public:
+  std::string name() const override { return "compliance"; }
+  sensitivity::CostPartials evaluate(const CostInput& in) const override {
+    sensitivity::CostPartials out = zero_partials(in);
+    const Eigen::VectorXd& u = in.displacement;
+    const Eigen::VectorXd l = in.fem.traction_load(in.positions);
+    const Eigen::VectorXd Au = in.fem.residual(in.positions, u) + l;  // A_full u
+    out.value = -u.dot(Au) + l.dot(u);
+    out.d_displacement = -2.0 * Au + l;
+    // ∂/∂α(−uᵀA u + lᵀu) = −(uᵀ∂A u − uᵀ∂l): the fem kernel with p = u.
+    out.d_alpha = -in.fem.shape_derivative(in.positions, u, u);
+    return out;
+  }
+};
+
+class PressureNorm final : public CostFunctional {
+ public:
+  explicit PressureNorm(double p) : p_(p) {
+    if (!(p >= 2.0)) throw InvalidInput(fmt::format("cost pressure_norm: exponent = {}; expected >= 2", p));
+  }
+  std::string name() const override { return "pressure_norm"; }
+  sensitivity::CostPartials evaluate(const CostInput& in) const override {
+    sensitivity::CostPartials out = zero_partials(in);
+    const int dim = in.contact.dim;
+    double sum = 0.0;
+    for (Eigen::Index i = 0; i < in.contact.num_nodes(); ++i) {
+      const double a = in.tributary_areas(i), pressure = std::max(in.contact.lambda(i), 0.0) / a;
+      sum += a * std::pow(pressure, p_);
+    }
+    out.value = std::pow(sum, 1.0 / p_);
+    if (sum <= 0.0) return out;  // no contact: the gradient is zero
+    const double factor = std::pow(sum, 1.0 / p_ - 1.0);
+    for (Eigen::Index i = 0; i < in.contact.num_nodes(); ++i) {
+      const double a = in.tributary_areas(i), pressure = std::max(in.contact.lambda(i), 0.0) / a;
+      out.d_contact(dim * i + dim - 1) = factor * std::pow(pressure, p_ - 1.0);
+    }
+    return out;
+  }
+
+ private:
+  double p_;
+};
+
+class TotalSlip final : public CostFunctional {
+ public:
+  explicit TotalSlip(double delta) : delta_(delta) {
+    if (!(delta > 0)) throw InvalidInput(fmt::format("cost total_slip: smoothing = {}; expected > 0", delta));
+  }
+  std::string name() const override { return "total_slip"; }
+  sensitivity::CostPartials evaluate(const CostInput& in) const override {
+    sensitivity::CostPartials out = zero_partials(in);
+    const int dim = in.contact.dim;
+    out.value = 0.0;
+    for (Eigen::Index i = 0; i < in.boundary.num_nodes(); ++i) {
+      const int node = in.boundary.nodes()[static_cast<std::size_t>(i)];
+      double norm2 = 0.0;
+      for (int c = 0; c < dim - 1; ++c) norm2 += std::pow(in.displacement(node * dim + c), 2);
+      const double r = std::sqrt(norm2 + delta_ * delta_);
+      out.value += r - delta_;
+      for (int c = 0; c < dim - 1; ++c) out.d_displacement(node * dim + c) = in.displacement(node * dim + c) / r;
+    }
+    return out;
+  }
+
+ private:
+  double delta_;
+};
+
+}  // namespace
+
+std::unique_ptr<CostFunctional> make_target_normal_force(Eigen::VectorXd target) {
+  return std::make_unique<TargetNormalForce>(std::move(target));
+}
+std::unique_ptr<CostFunctional> make_normal_force_power(double exponent) {
+  return std::make_unique<NormalForcePower>(exponent);
+}
+std::unique_ptr<CostFunctional> make_compliance() { return std::make_unique<Compliance>(); }
+std::unique_ptr<CostFunctional> make_pressure_norm(double exponent) { return std::make_unique<PressureNorm>(exponent); }
+std::unique_ptr<CostFunctional> make_total_slip(double smoothing) { return std::make_unique<TotalSlip>(smoothing); }
+
+}  // namespace frictopt::cost

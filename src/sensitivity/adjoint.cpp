@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/sensitivity/adjoint.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/LU>
+#include <chrono>
+
+#include "frictopt/core/error.hpp"
+
+namespace frictopt::sensitivity {
+namespace {
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a(0) * b(1) - a(1) * b(0); }
+
+// max_c |v_c| over the first n (1 or 2) components; a loop rather than v.head(n) because GCC 12
+// reports a false -Warray-bounds for dynamic heads of fixed-size vectors.
+double max_abs(const Eigen::Vector2d& v, int n) { return n == 1 ? std::abs(v(0)) : std::max(std::abs(v(0)), std::abs(v(1))); }
+
+// w(d) = argmax_{w∈W}⟨w, d⟩ for a disc/ellipse with semi-axes (a, b): Ad/√(dᵀAd), A = diag(a², b²),
+// and its Jacobian ∂w/∂d = A/s − (Ad)(Ad)ᵀ/s³, s = √(dᵀAd).
+Eigen::Matrix2d smooth_exposed_jacobian(const Eigen::Vector2d& semi_axes, const Eigen::Vector2d& d) {
+  const Eigen::Matrix2d A = semi_axes.cwiseProduct(semi_axes).asDiagonal();
+  const Eigen::Vector2d Ad = A * d;
+  const double s = std::sqrt(d.dot(Ad));
+  return A / s - Ad * Ad.transpose() / (s * s * s);
+}
+
+}  // namespace
+
+PieceLinearization linearize_piece(const Piece& piece, const contact::FrictionLaw& law,
+                                   const contact::ContactState& state) {
+  const int dim = state.dim;
+  const Eigen::Index p = state.num_nodes();
+  const Eigen::Index m = dim * p;
+  FRICTOPT_ASSERT(static_cast<Eigen::Index>(piece.nodes.size()) == p, "piece size");
+  std::vector<Eigen::Triplet<double>> s, cz;
+  PieceLinearization out;
+  const auto vertices = law.vertices();
+  double residual = 0.0;
+  const double force_scale = std::max(state.scales.force, 1e-300) / 1e-8;  // ≈ Λ (scales = ε_cl·Λ)
+  const double disp_scale = std::max(state.scales.displacement, 1e-300) / 1e-8;
+  for (Eigen::Index i = 0; i < p; ++i) {
+    const NodePiece& node = piece.nodes[static_cast<std::size_t>(i)];
+    const Eigen::Index base = dim * i, normal = base + dim - 1;
+    const Eigen::Vector2d q = state.q(i), ut = state.u_t(i);
+    const double lambda = state.lambda(i);
+    // Normal row.
+    if (node.normal == NormalBranch::kGapClosed) {
+      s.emplace_back(normal, normal, 1.0);
+      out.gap_rows.push_back(normal);
+      residual = std::max(residual, std::abs(state.normal_gap(i)) / disp_scale);
+    } else {
+      cz.emplace_back(normal, normal, 1.0);
+      residual = std::max(residual, std::abs(lambda) / force_scale);
+    }
+    // Tangential rows: unknown q_c is z(base + c); (G u)_c = −u_t,c.
+    const int nt = dim - 1;
+    switch (node.tangential) {
+      case TangentialBranch::kStick:
+        for (int c = 0; c < nt; ++c) s.emplace_back(base + c, base + c, -1.0);  // u_t,c = −(Gu)_c = 0
+        residual = std::max(residual, max_abs(ut, nt) / disp_scale);
+        break;
+      case TangentialBranch::kVertexSlip: {
+        const Eigen::Vector2d& w = vertices[static_cast<std::size_t>(node.index)];
+        for (int c = 0; c < nt; ++c) {
+          cz.emplace_back(base + c, base + c, 1.0);
+          cz.emplace_back(base + c, normal, -w(c));
+        }
+        residual = std::max(residual, max_abs(q - lambda * w, nt) / force_scale);
+        break;
+      }
+      case TangentialBranch::kRaySlip: {
+        FRICTOPT_ASSERT(dim == 3, "ray slip exists in 3D only");
+        const std::size_t n = vertices.size();
+        const Eigen::Vector2d& wj = vertices[static_cast<std::size_t>(node.index)];
+        const Eigen::Vector2d d = vertices[(static_cast<std::size_t>(node.index) + 1) % n] - wj;
+        // (i) d × q − λ d × w_j = 0: q on the edge's line.
+        cz.emplace_back(base, base, -d(1));
+        cz.emplace_back(base, base + 1, d(0));
+        cz.emplace_back(base, normal, -cross(d, wj));
+        // (ii) ⟨d, u_t⟩ = 0: u_t on the edge's normal ray; u_t = −(Gu)_t.
+        s.emplace_back(base + 1, base, -d(0));
+        s.emplace_back(base + 1, base + 1, -d(1));
+        residual = std::max(residual, std::abs(cross(d, q - lambda * wj)) / (d.norm() * force_scale));
+        residual = std::max(residual, std::abs(d.dot(ut)) / (d.norm() * disp_scale));
+        break;
+      }
+      case TangentialBranch::kSmoothSlip: {
+        // q − λ w(u_t) = 0; δ: δq − w δλ − λ Dw δu_t, with δu_t = −(G δu)_t.
+        const Eigen::Vector2d w = law.exposed_point(ut);
+        const Eigen::Matrix2d Dw = smooth_exposed_jacobian(law.semi_axes(), ut);
+        for (int c = 0; c < 2; ++c) {
+          cz.emplace_back(base + c, base + c, 1.0);
+          cz.emplace_back(base + c, normal, -w(c));
+          for (int k = 0; k < 2; ++k) s.emplace_back(base + c, base + k, lambda * Dw(c, k));
+        }
+        residual = std::max(residual, max_abs(q - lambda * w, 2) / force_scale);
+        break;
+      }
+      case TangentialBranch::kZeroFriction:
+        for (int c = 0; c < nt; ++c) cz.emplace_back(base + c, base + c, 1.0);
+        residual = std::max(residual, max_abs(q, nt) / force_scale);
+        break;
+    }
+  }
+  out.S.resize(m, m);
+  out.S.setFromTriplets(s.begin(), s.end());
+  out.Cz.resize(m, m);
+  out.Cz.setFromTriplets(cz.begin(), cz.end());
+  out.relative_residual = residual;
+  return out;
+}
+
+std::string AdjointSensitivity::Summary::brief_report() const {
+  return fmt::format("adjoint: {} ({}); rcond {:.2e}, relative residual {:.2e}, piece residual {:.2e}, {:.3f} s",
+                     to_string(status), message, reciprocal_condition, relative_residual, piece_residual, time_seconds);
+}
+
+AdjointSensitivity::AdjointSensitivity(const fem::LinearElasticity& fem, const contact::ContactBoundary& boundary,
+                                       Eigen::MatrixXd gap_matrix, contact::FrictionLaw law)
+    : fem_(fem), boundary_(boundary), gap_matrix_(std::move(gap_matrix)), law_(std::move(law)) {
+  if (gap_matrix_.rows() != boundary_.num_nodes())
+    throw InvalidInput(fmt::format("AdjointSensitivity: gap matrix has {} rows; expected {} (one per contact node)",
+                                   gap_matrix_.rows(), boundary_.num_nodes()));
+}
+
+AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, const Eigen::MatrixXd& delassus,
+                                                           const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                                           const Eigen::Ref<const Eigen::VectorXd>& u,
+                                                           const contact::ContactState& state,
+                                                           const CostPartials& partials) const {
+  const auto start = std::chrono::steady_clock::now();
+  const fem::DofMap& dofs = fem_.dofs();
+  const fem::SparseCholesky& cholesky = fem_.factorization();
+  const Eigen::Index m = boundary_.num_unknowns();
+  FRICTOPT_ASSERT(delassus.rows() == m && delassus.cols() == m, "Delassus size");
+  Result result;
+
+  const PieceLinearization lin = linearize_piece(piece, law_, state);
+  const Eigen::VectorXd gu = dofs.restrict(partials.d_displacement);
+  const Eigen::VectorXd gz = partials.d_contact.size() ? partials.d_contact : Eigen::VectorXd::Zero(m);
+
+  // Contact-sized system (M Sᵀ + C_zᵀ) ψ_z = −g_z − G A⁻¹ g_u.
+  const Eigen::VectorXd Ainv_gu = cholesky.solve(gu);
+  const Eigen::VectorXd rhs = -gz - boundary_.times(Ainv_gu);
+  const Eigen::MatrixXd K = delassus * Eigen::MatrixXd(lin.S.transpose()) + Eigen::MatrixXd(lin.Cz.transpose());
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(K);
+  result.summary.reciprocal_condition = lu.rcond();
+  result.psi_z = lu.solve(rhs);
+  result.summary.relative_residual = (K * result.psi_z - rhs).norm() / std::max(rhs.norm(), 1e-300);
+  result.summary.piece_residual = lin.relative_residual;
+
+  // ψ_u = −A⁻¹(g_u + Gᵀ Sᵀ ψ_z).
+  Eigen::VectorXd w = gu;
+  boundary_.add_transpose_times(lin.S.transpose() * result.psi_z, w);
+  result.psi_u = -cholesky.solve(w);
+
+  // ξ = ∇_α J + ∇_α[ψ_uᵀ(A u − l)] + Σ_gap ψ_z,r B̃_node.
+  Eigen::VectorXd psi_full = Eigen::VectorXd::Zero(dofs.num_dofs());
+  for (int k = 0; k < dofs.num_free(); ++k) psi_full(dofs.free_dofs()[static_cast<std::size_t>(k)]) = result.psi_u(k);
+  result.subgradient = fem_.shape_derivative(X, u, psi_full);
+  if (partials.d_alpha.size()) result.subgradient += partials.d_alpha;
+  const int dim = boundary_.dim();
+  for (Eigen::Index r : lin.gap_rows) result.subgradient += result.psi_z(r) * gap_matrix_.row(r / dim).transpose();
+
+  const double kSingular = 1e-14;  // below this rcond the piece's Jacobian is numerically singular
+  if (!(result.summary.reciprocal_condition > kSingular)) {
+    result.summary.status = Status::kNumericalFailure;
+    result.summary.message = "the piece's Jacobian is singular (is the friction coefficient too large for V4.4.1?)";
+  } else {
+    result.summary.status = Status::kConverged;
+    result.summary.message = "adjoint solved";
+  }
+  result.summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace frictopt::sensitivity

@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/study/shape_oracle.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "frictopt/contact/delassus.hpp"
+#include "frictopt/core/error.hpp"
+
+namespace frictopt::study {
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+std::vector<double> key_of(const Eigen::VectorXd& alpha) { return {alpha.data(), alpha.data() + alpha.size()}; }
+// Bounded memory: the bundle method revisits only the last few designs.
+constexpr std::size_t kCacheSize = 64;
+}  // namespace
+
+ShapeOracle::ShapeOracle(ElasticBody& body, std::unique_ptr<cost::CostFunctional> cost)
+    : body_(body), cost_(std::move(cost)) {
+  if (!body_.contact_boundary())
+    throw InvalidInput("the shape oracle needs a body in contact: add a [contact] table to the case");
+  gap_matrix_ = body_.definition().shape.gap_matrix(body_.contact_boundary()->plane_coordinates());
+}
+
+void ShapeOracle::solve_state(const Eigen::VectorXd& alpha) {
+  if (state_ && state_alpha_.size() == alpha.size() && state_alpha_ == alpha) return;
+  state_ = body_.solve(alpha, "design");
+  state_alpha_ = alpha;
+  delassus_ = state_->contact ? state_->contact->delassus_matrix : nullptr;
+  ++state_solves_;
+}
+
+const Eigen::MatrixXd& ShapeOracle::delassus() {
+  // Large contact sets solve the state with M applied through the factorization; the adjoint's
+  // contact-sized LU needs M itself, assembled here once per design.
+  if (!delassus_)
+    delassus_ = std::make_shared<const Eigen::MatrixXd>(
+        contact::dense_delassus(body_.elasticity().factorization(), *body_.contact_boundary()));
+  return *delassus_;
+}
+
+sensitivity::CostPartials ShapeOracle::partials() const {
+  const BodyState& s = *state_;
+  const cost::CostInput input{body_.elasticity(), *body_.contact_boundary(), s.alpha, s.positions, s.displacement,
+                              s.contact->state, body_.contact_boundary()->tributary_areas()};
+  return cost_->evaluate(input);
+}
+
+const Evaluation& ShapeOracle::evaluate_design(const Eigen::Ref<const Eigen::VectorXd>& alpha_ref, bool with_subgradient) {
+  const Eigen::VectorXd alpha = alpha_ref;
+  auto cached = cache_.find(key_of(alpha));
+  if (cached != cache_.end() && (!with_subgradient || cached->second.subgradient.size() || !cached->second.ok))
+    return cached->second;
+  if (cache_.size() >= kCacheSize) cache_.clear();
+
+  Evaluation e;
+  auto start = std::chrono::steady_clock::now();
+  solve_state(alpha);
+  e.state_seconds = seconds_since(start);
+  e.state = state_->summary;
+  e.contact = state_->contact->summary;
+  if (state_->summary.status != Status::kConverged) {
+    e.message = "state solve failed: " + state_->summary.message;
+    return cache_[key_of(alpha)] = e;
+  }
+  const sensitivity::CostPartials j = partials();
+  e.value = j.value;
+  e.index_sets = sensitivity::classify(state_->contact->state, body_.definition().contact->law);
+  e.ok = true;
+  if (with_subgradient) {
+    start = std::chrono::steady_clock::now();
+    const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
+                                                  body_.definition().contact->law);
+    const auto result = adjoint.subgradient(sensitivity::default_piece(e.index_sets), delassus(), state_->positions,
+                                            state_->displacement, state_->contact->state, j);
+    e.adjoint = result.summary;
+    e.subgradient_seconds = seconds_since(start);
+    if (result.summary.status != Status::kConverged) {
+      e.ok = false;
+      e.message = "subgradient failed: " + result.summary.message;
+    } else {
+      e.subgradient = result.subgradient;
+    }
+  }
+  return cache_[key_of(alpha)] = e;
+}
+
+optim::OracleResult ShapeOracle::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  try {
+    const Evaluation& e = evaluate_design(x, true);
+    if (!e.ok) return optim::OracleResult::failure(e.message);
+    return optim::OracleResult::success(e.value, e.subgradient);
+  } catch (const InvalidInput& error) {
+    // An inverting trial design: the optimizer shrinks its step.
+    return optim::OracleResult::failure(error.what());
+  }
+}
+
+std::vector<Eigen::VectorXd> ShapeOracle::subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                                                       const std::vector<sensitivity::Piece>& pieces) {
+  solve_state(alpha);
+  const sensitivity::CostPartials j = partials();
+  const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
+                                                body_.definition().contact->law);
+  std::vector<Eigen::VectorXd> out;
+  for (const sensitivity::Piece& piece : pieces)
+    out.push_back(adjoint
+                      .subgradient(piece, delassus(), state_->positions, state_->displacement,
+                                   state_->contact->state, j)
+                      .subgradient);
+  return out;
+}
+
+sensitivity::PieceEnumeration ShapeOracle::pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int cap) {
+  solve_state(alpha);
+  const auto sets = sensitivity::classify(state_->contact->state, body_.definition().contact->law);
+  return sensitivity::enumerate_pieces(sets, body_.definition().contact->law, cap);
+}
+
+}  // namespace frictopt::study
