@@ -9,6 +9,7 @@
 
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
+#include "frictopt/io/fclib_export.hpp"
 #include "frictopt/io/json.hpp"
 #include "frictopt/io/state_output.hpp"
 #include "frictopt/io/study_setup.hpp"
@@ -85,6 +86,40 @@ int run_solve(const std::filesystem::path& case_path, const std::filesystem::pat
   return kExitOk;
 }
 
+// `frictopt export-fclib CASE OUT.hdf5`: the contact problem at the initial design in FCLIB's
+// local format, with our solution (docs/contact.md, "FCLIB export").
+int run_export_fclib(const std::filesystem::path& case_path, const std::filesystem::path& out_path,
+                     bool normalize_units, bool include_solution) {
+  using namespace frictopt;
+  const io::CaseDescription description = io::load_case(case_path);
+  study::ElasticBody body(io::make_body_definition(description));
+  if (!body.contact_boundary())
+    throw InvalidInput(fmt::format("{}: the case has no [contact]; there is no contact problem to export",
+                                   case_path.string()));
+  study::BodyState state = body.solve(body.definition().initial_design, "initial design");
+  if (!state.contact) {  // the elasticity factorization failed before the contact solve
+    fmt::print("{}\n", state.summary.brief_report());
+    return kExitNumericalFailure;
+  }
+  fmt::print("{}\n", state.contact->summary.brief_report());
+  io::FclibExportOptions options;
+  options.case_name = case_path.string();
+  options.normalize_units = normalize_units;
+  options.include_solution = include_solution;
+  const io::FclibLocalProblem problem = io::export_fclib_local(out_path, body, state, options);
+  fmt::print("wrote {}: FCLIB local problem, spacedim {}, {} contacts, mu = {:.6g}, units {:.6g} N / {:.6g} m; {}\n",
+             out_path.string(), problem.spacedim, problem.num_contacts(),
+             problem.mu.size() > 0 ? problem.mu(0) : 0.0, problem.force_unit, problem.length_unit,
+             !include_solution ? "no solution stored"
+             : problem.solution_is_exact
+                 ? fmt::format("solution stored (natural-map residual {:.2e})",
+                               io::fclib_natural_map_residual(problem, problem.r))
+                 : "our solution stored as initial guess only (not exact for this problem)");
+  if (!state.contact->summary.converged())
+    fmt::print("warning: the contact solve did not converge; the problem is exported, our solution only as a guess\n");
+  return kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -94,9 +129,21 @@ int main(int argc, char** argv) {
   CLI::App* solve = app.add_subcommand("solve", "Solve the state problem of a case at its initial design and write VTK");
   solve->add_option("case", case_path, "case file (TOML), see docs/case-format.md")->required()->check(CLI::ExistingFile);
   solve->add_option("-o,--output", out_dir, "output directory (created if missing)");
+  std::filesystem::path fclib_out;
+  bool fclib_normalize = false, fclib_no_solution = false;
+  CLI::App* export_fclib = app.add_subcommand(
+      "export-fclib", "Write the frictional contact problem at the initial design in FCLIB's local format (HDF5)");
+  export_fclib->add_option("case", case_path, "case file (TOML) with an isotropic [contact.friction]")
+      ->required()
+      ->check(CLI::ExistingFile);
+  export_fclib->add_option("out", fclib_out, "output file (.hdf5), replaced if it exists")->required();
+  export_fclib->add_flag("--normalize", fclib_normalize,
+                         "write in units of our solution's largest force and displacement (O(1) data)");
+  export_fclib->add_flag("--no-solution", fclib_no_solution, "do not store our solution");
   CLI11_PARSE(app, argc, argv);
   try {
     if (*solve) return run_solve(case_path, out_dir);
+    if (*export_fclib) return run_export_fclib(case_path, fclib_out, fclib_normalize, !fclib_no_solution);
   } catch (const frictopt::InvalidInput& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitInvalidInput;
