@@ -84,6 +84,31 @@ struct ElasticityKernel {
   }
 };
 
+template <int Dim>
+struct ElasticityDirectional {
+  using Kernel = ElasticityKernel<Dim>;
+  /// d/dε [K_e(X + ε dX) u_e] (kDofs): the element force's derivative along a node motion dX.
+  /// With Θ = ∇θ = Σ_b dX_b ⊗ ∇N_b: δ∇N_a = −Θᵀ∇N_a, δH_u = −H_u Θ, δ det J = det J tr Θ, so
+  ///   δf_a = Σ_q w det J [tr(Θ) σ(H_u) − σ(H_u Θ) − σ(H_u) Θᵀ] ∇N_a.
+  static typename Kernel::Vector force_derivative(const Kernel& kernel, const typename Kernel::Coordinates& Xe,
+                                                  const typename Kernel::Vector& ue,
+                                                  const typename Kernel::Coordinates& dXe) {
+    typename Kernel::Vector df = Kernel::Vector::Zero();
+    Eigen::Matrix<double, Kernel::kNodes, Dim> G;
+    double det;
+    for (const auto& [xi, w] : Kernel::Element::gauss2()) {
+      Kernel::physical_gradients(Xe, xi, G, det);
+      const typename Kernel::Tensor Theta = dXe.transpose() * G;  // Θ_kj = Σ_b dX_{b,k} G_{b,j}
+      const typename Kernel::Tensor Hu = Kernel::gradient(ue, G);
+      const typename Kernel::Tensor sigma = kernel.stress(Hu);
+      const typename Kernel::Tensor T = Theta.trace() * sigma - kernel.stress(Hu * Theta) - sigma * Theta.transpose();
+      for (int a = 0; a < Kernel::kNodes; ++a)
+        df.template segment<Dim>(a * Dim) += (w * det) * T * G.row(a).transpose();
+    }
+    return df;
+  }
+};
+
 /// Q1 facet (segment in 2D, quadrilateral in 3D) for tractions.
 template <int Dim>
 struct FacetKernel {
@@ -147,6 +172,29 @@ struct FacetKernel {
       }
     }
     return g;
+  }
+
+  /// d/dε of load(Xf + ε dXf, t): only the area density changes.
+  static Coordinates load_derivative(const Coordinates& Xf, const Eigen::Matrix<double, Dim, 1>& t, const Coordinates& dXf) {
+    Coordinates f = Coordinates::Zero();
+    for (int q = 0; q < kPoints; ++q) {
+      Eigen::Matrix<double, kNodes, 1> N;
+      Eigen::Matrix<double, kNodes, Dim - 1> dN;
+      double w;
+      shape(q, N, dN, w);
+      double d_density;
+      if constexpr (Dim == 2) {
+        const Eigen::Vector2d x1 = Xf.transpose() * dN.col(0), dx1 = dXf.transpose() * dN.col(0);
+        d_density = x1.dot(dx1) / x1.norm();
+      } else {
+        const Eigen::Vector3d x1 = Xf.transpose() * dN.col(0), x2 = Xf.transpose() * dN.col(1);
+        const Eigen::Vector3d dx1 = dXf.transpose() * dN.col(0), dx2 = dXf.transpose() * dN.col(1);
+        const Eigen::Vector3d n = x1.cross(x2).normalized();
+        d_density = n.dot(dx1.cross(x2) + x1.cross(dx2));
+      }
+      f += (w * d_density) * N * t.transpose();
+    }
+    return f;
   }
 
   static double area_density(const Coordinates& Xf, const Eigen::Matrix<double, kNodes, Dim - 1>& dN) {

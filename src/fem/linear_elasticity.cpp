@@ -217,6 +217,44 @@ Eigen::VectorXd LinearElasticity::coordinate_derivative(const Eigen::Ref<const E
   return mesh_.dim() == 2 ? coordinate_derivative_impl<2>(X, u, p) : coordinate_derivative_impl<3>(X, u, p);
 }
 
+template <int Dim>
+Eigen::VectorXd LinearElasticity::residual_derivative_impl(const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                                           const Eigen::Ref<const Eigen::VectorXd>& u,
+                                                           const Eigen::Ref<const Eigen::MatrixXd>& dX) const {
+  using Kernel = detail::ElasticityKernel<Dim>;
+  using Facet = detail::FacetKernel<Dim>;
+  const Kernel kernel{material_.lame_lambda(Dim), material_.shear_modulus()};
+  const auto& elements = mesh_.elements();
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(mesh_.num_dofs());
+  for (Eigen::Index e = 0; e < elements.rows(); ++e) {
+    const typename Kernel::Vector df = detail::ElasticityDirectional<Dim>::force_derivative(
+        kernel, element_coordinates<Dim>(elements, e, X), element_values<Dim>(elements, e, u),
+        element_coordinates<Dim>(elements, e, dX));
+    for (int a = 0; a < Kernel::kNodes; ++a) r.segment(elements(e, a) * Dim, Dim) += df.template segment<Dim>(a * Dim);
+  }
+  for (const FaceTraction& load : tractions_) {
+    const mesh::Connectivity facets = mesh_.face_facets(load.face);
+    const Eigen::Matrix<double, Dim, 1> t = load.traction;
+    for (Eigen::Index f = 0; f < facets.rows(); ++f) {
+      typename Facet::Coordinates Xf, dXf;
+      for (int a = 0; a < Facet::kNodes; ++a) {
+        Xf.row(a) = X.row(facets(f, a));
+        dXf.row(a) = dX.row(facets(f, a));
+      }
+      const typename Facet::Coordinates dl = Facet::load_derivative(Xf, t, dXf);
+      for (int a = 0; a < Facet::kNodes; ++a) r.segment(facets(f, a) * Dim, Dim) -= dl.row(a).transpose();
+    }
+  }
+  return r;
+}
+
+Eigen::VectorXd LinearElasticity::residual_derivative(const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                                      const Eigen::Ref<const Eigen::VectorXd>& u,
+                                                      const Eigen::Ref<const Eigen::MatrixXd>& dX) const {
+  FRICTOPT_ASSERT(dX.rows() == X.rows() && dX.cols() == X.cols(), "node motion shape");
+  return mesh_.dim() == 2 ? residual_derivative_impl<2>(X, u, dX) : residual_derivative_impl<3>(X, u, dX);
+}
+
 Eigen::VectorXd LinearElasticity::shape_derivative(const Eigen::Ref<const Eigen::MatrixXd>& X,
                                                    const Eigen::Ref<const Eigen::VectorXd>& u,
                                                    const Eigen::Ref<const Eigen::VectorXd>& p) const {

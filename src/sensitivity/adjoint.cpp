@@ -176,4 +176,31 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   return result;
 }
 
+AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
+    const Piece& piece, const Eigen::MatrixXd& delassus, const Eigen::Ref<const Eigen::MatrixXd>& X,
+    const Eigen::Ref<const Eigen::VectorXd>& u, const contact::ContactState& state,
+    const Eigen::Ref<const Eigen::VectorXd>& h) const {
+  const fem::DofMap& dofs = fem_.dofs();
+  const fem::SparseCholesky& cholesky = fem_.factorization();
+  const int dim = boundary_.dim();
+  const PieceLinearization lin = linearize_piece(piece, law_, state);
+  const Eigen::VectorXd Vh = fem_.mesh().design_jacobian() * h;
+  const Eigen::MatrixXd dX = Eigen::Map<const Eigen::MatrixXd>(Vh.data(), dim, fem_.mesh().num_nodes()).transpose();
+  const Eigen::VectorXd ra = dofs.restrict(fem_.residual_derivative(X, u, dX));
+  Eigen::VectorXd rg = Eigen::VectorXd::Zero(boundary_.num_unknowns());
+  const Eigen::VectorXd Bh = gap_matrix_ * h;
+  for (Eigen::Index r : lin.gap_rows) rg(r) = Bh(r / dim);
+  const Eigen::VectorXd Ainv_ra = cholesky.solve(ra);
+  const Eigen::MatrixXd K = Eigen::MatrixXd(lin.S) * delassus + Eigen::MatrixXd(lin.Cz);
+  const Eigen::VectorXd rhs = -rg + lin.S * boundary_.times(Ainv_ra);
+  StateDerivative out;
+  out.contact = Eigen::PartialPivLU<Eigen::MatrixXd>(K).solve(rhs);
+  Eigen::VectorXd w = -ra;
+  boundary_.add_transpose_times(out.contact, w);
+  const Eigen::VectorXd du = cholesky.solve(w);
+  out.displacement = Eigen::VectorXd::Zero(dofs.num_dofs());
+  for (int k = 0; k < dofs.num_free(); ++k) out.displacement(dofs.free_dofs()[static_cast<std::size_t>(k)]) = du(k);
+  return out;
+}
+
 }  // namespace frictopt::sensitivity

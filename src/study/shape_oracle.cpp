@@ -114,6 +114,18 @@ std::vector<Eigen::VectorXd> ShapeOracle::subgradients(const Eigen::Ref<const Ei
   return out;
 }
 
+sensitivity::AdjointSensitivity::StateDerivative ShapeOracle::state_derivative(
+    const Eigen::Ref<const Eigen::VectorXd>& alpha, const Eigen::Ref<const Eigen::VectorXd>& h,
+    const sensitivity::Piece* piece) {
+  solve_state(alpha);
+  const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
+                                                body_.definition().contact->law);
+  const sensitivity::Piece chosen =
+      piece ? *piece
+            : sensitivity::default_piece(sensitivity::classify(state_->contact->state, body_.definition().contact->law));
+  return adjoint.state_derivative(chosen, delassus(), state_->positions, state_->displacement, state_->contact->state, h);
+}
+
 sensitivity::PieceEnumeration ShapeOracle::pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int cap) {
   solve_state(alpha);
   const auto sets = sensitivity::classify(state_->contact->state, body_.definition().contact->law);

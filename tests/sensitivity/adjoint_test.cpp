@@ -41,13 +41,13 @@ study::BodyDefinition thesis_body_2d(const contact::FrictionLaw& law, int n1 = 2
 }
 
 // A 3D block pressed by a rigid plate on its top (prescribed displacement), dish-shaped bottom.
-study::BodyDefinition block_3d(const contact::FrictionLaw& law) {
+study::BodyDefinition block_3d(const contact::FrictionLaw& law, Eigen::Vector2d shift = Eigen::Vector2d(2e-4, 1e-4)) {
   study::BodyDefinition b;
   b.shape = shape::BezierShape::surface(1.0, 1.0, 3, 3);
   b.height = 0.5;
   b.resolution = {{8, 8, 4}, 1.0};
   b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{mesh::Face::kTop, {}, Eigen::Vector3d(2e-4, 1e-4, -1.2e-3)}};
+  b.dirichlet = {{mesh::Face::kTop, {}, Eigen::Vector3d(shift(0), shift(1), -1.2e-3)}};
   b.admissible.upper_bound = 5e-3;
   b.admissible.height = 0.5;
   b.initial_design.resize(9);
@@ -125,6 +125,12 @@ std::vector<GradientCase> gradient_cases() {
        CostKind::kCompliance, {}},
       {"Ellipse3D_Polygon16_PressureNorm",
        [] { return block_3d(contact::FrictionLaw::ellipse_polygon(0.2, 0.4, 16)); }, CostKind::kPressureNorm, {}},
+      {"StickCore3D_Polygon8_Compliance",
+       [] { return block_3d(contact::FrictionLaw::regular_polygon(0.6, 8), Eigen::Vector2d(2e-6, 1e-6)); },
+       CostKind::kCompliance, {}},
+      {"StickCore3D_Disc_TargetForce",
+       [] { return block_3d(contact::FrictionLaw::disc(0.6), Eigen::Vector2d(2e-6, 1e-6)); },
+       CostKind::kTargetForce, {}},
       {"Disc3D_Exact_Compliance", [] { return block_3d(contact::FrictionLaw::disc(0.3)); }, CostKind::kCompliance, {}},
       {"Ellipse3D_Exact_TotalSlip", [] { return block_3d(contact::FrictionLaw::ellipse(0.2, 0.4)); },
        CostKind::kTotalSlip, {}},
@@ -133,6 +139,131 @@ std::vector<GradientCase> gradient_cases() {
 
 INSTANTIATE_TEST_SUITE_P(Cases, SubgradientAtStrictPoints, ::testing::ValuesIn(gradient_cases()),
                          [](const auto& param_info) { return param_info.param.name; });
+
+}  // namespace
+}  // namespace frictopt::sensitivity
+
+namespace frictopt::sensitivity {
+namespace {
+
+// The state map y(α) = (u at the contact nodes, z) of the current piece, flattened.
+Eigen::VectorXd contact_state_vector(study::ShapeOracle& oracle, const Eigen::VectorXd& alpha) {
+  (void)oracle.evaluate_design(alpha, false);
+  const study::BodyState& s = oracle.last_state();
+  const contact::ContactBoundary& b = *oracle.body().contact_boundary();
+  const int dim = b.dim();
+  Eigen::VectorXd y(2 * b.num_unknowns());
+  for (Eigen::Index i = 0; i < b.num_nodes(); ++i)
+    for (int c = 0; c < dim; ++c) y(dim * i + c) = s.displacement(b.nodes()[static_cast<std::size_t>(i)] * dim + c);
+  y.tail(b.num_unknowns()) = s.contact->state.z;
+  return y;
+}
+
+Eigen::VectorXd flatten_derivative(study::ShapeOracle& oracle, const AdjointSensitivity::StateDerivative& d) {
+  const contact::ContactBoundary& b = *oracle.body().contact_boundary();
+  const int dim = b.dim();
+  Eigen::VectorXd y(2 * b.num_unknowns());
+  for (Eigen::Index i = 0; i < b.num_nodes(); ++i)
+    for (int c = 0; c < dim; ++c) y(dim * i + c) = d.displacement(b.nodes()[static_cast<std::size_t>(i)] * dim + c);
+  y.tail(b.num_unknowns()) = d.contact;
+  return y;
+}
+
+TEST(PieceJacobian, ColumnsMatchCentralDifferencesOfTheStateAtStrictPoints) {
+  for (const bool three_d : {false, true}) {
+    study::ElasticBody body(three_d ? block_3d(contact::FrictionLaw::polygon({0.2, 0.45, 0.2, 0.45}))
+                                    : thesis_body_2d(contact::FrictionLaw::interval(0.15, 0.35)));
+    study::ShapeOracle oracle(body, cost::make_compliance());
+    const Eigen::VectorXd alpha = body.definition().initial_design;
+    ASSERT_EQ(oracle.evaluate_design(alpha).index_sets.num_weak_nodes(), 0);
+    std::mt19937_64 rng{kSeed};
+    for (int trial = 0; trial < 3; ++trial) {
+      const Eigen::VectorXd h = frictopt::testing::random_direction(rng, alpha.size());
+      const Eigen::VectorXd forward = flatten_derivative(oracle, oracle.state_derivative(alpha, h));
+      const double eps = 1e-4 * alpha.cwiseAbs().maxCoeff();
+      const Eigen::VectorXd fd =
+          (contact_state_vector(oracle, alpha + eps * h) - contact_state_vector(oracle, alpha - eps * h)) / (2 * eps);
+      // Displacements and forces have different units: compare each half relative to itself.
+      const Eigen::Index m = fd.size() / 2;
+      const double eu = (forward.head(m) - fd.head(m)).norm() / fd.head(m).norm();
+      const double ez = (forward.tail(m) - fd.tail(m)).norm() / fd.tail(m).norm();
+      std::printf("%s trial %d: R h vs FD: displacement %.2e, forces %.2e\n", three_d ? "3D" : "2D", trial, eu, ez);
+      EXPECT_LE(eu, 1e-6);
+      EXPECT_LE(ez, 1e-6);
+    }
+  }
+}
+
+TEST(IndexSets, ClassificationIsStableUnderSolverTolerance) {
+  for (double tolerance : {1e-10, 1e-12, 1e-14}) {
+    study::BodyDefinition def = block_3d(contact::FrictionLaw::regular_polygon(0.3, 16));
+    def.contact->coulomb.relative_tolerance = tolerance;
+    def.contact->coulomb.tresca.relative_tolerance = tolerance;
+    study::ElasticBody body(def);
+    const study::BodyState s = body.solve(def.initial_design);
+    const IndexSets sets = classify(s.contact->state, def.contact->law);
+    study::BodyDefinition reference = block_3d(contact::FrictionLaw::regular_polygon(0.3, 16));
+    study::ElasticBody reference_body(reference);
+    const IndexSets expected = classify(reference_body.solve(reference.initial_design).contact->state, reference.contact->law);
+    ASSERT_EQ(sets.nodes.size(), expected.nodes.size());
+    for (std::size_t i = 0; i < sets.nodes.size(); ++i) {
+      EXPECT_EQ(sets.nodes[i].normal, expected.nodes[i].normal) << "node " << i << " tolerance " << tolerance;
+      EXPECT_EQ(sets.nodes[i].tangential, expected.nodes[i].tangential) << "node " << i << " tolerance " << tolerance;
+    }
+    std::printf("tolerance %.0e: %s\n", tolerance, sets.summary().c_str());
+  }
+}
+
+// A kink on purpose: zero gaps and no load make every contact node weakly in contact (I₀):
+// the one-sided derivative along any direction must equal ξ_i·h for some enumerated piece.
+study::BodyDefinition weak_contact_body(int dim) {
+  study::BodyDefinition b = dim == 2 ? thesis_body_2d(contact::FrictionLaw::interval(0.3, 0.3), 3, 2)
+                                     : block_3d(contact::FrictionLaw::polygon({0.2, 0.4, 0.2, 0.4}));
+  if (dim == 3) {
+    b.resolution = {{1, 1, 1}, 1.0};
+    b.shape = shape::BezierShape::surface(1.0, 1.0, 2, 2);
+    b.dirichlet = {{mesh::Face::kLeft, {}, {}}};
+  }
+  b.tractions.clear();
+  b.initial_design = Eigen::VectorXd::Zero(b.shape.num_controls());
+  return b;
+}
+
+TEST(Subgradient, OneSidedDerivativeAtWeakContactMatchesAnEnumeratedPiece) {
+  for (int dim : {2, 3}) {
+    study::ElasticBody body(weak_contact_body(dim));
+    const Eigen::VectorXd alpha = body.definition().initial_design;
+    const auto p = body.contact_boundary()->num_nodes();
+    // Target forces λ̄ ≠ 0 so that Θ = Σ(λ̄ − λ)² reacts to forces appearing.
+    study::ShapeOracle oracle(body, cost::make_target_normal_force(Eigen::VectorXd::LinSpaced(p, 1e6, 2e6)));
+    const study::Evaluation& e = oracle.evaluate_design(alpha);
+    ASSERT_TRUE(e.ok) << e.message;
+    EXPECT_EQ(e.index_sets.count(NormalSet::kWeakContact), p) << e.index_sets.summary();
+    const PieceEnumeration pieces = oracle.pieces(alpha, 4096);
+    ASSERT_FALSE(pieces.sampled) << "|L| = " << pieces.cardinality;
+    const std::vector<Eigen::VectorXd> xi = oracle.subgradients(alpha, pieces.pieces);
+    std::printf("dim %d: %s, |L| = %.0f\n", dim, e.index_sets.summary().c_str(), pieces.cardinality);
+    std::mt19937_64 rng{kSeed};
+    const double theta0 = e.value;
+    for (int trial = 0; trial < 6; ++trial) {
+      Eigen::VectorXd h = frictopt::testing::random_direction(rng, alpha.size());
+      // Along a ray the piece is fixed for small t, so q(t) = Θ'(α;h) + c·t + O(t²): the
+      // Richardson combination 2q(t/2) − q(t) removes the first-order error.
+      const double t = 1e-7;
+      const auto q = [&](double step) { return (oracle.evaluate_design(alpha + step * h, false).value - theta0) / step; };
+      const double quotient = 2.0 * q(0.5 * t) - q(t);
+      double best = std::numeric_limits<double>::infinity(), scale = std::abs(quotient);
+      for (const Eigen::VectorXd& x : xi) {
+        best = std::min(best, std::abs(x.dot(h) - quotient));
+        scale = std::max(scale, std::abs(x.dot(h)));
+      }
+      std::printf("dim %d trial %d: one-sided quotient %.6e, closest ξ_i·h off by %.2e (relative %.2e)\n", dim,
+                  trial, quotient, best, best / scale);
+      // Extrapolated quotient: error O(t²); 1e-6 relative leaves room for the state tolerance.
+      EXPECT_LE(best, 1e-6 * scale) << "no enumerated piece explains the one-sided derivative";
+    }
+  }
+}
 
 }  // namespace
 }  // namespace frictopt::sensitivity

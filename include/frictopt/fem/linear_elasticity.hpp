@@ -57,6 +57,10 @@ class LinearElasticity {
   Eigen::VectorXd shape_derivative(const Eigen::Ref<const Eigen::MatrixXd>& X,
                                    const Eigen::Ref<const Eigen::VectorXd>& u,
                                    const Eigen::Ref<const Eigen::VectorXd>& p) const;
+  /// The forward (Jacobian-vector) counterpart: d/dε [A_full(X + ε dX) u − l_traction(X + ε dX)]
+  /// (num_dofs) for a node motion dX (num_nodes × dim), e.g. dX = V h reshaped.
+  Eigen::VectorXd residual_derivative(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u,
+                                      const Eigen::Ref<const Eigen::MatrixXd>& dX) const;
   /// The same derivative with respect to the node coordinates X (num_dofs, node-major).
   Eigen::VectorXd coordinate_derivative(const Eigen::Ref<const Eigen::MatrixXd>& X,
                                         const Eigen::Ref<const Eigen::VectorXd>& u,
@@ -72,6 +76,9 @@ class LinearElasticity {
   template <int Dim> Eigen::VectorXd coordinate_derivative_impl(const Eigen::Ref<const Eigen::MatrixXd>& X,
                                                                 const Eigen::Ref<const Eigen::VectorXd>& u,
                                                                 const Eigen::Ref<const Eigen::VectorXd>& p) const;
+  template <int Dim> Eigen::VectorXd residual_derivative_impl(const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                                              const Eigen::Ref<const Eigen::VectorXd>& u,
+                                                              const Eigen::Ref<const Eigen::MatrixXd>& dX) const;
   template <int Dim> Eigen::VectorXd traction_load_impl(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
   void build_pattern();
 

@@ -72,6 +72,20 @@ class AdjointSensitivity {
     Summary summary;
   };
 
+  /// The forward derivative of the piece's state along a design direction h (a column
+  /// combination R_i h of spec 03 §8, §14.6, on the full system):
+  ///   (S M + C_z) δz = −B̃h|_gap + S G A⁻¹ r_α h,   δu = A⁻¹(Gᵀ δz − r_α h),
+  /// with r_α h = ∂(A u − l)/∂α · h (fem::LinearElasticity::residual_derivative).
+  struct StateDerivative {
+    Eigen::VectorXd displacement;  ///< δu over all DOFs (zero at prescribed ones)
+    Eigen::VectorXd contact;       ///< δz = (δq, δλ) per node
+  };
+  [[nodiscard]] StateDerivative state_derivative(const Piece& piece, const Eigen::MatrixXd& delassus,
+                                                 const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                                 const Eigen::Ref<const Eigen::VectorXd>& u,
+                                                 const contact::ContactState& state,
+                                                 const Eigen::Ref<const Eigen::VectorXd>& h) const;
+
   /// `gap_matrix` is B̃ at the contact nodes (p × d): g = B̃α.
   AdjointSensitivity(const fem::LinearElasticity& fem, const contact::ContactBoundary& boundary,
                      Eigen::MatrixXd gap_matrix, contact::FrictionLaw law);

@@ -50,6 +50,10 @@ class ShapeOracle final : public optim::Oracle {
   /// ξ_i for the given pieces at α (the state is re-solved if α is not the cached design).
   std::vector<Eigen::VectorXd> subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                             const std::vector<sensitivity::Piece>& pieces);
+  /// R_i h: the derivative of the state of `piece` at α along h (default piece when null).
+  sensitivity::AdjointSensitivity::StateDerivative state_derivative(const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                                                                    const Eigen::Ref<const Eigen::VectorXd>& h,
+                                                                    const sensitivity::Piece* piece = nullptr);
   /// The index sets and 𝕃 at α.
   sensitivity::PieceEnumeration pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int cap = 256);
 
