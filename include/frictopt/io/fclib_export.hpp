@@ -73,6 +73,9 @@ struct FclibExportOptions {
 /// Writes `problem` to `path` (HDF5, replacing an existing file): /fclib_local (W as a dense
 /// compressed-column matrix, q, μ, spacedim, info), and with `include_solution` our (r, u) as
 /// /solution (exact) or /guesses/1. Throws InvalidInput naming the path if it cannot be written.
+/// The file is written as a sibling `path.partial` and renamed. Caveat: fclib terminates the
+/// process (exit) when an HDF5 call fails in the middle of a write (e.g. a full disk); what can
+/// be checked beforehand (sizes, the directory) is checked and reported as InvalidInput.
 void write_fclib_local(const std::filesystem::path& path, const FclibLocalProblem& problem,
                        bool include_solution = true);
 
