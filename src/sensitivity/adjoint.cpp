@@ -7,6 +7,7 @@
 #include <chrono>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/sensitivity/friction_parameters.hpp"
 
 namespace frictopt::sensitivity {
 namespace {
@@ -24,6 +25,55 @@ Eigen::Matrix2d smooth_exposed_jacobian(const Eigen::Vector2d& semi_axes, const 
   const Eigen::Vector2d Ad = A * d;
   const double s = std::sqrt(d.dot(Ad));
   return A / s - Ad * Ad.transpose() / (s * s * s);
+}
+
+// ∂w/∂(a, b) of the exposed point w(d) = A d/√(dᵀAd), A = diag(a², b²): columns ∂/∂a, ∂/∂b.
+Eigen::Matrix2d smooth_exposed_axis_jacobian(const Eigen::Vector2d& semi_axes, const Eigen::Vector2d& d) {
+  const double a = semi_axes(0), b = semi_axes(1);
+  const double s = std::sqrt(a * a * d(0) * d(0) + b * b * d(1) * d(1));
+  const double ds_da = a * d(0) * d(0) / s, ds_db = b * d(1) * d(1) / s;
+  Eigen::Matrix2d J;
+  J(0, 0) = 2 * a * d(0) / s - a * a * d(0) * ds_da / (s * s);
+  J(1, 0) = -b * b * d(1) * ds_da / (s * s);
+  J(0, 1) = -a * a * d(0) * ds_db / (s * s);
+  J(1, 1) = 2 * b * d(1) / s - b * b * d(1) * ds_db / (s * s);
+  return J;
+}
+
+// ∂(contact rows)/∂p_k · ψ_z summed: the friction-parameter gradient of Θ for one piece.
+Eigen::VectorXd friction_parameter_gradient(const Piece& piece, const contact::FrictionLaw& law,
+                                            const contact::ContactState& state, const Eigen::VectorXd& psi_z) {
+  const FrictionParameters params = friction_parameters(law);
+  const Eigen::Index np = params.values.size();
+  Eigen::VectorXd grad = Eigen::VectorXd::Zero(np);
+  const int dim = state.dim;
+  const auto w = law.vertices();
+  for (Eigen::Index i = 0; i < state.num_nodes(); ++i) {
+    const NodePiece& node = piece.nodes[static_cast<std::size_t>(i)];
+    if (node.normal != NormalBranch::kGapClosed) continue;
+    const Eigen::Index base = dim * i;
+    const double lambda = state.lambda(i);
+    for (Eigen::Index k = 0; k < np; ++k) {
+      double contribution = 0.0;
+      if (node.tangential == TangentialBranch::kVertexSlip) {
+        const Eigen::Vector2d& dw = params.vertex_derivatives[static_cast<std::size_t>(k)][static_cast<std::size_t>(node.index)];
+        for (int c = 0; c < dim - 1; ++c) contribution += psi_z(base + c) * (-lambda * dw(c));
+      } else if (node.tangential == TangentialBranch::kRaySlip) {
+        const std::size_t j = static_cast<std::size_t>(node.index), j1 = (j + 1) % w.size();
+        const auto& dv = params.vertex_derivatives[static_cast<std::size_t>(k)];
+        const Eigen::Vector2d d = w[j1] - w[j], dd = dv[j1] - dv[j];
+        const Eigen::Vector2d q = state.q(i), ut = state.u_t(i);
+        contribution += psi_z(base) * (cross(dd, q) - lambda * (cross(dd, w[j]) + cross(d, dv[j])));
+        contribution += psi_z(base + 1) * dd.dot(ut);
+      } else if (node.tangential == TangentialBranch::kSmoothSlip) {
+        const Eigen::Vector2d dw = smooth_exposed_axis_jacobian(law.semi_axes(), state.u_t(i)) *
+                                   params.semi_axis_derivatives[static_cast<std::size_t>(k)];
+        for (int c = 0; c < 2; ++c) contribution += psi_z(base + c) * (-lambda * dw(c));
+      }
+      grad(k) += contribution;
+    }
+  }
+  return grad;
 }
 
 }  // namespace
@@ -163,6 +213,8 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   if (partials.d_alpha.size()) result.subgradient += partials.d_alpha;
   const int dim = boundary_.dim();
   for (Eigen::Index r : lin.gap_rows) result.subgradient += result.psi_z(r) * gap_matrix_.row(r / dim).transpose();
+
+  result.friction_gradient = friction_parameter_gradient(piece, law_, state, result.psi_z);
 
   const double kSingular = 1e-14;  // below this rcond the piece's Jacobian is numerically singular
   if (!(result.summary.reciprocal_condition > kSingular)) {

@@ -83,6 +83,7 @@ const Evaluation& ShapeOracle::evaluate_design(const Eigen::Ref<const Eigen::Vec
       e.message = "subgradient failed: " + result.summary.message;
     } else {
       e.subgradient = result.subgradient;
+      e.friction_gradient = result.friction_gradient;
     }
   }
   return cache_[key_of(alpha)] = e;

@@ -10,12 +10,19 @@
 
 #include "common/finite_difference.hpp"
 #include "frictopt/cost/cost_functional.hpp"
+#include "frictopt/sensitivity/friction_parameters.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 
 namespace frictopt::sensitivity {
 namespace {
 
 using frictopt::testing::kSeed;
+
+std::string fmt_vector(const Eigen::VectorXd& v) {
+  std::string out = "[";
+  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + std::to_string(v(i));
+  return out + "]";
+}
 
 // The thesis' 2D body (spec 05 §2.1, A-BC) on a coarse mesh, with the solver tolerances the
 // finite differences need (the state error divided by the FD step must stay far below 1e-5).
@@ -264,6 +271,67 @@ TEST(Subgradient, OneSidedDerivativeAtWeakContactMatchesAnEnumeratedPiece) {
     }
   }
 }
+
+}  // namespace
+}  // namespace frictopt::sensitivity
+
+namespace frictopt::sensitivity {
+namespace {
+
+struct FrictionCase {
+  std::string name;
+  std::function<contact::FrictionLaw(const Eigen::VectorXd&)> make;  // from the parameters
+  Eigen::VectorXd parameters;
+  bool three_d;
+};
+
+class FrictionGradient : public ::testing::TestWithParam<FrictionCase> {};
+
+TEST_P(FrictionGradient, MatchesCentralDifferencesInTheCoefficients) {
+  const FrictionCase& c = GetParam();
+  const auto body_for = [&](const Eigen::VectorXd& p) {
+    return c.three_d ? block_3d(c.make(p)) : thesis_body_2d(c.make(p));
+  };
+  study::ElasticBody body(body_for(c.parameters));
+  study::ShapeOracle oracle(body, cost::make_compliance());
+  const study::Evaluation e = oracle.evaluate_design(body.definition().initial_design);
+  ASSERT_TRUE(e.ok) << e.message;
+  ASSERT_EQ(e.index_sets.num_weak_nodes(), 0) << e.index_sets.summary();
+  ASSERT_EQ(friction_parameters(body.definition().contact->law).values.size(), c.parameters.size());
+  EXPECT_LE((friction_parameters(body.definition().contact->law).values - c.parameters).norm(), 1e-12);
+  const auto theta = [&](const Eigen::VectorXd& p) {
+    study::ElasticBody b(body_for(p));
+    study::ShapeOracle o(b, cost::make_compliance());
+    return o.evaluate_design(b.definition().initial_design, false).value;
+  };
+  const Eigen::VectorXd fd = frictopt::testing::central_gradient(theta, c.parameters, 1e-5);
+  const double error = (e.friction_gradient - fd).norm() / fd.norm();
+  std::printf("%s: ∂Θ/∂μ adjoint %s vs FD %s: relative error %.2e\n", c.name.c_str(),
+              fmt_vector(e.friction_gradient).c_str(), fmt_vector(fd).c_str(), error);
+  EXPECT_LE(error, 1e-5);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Laws, FrictionGradient,
+    ::testing::Values(
+        FrictionCase{"Interval2D", [](const Eigen::VectorXd& p) { return contact::FrictionLaw::interval(p(0), p(1)); },
+                     Eigen::Vector2d(0.15, 0.35), false},
+        FrictionCase{"RegularPolygon3D",
+                     [](const Eigen::VectorXd& p) { return contact::FrictionLaw::regular_polygon(p(0), 16); },
+                     Eigen::VectorXd::Constant(1, 0.3), true},
+        FrictionCase{"AnisotropicPolygon3D",
+                     [](const Eigen::VectorXd& p) {
+                       return contact::FrictionLaw::polygon({p(0), p(1), p(2), p(3)});
+                     },
+                     Eigen::Vector4d(0.2, 0.45, 0.25, 0.4), true},
+        FrictionCase{"EllipsePolygon3D",
+                     [](const Eigen::VectorXd& p) { return contact::FrictionLaw::ellipse_polygon(p(0), p(1), 16); },
+                     Eigen::Vector2d(0.2, 0.4), true},
+        FrictionCase{"Disc3D", [](const Eigen::VectorXd& p) { return contact::FrictionLaw::disc(p(0)); },
+                     Eigen::VectorXd::Constant(1, 0.3), true},
+        FrictionCase{"Ellipse3D", [](const Eigen::VectorXd& p) { return contact::FrictionLaw::ellipse(p(0), p(1)); },
+                     Eigen::Vector2d(0.2, 0.4), true}),
+    [](const auto& param_info) { return param_info.param.name; });
 
 }  // namespace
 }  // namespace frictopt::sensitivity

@@ -69,6 +69,9 @@ class AdjointSensitivity {
     Eigen::VectorXd subgradient;  ///< ξ (d)
     Eigen::VectorXd psi_u;        ///< adjoint on the free DOFs
     Eigen::VectorXd psi_z;        ///< adjoint on the contact rows (dim·p)
+    /// ∂Θ/∂p_k for the friction parameters p of friction_parameters(law) (same piece and adjoint;
+    /// the costs do not depend on μ explicitly).
+    Eigen::VectorXd friction_gradient;
     Summary summary;
   };
 

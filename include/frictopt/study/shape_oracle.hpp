@@ -25,6 +25,8 @@ struct Evaluation {
   std::string message;          ///< why not ok (state solve failed, adjoint singular, ...)
   double value = kNaN;          ///< Θ(α)
   Eigen::VectorXd subgradient;  ///< ξ for the default piece (empty when not requested / not ok)
+  /// ∂Θ/∂p for the friction parameters p (sensitivity::friction_parameters), same piece.
+  Eigen::VectorXd friction_gradient;
   sensitivity::IndexSets index_sets;
   sensitivity::AdjointSensitivity::Summary adjoint;
   StateSummary state;
