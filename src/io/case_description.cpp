@@ -34,6 +34,9 @@ FrictionKind parse_friction_kind(std::string_view text) {
   return detail::kFrictionKindTable.parse(text, "friction kind");
 }
 
+std::string_view to_string(CostKind kind) { return detail::kCostKindTable.name(kind); }
+CostKind parse_cost_kind(std::string_view text) { return detail::kCostKindTable.parse(text, "cost kind"); }
+
 int DesignSpec::num_control_points() const {
   return std::accumulate(control_points.begin(), control_points.end(), 1, std::multiplies<>());
 }

@@ -28,4 +28,9 @@ inline constexpr auto kFrictionKindTable = make_enum_table<FrictionKind>(
     std::pair{FrictionKind::kEllipseExact, "ellipse_exact"},
     std::pair{FrictionKind::kDiscExact, "disc_exact"});
 
+inline constexpr auto kCostKindTable = make_enum_table<CostKind>(
+    std::pair{CostKind::kTargetPressure, "target_pressure"},
+    std::pair{CostKind::kNormalForcePower, "normal_force_power"}, std::pair{CostKind::kCompliance, "compliance"},
+    std::pair{CostKind::kPressureNorm, "pressure_norm"}, std::pair{CostKind::kTotalSlip, "total_slip"});
+
 }  // namespace frictopt::io::detail

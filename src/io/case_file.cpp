@@ -26,7 +26,7 @@ using detail::TableReader;
 
 // Tables a later case-format version will define ([optimization], [cost]); rejecting them
 // with their own message tells the user the feature is planned, not misspelt.
-constexpr std::string_view kReservedTables[] = {"optimization", "cost"};
+constexpr std::string_view kReservedTables[] = {"study"};
 
 // Default polygon size for the 3D isotropic and elliptic laws: the thesis' 3D runs use
 // n-gons, and n = 16 keeps the polygon within 2% of the disc (1 − cos(π/16) ≈ 0.019).
@@ -358,6 +358,54 @@ SolverSpec read_solver(const TableReader& r, std::string_view origin) {
   return s;
 }
 
+CostSpec read_cost(const TableReader& r) {
+  CostSpec c;
+  const std::string kind = r.required_string("kind", "the cost functional");
+  try {
+    c.kind = parse_cost_kind(kind);
+  } catch (const InvalidInput&) {
+    r.fail_value("kind", "one of target_pressure, normal_force_power, compliance, pressure_norm, total_slip");
+  }
+  if (c.kind == CostKind::kTargetPressure) {
+    const toml::node* target = r.node("target");
+    if (target == nullptr) r.fail_missing("target", "a target pressure [Pa] or \"initial_mean\"");
+    if (target->is_string()) {
+      if (target->value<std::string>().value_or("") != "initial_mean")
+        r.fail_value("target", "a number (pressure in Pa) or \"initial_mean\"");
+      c.target_initial_mean = true;
+    } else {
+      c.target_pressure = r.optional_number("target");
+      if (!(*c.target_pressure >= 0)) r.fail_value("target", "target >= 0");
+    }
+  } else if (r.has("target")) {
+    r.fail_value("target", "no target for this kind (only target_pressure has one)");
+  }
+  if ((c.exponent = r.optional_number("exponent"))) {
+    if (c.kind != CostKind::kNormalForcePower && c.kind != CostKind::kPressureNorm)
+      r.fail_value("exponent", "no exponent for this kind");
+    if (!(*c.exponent >= 2)) r.fail_value("exponent", "exponent >= 2");
+  }
+  if ((c.smoothing = r.optional_number("smoothing"))) {
+    if (c.kind != CostKind::kTotalSlip) r.fail_value("smoothing", "no smoothing for this kind");
+    if (!(*c.smoothing > 0)) r.fail_value("smoothing", "smoothing > 0");
+  }
+  return c;
+}
+
+OptimizationSpec read_optimization(const TableReader& r) {
+  OptimizationSpec o;
+  if ((o.max_iterations = r.optional_int("max_iterations")) && *o.max_iterations < 1)
+    r.fail_value("max_iterations", "max_iterations >= 1");
+  if ((o.max_evaluations = r.optional_int("max_evaluations")) && *o.max_evaluations < 1)
+    r.fail_value("max_evaluations", "max_evaluations >= 1");
+  if ((o.epsilon = r.optional_number("epsilon")) && !(*o.epsilon > 0)) r.fail_value("epsilon", "epsilon > 0");
+  if ((o.max_step_length = r.optional_number("max_step_length")) && !(*o.max_step_length > 0))
+    r.fail_value("max_step_length", "max_step_length > 0");
+  if ((o.bundle_size = r.optional_int("bundle_size")) && *o.bundle_size < 3)
+    r.fail_value("bundle_size", "bundle_size >= 3");
+  return o;
+}
+
 OutputSpec read_output(const TableReader& r, std::string default_name) {
   OutputSpec o;
   o.vtk = r.optional_bool("vtk").value_or(true);
@@ -390,7 +438,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
 
   const TableReader top(root, "", origin,
                         {"geometry", "mesh", "material", "load", "dirichlet", "design", "contact",
-                         "solver", "output"});
+                         "solver", "cost", "optimization", "output"});
   const auto table = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
     const toml::table* t = top.optional_table(key);
     if (t == nullptr) top.fail_missing(key, fmt::format("a table [{}]", key));
@@ -443,6 +491,16 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   if (const toml::table* solver = top.optional_table("solver"))
     c.solver =
         read_solver(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem"}), origin);
+
+  if (const toml::table* cost = top.optional_table("cost")) {
+    if (!c.contact)
+      throw InvalidInput(fmt::format("{}: [cost] needs a [contact] table: every cost reads the contact state", origin));
+    c.cost = read_cost(TableReader(*cost, "cost", origin, {"kind", "target", "exponent", "smoothing"}));
+  }
+  if (const toml::table* optimization = top.optional_table("optimization"))
+    c.optimization = read_optimization(TableReader(
+        *optimization, "optimization", origin,
+        {"max_iterations", "max_evaluations", "epsilon", "max_step_length", "bundle_size"}));
 
   // Default output name: the file stem, or the case directory's name for the
   // cases*/<name>/case.toml layout (every case file there is called case.toml).

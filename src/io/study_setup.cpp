@@ -93,4 +93,24 @@ study::BodyDefinition make_body_definition(const CaseDescription& c) {
   return body;
 }
 
+study::CostDefinition make_cost_definition(const CaseDescription& c) {
+  if (!c.cost)
+    throw InvalidInput(fmt::format("{}: no [cost] table; expected one with kind = target_pressure, "
+                                   "normal_force_power, compliance, pressure_norm or total_slip",
+                                   c.origin));
+  using Kind = study::CostDefinition::Kind;
+  study::CostDefinition d;
+  switch (c.cost->kind) {
+    case CostKind::kTargetPressure: d.kind = Kind::kTargetPressure; break;
+    case CostKind::kNormalForcePower: d.kind = Kind::kNormalForcePower; break;
+    case CostKind::kCompliance: d.kind = Kind::kCompliance; break;
+    case CostKind::kPressureNorm: d.kind = Kind::kPressureNorm; d.exponent = 8.0; break;
+    case CostKind::kTotalSlip: d.kind = Kind::kTotalSlip; break;
+  }
+  if (c.cost->target_pressure) d.target_pressure = *c.cost->target_pressure;
+  if (c.cost->exponent) d.exponent = *c.cost->exponent;
+  if (c.cost->smoothing) d.smoothing = *c.cost->smoothing;
+  return d;
+}
+
 }  // namespace frictopt::io

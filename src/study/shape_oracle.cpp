@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "frictopt/contact/delassus.hpp"
 #include "frictopt/core/error.hpp"
@@ -17,6 +18,30 @@ std::vector<double> key_of(const Eigen::VectorXd& alpha) { return {alpha.data(),
 // Bounded memory: the bundle method revisits only the last few designs.
 constexpr std::size_t kCacheSize = 64;
 }  // namespace
+
+std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition, ElasticBody& body) {
+  using Kind = CostDefinition::Kind;
+  switch (definition.kind) {
+    case Kind::kTargetPressure: {
+      if (!body.contact_boundary()) throw InvalidInput("cost target_pressure needs a body in contact");
+      const Eigen::VectorXd& areas = body.contact_boundary()->tributary_areas();
+      double pressure = definition.target_pressure;
+      if (std::isnan(pressure)) {
+        const BodyState s = body.solve(body.definition().initial_design, "initial design");
+        if (s.summary.status != Status::kConverged)
+          throw InvalidInput("cost target_pressure = initial_mean: the state at the initial design did not solve: " +
+                             s.summary.message);
+        pressure = s.contact->state.normal_forces().sum() / areas.sum();
+      }
+      return cost::make_target_normal_force(pressure * areas);
+    }
+    case Kind::kNormalForcePower: return cost::make_normal_force_power(definition.exponent);
+    case Kind::kCompliance: return cost::make_compliance();
+    case Kind::kPressureNorm: return cost::make_pressure_norm(definition.exponent);
+    case Kind::kTotalSlip: return cost::make_total_slip(definition.smoothing);
+  }
+  return nullptr;
+}
 
 ShapeOracle::ShapeOracle(ElasticBody& body, std::unique_ptr<cost::CostFunctional> cost)
     : body_(body), cost_(std::move(cost)) {

@@ -266,9 +266,22 @@ TEST(ParseCase, UnknownTopLevelTableIsAnError) {
                  {"unknown key 'meshh'", "did you mean 'mesh'"});
 }
 
-TEST(ParseCase, ReservedTablesAreRejectedAsNotYetSupported) {
-  expect_invalid(std::string(kValid2d) + "\n[optimization]\n", {"[optimization] is reserved"});
-  expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"x\"\n", {"[cost] is reserved"});
+TEST(ParseCase, CostAndOptimizationTablesAreValidated) {
+  const CaseDescription c = parse_case(std::string(kValid2d) +
+                                           "\n[cost]\nkind = \"target_pressure\"\ntarget = \"initial_mean\"\n"
+                                           "[optimization]\nmax_iterations = 30\nepsilon = 1e-5\n",
+                                       "case.toml");
+  ASSERT_TRUE(c.cost.has_value());
+  EXPECT_EQ(c.cost->kind, CostKind::kTargetPressure);
+  EXPECT_TRUE(c.cost->target_initial_mean);
+  EXPECT_EQ(c.optimization.max_iterations, 30);
+  EXPECT_EQ(c.optimization.epsilon, 1e-5);
+  expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"x\"\n", {"cost.kind"});
+  expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"target_pressure\"\n", {"cost.target"});
+  expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"compliance\"\nexponent = 4\n", {"cost.exponent"});
+  expect_invalid(std::string(kValid2d) + "\n[optimization]\nbundle_size = 2\n", {"optimization.bundle_size"});
+  expect_invalid(std::string(kValid2d) + "\n[optimization]\nmax_iters = 2\n", {"optimization.max_iters"});
+  expect_invalid(std::string(kValid2d) + "\n[study]\n", {"[study] is reserved"});
 }
 
 TEST(ParseCase, UnknownKeyInNestedTablesIsNamedWithItsPath) {

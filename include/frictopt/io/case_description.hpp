@@ -153,6 +153,37 @@ struct SolverSpec {
   IterativeSolverSpec qp;       ///< [solver.qp]: the Tresca dual QP
 };
 
+/// [cost]: the cost functional J (spec 05 §2.4, issue 6).
+enum class CostKind {
+  kTargetPressure,    ///< Σ(λ̄ − λ)² with λ̄_i = p̄·a_i (thesis ex. 5.2.1)
+  kNormalForcePower,  ///< Σ λ_i^p (thesis ex. 5.2.2 with p = 4)
+  kCompliance,        ///< −uᵀAu + lᵀu (thesis ex. 5.2.3)
+  kPressureNorm,      ///< (Σ a_i p_i^p)^{1/p}: smooth peak-pressure surrogate
+  kTotalSlip          ///< Σ √(|u_t|² + δ²) − δ
+};
+/// "target_pressure", "normal_force_power", "compliance", "pressure_norm", "total_slip".
+std::string_view to_string(CostKind kind);
+CostKind parse_cost_kind(std::string_view text);
+
+struct CostSpec {
+  CostKind kind = CostKind::kCompliance;
+  /// kTargetPressure: a uniform target pressure p̄ [Pa]; absent with target_initial_mean: the
+  /// initial total normal force spread as a uniform pressure (spec 05 §2.3).
+  std::optional<double> target_pressure;
+  bool target_initial_mean = false;
+  std::optional<double> exponent;   ///< kNormalForcePower (default 4), kPressureNorm (default 8); >= 2
+  std::optional<double> smoothing;  ///< kTotalSlip: δ > 0 [m] (default 1e-6)
+};
+
+/// [optimization]: bundle trust options a case may override (absent: the method's defaults).
+struct OptimizationSpec {
+  std::optional<int> max_iterations;     ///< >= 1
+  std::optional<int> max_evaluations;    ///< >= 1
+  std::optional<double> epsilon;         ///< stopping tolerance ε > 0
+  std::optional<double> max_step_length; ///< T: largest trust-region radius [m] > 0
+  std::optional<int> bundle_size;        ///< j_max >= 3
+};
+
 /// [output].
 struct OutputSpec {
   bool vtk = true;   ///< write .vtu (and a .pvd for series)
@@ -173,6 +204,8 @@ struct CaseDescription {
   DesignSpec design;
   std::optional<ContactSpec> contact;  ///< absent: no contact
   SolverSpec solver;
+  std::optional<CostSpec> cost;                  ///< absent: only `solve` is possible
+  OptimizationSpec optimization;
   OutputSpec output;
 };
 

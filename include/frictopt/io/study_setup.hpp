@@ -11,4 +11,7 @@ namespace frictopt::io {
 /// The body of a case: shape, mesh resolution, material, Γ_u, Γ_p, Υ and α⁰.
 [[nodiscard]] study::BodyDefinition make_body_definition(const CaseDescription& description);
 
+/// The cost of a case ([cost] table); throws InvalidInput when the case has none.
+[[nodiscard]] study::CostDefinition make_cost_definition(const CaseDescription& description);
+
 }  // namespace frictopt::io

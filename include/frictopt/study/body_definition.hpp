@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,17 @@ struct ContactDefinition {
   /// (dim·p solves once per design, then cheap products); above it M is applied through the
   /// sparse factorization (one solve per product). See bench/contact for the crossover.
   int dense_delassus_max_unknowns = 1500;
+};
+
+/// The cost functional of a study (spec 05 §2.4; cost module).
+struct CostDefinition {
+  enum class Kind { kTargetPressure, kNormalForcePower, kCompliance, kPressureNorm, kTotalSlip };
+  Kind kind = Kind::kCompliance;
+  /// kTargetPressure: uniform target pressure p̄ [Pa], λ̄_i = p̄·a_i; NaN: the initial total
+  /// normal force spread as a uniform pressure (spec 05 §2.3's reading of the thesis' target).
+  double target_pressure = std::numeric_limits<double>::quiet_NaN();
+  double exponent = 4.0;    ///< kNormalForcePower (thesis: 4), kPressureNorm
+  double smoothing = 1e-6;  ///< kTotalSlip [m]
 };
 
 struct BodyDefinition {

@@ -19,6 +19,10 @@
 
 namespace frictopt::study {
 
+/// Builds the cost of `definition` for `body`; a target-pressure cost with the "initial mean"
+/// target solves the state at the body's initial design once.
+std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition, ElasticBody& body);
+
 /// One evaluation of the oracle at a design.
 struct Evaluation {
   bool ok = false;
