@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// A shape optimization run: the bundle trust method (optim) on the oracle Θ(α) (ShapeOracle)
+// over the admissible set Υ of the body (shape), with progress reported through a callback.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <optional>
+
+#include "frictopt/optim/bundle_trust.hpp"
+#include "frictopt/optim/linear_constraints.hpp"
+#include "frictopt/shape/admissible_set.hpp"
+#include "frictopt/study/shape_oracle.hpp"
+
+namespace frictopt::study {
+
+/// Υ in the optimizer's form (same rows; the slope/volume names stay with shape).
+optim::LinearConstraints to_optim_constraints(const shape::LinearConstraints& upsilon);
+
+/// What a progress line and a history row need after each outer iteration.
+struct OptimizationProgress {
+  const optim::BundleTrust::IterationSummary& method;  ///< the optimizer's state (checkpointable)
+  const Evaluation& center;                            ///< the oracle's evaluation at x_k
+  double elapsed_seconds = 0.0;
+  int state_solves = 0;                                ///< state problems solved so far
+};
+using ProgressCallback = std::function<CallbackResult(const OptimizationProgress&)>;
+
+/// Bundle trust options for shape studies: the objective is scaled by |Θ(α⁰)| so that ε is a
+/// relative stationarity tolerance whatever the cost's units (spec 04 §7 "robustness"), and the
+/// first step is at most the design range C0 (the optimizer's max_step_length).
+optim::BundleTrust::Options default_study_options(const ElasticBody& body);
+
+/// Runs (or, from a checkpoint, resumes) the optimization. The oracle must belong to `body`.
+/// `on_progress` is called after every outer iteration (history, checkpoints, VTK series); it
+/// may stop the run. Bad input (e.g. an initial design outside Υ that cannot be projected)
+/// throws InvalidInput.
+[[nodiscard]] optim::BundleTrust::Summary optimize(ShapeOracle& oracle, optim::BundleTrust::Options options,
+                                                   const ProgressCallback& on_progress,
+                                                   const optim::BundleTrust::IterationSummary* checkpoint = nullptr);
+
+}  // namespace frictopt::study
