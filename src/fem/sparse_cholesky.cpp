@@ -1,56 +1,199 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/fem/sparse_cholesky.hpp"
 
-#include <Eigen/CholmodSupport>
+#include <cholmod.h>
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
 
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::fem {
 
+// CHOLMOD is called directly (not through Eigen's CholmodSupernodalLLT) because the trailing
+// block needs a user ordering (cholmod_analyze_p) and access to the supernodal factor.
 struct SparseCholesky::Impl {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  cholmod_common common;
+  cholmod_factor* factor = nullptr;
+  std::vector<int> trailing;
+  Impl() {
+    cholmod_start(&common);
+    common.print = 0;  // the library never prints (STYLE.md §5): statuses are reported instead
+  }
+  ~Impl() {
+    if (factor) cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+  void reset() {
+    if (factor) cholmod_free_factor(&factor, &common);
+    factor = nullptr;
+  }
 };
 
-SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {
-  // The library never prints (STYLE.md §5): silence CHOLMOD's own warnings, we report statuses.
-  impl_->llt.cholmod().print = 0;
+namespace {
+// A cholmod_sparse view of Eigen's compressed column storage (no copy); lower triangle used.
+cholmod_sparse view(const Eigen::SparseMatrix<double>& A) {
+  FRICTOPT_ASSERT(A.isCompressed(), "compressed storage expected");
+  cholmod_sparse s;
+  std::memset(&s, 0, sizeof(s));
+  s.nrow = static_cast<std::size_t>(A.rows());
+  s.ncol = static_cast<std::size_t>(A.cols());
+  s.nzmax = static_cast<std::size_t>(A.nonZeros());
+  s.p = const_cast<int*>(A.outerIndexPtr());
+  s.i = const_cast<int*>(A.innerIndexPtr());
+  s.x = const_cast<double*>(A.valuePtr());
+  s.stype = -1;
+  s.itype = CHOLMOD_INT;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = 1;
+  s.packed = 1;
+  return s;
 }
+
+cholmod_dense dense_view(const double* data, Eigen::Index rows, Eigen::Index cols) {
+  cholmod_dense d;
+  std::memset(&d, 0, sizeof(d));
+  d.nrow = static_cast<std::size_t>(rows);
+  d.ncol = static_cast<std::size_t>(cols);
+  d.nzmax = d.nrow * d.ncol;
+  d.d = d.nrow;
+  d.x = const_cast<double*>(data);
+  d.xtype = CHOLMOD_REAL;
+  d.dtype = CHOLMOD_DOUBLE;
+  return d;
+}
+}  // namespace
+
+SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
 SparseCholesky::~SparseCholesky() = default;
 SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
 SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 
+bool SparseCholesky::analyzed() const { return impl_->factor != nullptr; }
+Eigen::Index SparseCholesky::trailing_size() const { return static_cast<Eigen::Index>(impl_->trailing.size()); }
+
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
-  impl_->llt.analyzePattern(A);
-  analyzed_ = true;
+  impl_->reset();
+  impl_->trailing.clear();
+  impl_->common.supernodal = CHOLMOD_SUPERNODAL;
+  cholmod_sparse a = view(A);
+  impl_->factor = cholmod_analyze(&a, &impl_->common);
+  FRICTOPT_ASSERT(impl_->factor != nullptr, "cholmod_analyze failed");
+}
+
+void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A, const std::vector<int>& trailing) {
+  const int n = static_cast<int>(A.rows());
+  std::vector<char> is_trailing(static_cast<std::size_t>(n), 0);
+  for (int t : trailing) {
+    FRICTOPT_ASSERT(t >= 0 && t < n && !is_trailing[static_cast<std::size_t>(t)], "trailing indices distinct, in range");
+    is_trailing[static_cast<std::size_t>(t)] = 1;
+  }
+  std::vector<int> leading, local(static_cast<std::size_t>(n), -1);
+  for (int i = 0; i < n; ++i)
+    if (!is_trailing[static_cast<std::size_t>(i)]) {
+      local[static_cast<std::size_t>(i)] = static_cast<int>(leading.size());
+      leading.push_back(i);
+    }
+  // Fill-reducing ordering of the leading block A_ff alone (CHOLMOD's default: AMD, METIS if
+  // AMD fills much), then the trailing indices appended.
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int col : leading)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, col); it; ++it) {
+      const int row = local[static_cast<std::size_t>(it.row())];
+      if (row >= 0) entries.emplace_back(row, local[static_cast<std::size_t>(col)], 1.0);
+    }
+  Eigen::SparseMatrix<double> A_ff(static_cast<Eigen::Index>(leading.size()), static_cast<Eigen::Index>(leading.size()));
+  A_ff.setFromTriplets(entries.begin(), entries.end());
+  A_ff.makeCompressed();
+  cholmod_sparse a_ff = view(A_ff);
+  impl_->reset();
+  impl_->common.supernodal = CHOLMOD_SUPERNODAL;
+  cholmod_factor* leading_analysis = cholmod_analyze(&a_ff, &impl_->common);
+  FRICTOPT_ASSERT(leading_analysis != nullptr, "cholmod_analyze of the leading block failed");
+  std::vector<int> perm;
+  perm.reserve(static_cast<std::size_t>(n));
+  const int* p_ff = static_cast<const int*>(leading_analysis->Perm);
+  for (std::size_t k = 0; k < leading.size(); ++k) perm.push_back(leading[static_cast<std::size_t>(p_ff[k])]);
+  cholmod_free_factor(&leading_analysis, &impl_->common);
+  perm.insert(perm.end(), trailing.begin(), trailing.end());
+
+  // Analyze with exactly this permutation: no other method, no postordering (which could move
+  // trailing columns).
+  const int nmethods = impl_->common.nmethods, ordering = impl_->common.method[0].ordering,
+            postorder = impl_->common.postorder;
+  impl_->common.nmethods = 1;
+  impl_->common.method[0].ordering = CHOLMOD_GIVEN;
+  impl_->common.postorder = 0;
+  cholmod_sparse a = view(A);
+  impl_->factor = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &impl_->common);
+  impl_->common.nmethods = nmethods;
+  impl_->common.method[0].ordering = ordering;
+  impl_->common.postorder = postorder;
+  FRICTOPT_ASSERT(impl_->factor != nullptr, "cholmod_analyze_p failed");
+  [[maybe_unused]] const int* used = static_cast<const int*>(impl_->factor->Perm);
+  FRICTOPT_ASSERT(std::equal(perm.begin(), perm.end(), used), "CHOLMOD changed the given ordering");
+  impl_->trailing = trailing;
 }
 
 Status SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
-  FRICTOPT_ASSERT(analyzed_, "analyze() before factorize()");
-  impl_->llt.factorize(A);
-  if (impl_->llt.info() != Eigen::Success) {
-    const auto& common = impl_->llt.cholmod();
+  FRICTOPT_ASSERT(analyzed(), "analyze() before factorize()");
+  cholmod_sparse a = view(A);
+  cholmod_factorize(&a, impl_->factor, &impl_->common);
+  if (impl_->common.status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {
     message_ = fmt::format(
-        "factorization failed: the stiffness matrix is not positive definite (CHOLMOD status {}) "
-        "— are rigid-body motions left free by the Dirichlet conditions?",
-        common.status);
+        "factorization failed: the stiffness matrix is not positive definite (pivot {} of {}) — are "
+        "rigid-body motions left free by the Dirichlet conditions?",
+        impl_->factor->minor, impl_->factor->n);
+    return Status::kNumericalFailure;
+  }
+  if (impl_->common.status < CHOLMOD_OK) {
+    message_ = fmt::format("factorization failed: CHOLMOD status {} (out of memory?)", impl_->common.status);
     return Status::kNumericalFailure;
   }
   message_ = "factorized";
   return Status::kConverged;
 }
 
-Eigen::VectorXd SparseCholesky::solve(const Eigen::Ref<const Eigen::VectorXd>& b) const {
-  return impl_->llt.solve(Eigen::VectorXd(b));
-}
-
 Eigen::MatrixXd SparseCholesky::solve_many(const Eigen::Ref<const Eigen::MatrixXd>& B) const {
-  return impl_->llt.solve(Eigen::MatrixXd(B));
+  const Eigen::MatrixXd b = B;  // contiguous column-major copy
+  cholmod_dense bd = dense_view(b.data(), b.rows(), b.cols());
+  cholmod_dense* x = cholmod_solve(CHOLMOD_A, impl_->factor, &bd, &impl_->common);
+  FRICTOPT_ASSERT(x != nullptr, "cholmod_solve failed");
+  Eigen::MatrixXd out = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(x->x), b.rows(), b.cols());
+  cholmod_free_dense(&x, &impl_->common);
+  return out;
 }
 
-double SparseCholesky::factor_nonzeros() const {
-  auto& common = const_cast<Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>&>(impl_->llt).cholmod();
-  return common.lnz;
+Eigen::VectorXd SparseCholesky::solve(const Eigen::Ref<const Eigen::VectorXd>& b) const {
+  return solve_many(b);
+}
+
+double SparseCholesky::factor_nonzeros() const { return impl_->common.lnz; }
+
+Eigen::MatrixXd SparseCholesky::trailing_factor() const {
+  const cholmod_factor* L = impl_->factor;
+  FRICTOPT_ASSERT(L != nullptr && L->is_super && L->xtype != CHOLMOD_PATTERN, "numeric supernodal factor expected");
+  const Eigen::Index m = trailing_size(), n = static_cast<Eigen::Index>(L->n), first = n - m;
+  FRICTOPT_ASSERT(m > 0, "analyze(A, trailing) expected");
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(m, m);
+  const int* super = static_cast<const int*>(L->super);
+  const int* pi = static_cast<const int*>(L->pi);
+  const int* px = static_cast<const int*>(L->px);
+  const int* rows = static_cast<const int*>(L->s);
+  const double* x = static_cast<const double*>(L->x);
+  for (std::size_t s = 0; s < L->nsuper; ++s) {
+    const int k1 = super[s], k2 = super[s + 1];
+    if (k2 <= first) continue;
+    const int nsrow = pi[s + 1] - pi[s];
+    for (int j = std::max<int>(k1, static_cast<int>(first)); j < k2; ++j)
+      for (int r = j - k1; r < nsrow; ++r) {  // rows from the diagonal down
+        const int row = rows[pi[s] + r];
+        T(row - first, j - first) = x[px[s] + r + static_cast<std::ptrdiff_t>(j - k1) * nsrow];
+      }
+  }
+  return T;
 }
 
 }  // namespace frictopt::fem
