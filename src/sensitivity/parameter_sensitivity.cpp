@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/sensitivity/parameter_sensitivity.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "frictopt/core/error.hpp"
+
+namespace frictopt::sensitivity {
+namespace {
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a(0) * b(1) - a(1) * b(0); }
+
+// ∂w/∂(a, b) of the exposed point w(d) = A d/√(dᵀAd), A = diag(a², b²) (columns ∂/∂a, ∂/∂b);
+// the same formula as the adjoint's (src/sensitivity/adjoint.cpp), kept private there.
+Eigen::Matrix2d exposed_point_axis_jacobian(const Eigen::Vector2d& semi_axes, const Eigen::Vector2d& d) {
+  const double a = semi_axes(0), b = semi_axes(1);
+  const double s = std::sqrt(a * a * d(0) * d(0) + b * b * d(1) * d(1));
+  const double ds_da = a * d(0) * d(0) / s, ds_db = b * d(1) * d(1) / s;
+  Eigen::Matrix2d J;
+  J(0, 0) = 2 * a * d(0) / s - a * a * d(0) * ds_da / (s * s);
+  J(1, 0) = -b * b * d(1) * ds_da / (s * s);
+  J(0, 1) = -a * a * d(0) * ds_db / (s * s);
+  J(1, 1) = 2 * b * d(1) / s - b * b * d(1) * ds_db / (s * s);
+  return J;
+}
+
+}  // namespace
+
+contact::FrictionLaw with_friction_parameters(const contact::FrictionLaw& law, const Eigen::Ref<const Eigen::VectorXd>& values) {
+  using contact::FrictionLaw;
+  using contact::FrictionLawKind;
+  const Eigen::Index expected = friction_parameters(law).values.size();
+  if (values.size() != expected)
+    throw InvalidInput(fmt::format("{}: {} friction parameter values given; expected {}", law.describe(), values.size(), expected));
+  const int n = static_cast<int>(law.vertices().size());
+  switch (law.kind()) {
+    case FrictionLawKind::kInterval: return FrictionLaw::interval(values(0), values(1));
+    case FrictionLawKind::kDisc: return FrictionLaw::disc(values(0));
+    case FrictionLawKind::kRegularPolygon: return FrictionLaw::regular_polygon(values(0), n);
+    case FrictionLawKind::kPolygon: return FrictionLaw::polygon({values.data(), values.data() + values.size()});
+    case FrictionLawKind::kEllipse: return FrictionLaw::ellipse(values(0), values(1));
+    case FrictionLawKind::kEllipsePolygon: return FrictionLaw::ellipse_polygon(values(0), values(1), n);
+  }
+  return law;
+}
+
+Eigen::MatrixXd friction_parameter_rows(const Piece& piece, const contact::FrictionLaw& law,
+                                        const contact::ContactState& state) {
+  const FrictionParameters params = friction_parameters(law);
+  const Eigen::Index np = params.values.size();
+  const int dim = state.dim;
+  FRICTOPT_ASSERT(static_cast<Eigen::Index>(piece.nodes.size()) == state.num_nodes(), "piece size");
+  Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(dim * state.num_nodes(), np);
+  const auto w = law.vertices();
+  for (Eigen::Index i = 0; i < state.num_nodes(); ++i) {
+    const NodePiece& node = piece.nodes[static_cast<std::size_t>(i)];
+    if (node.normal != NormalBranch::kGapClosed) continue;  // λ = 0 and q = 0 rows: no μ
+    const Eigen::Index base = dim * i;
+    const double lambda = state.lambda(i);
+    for (Eigen::Index k = 0; k < np; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      switch (node.tangential) {
+        case TangentialBranch::kVertexSlip: {
+          const Eigen::Vector2d& dw = params.vertex_derivatives[kk][static_cast<std::size_t>(node.index)];
+          for (int c = 0; c < dim - 1; ++c) rows(base + c, k) = -lambda * dw(c);
+          break;
+        }
+        case TangentialBranch::kRaySlip: {
+          const std::size_t j = static_cast<std::size_t>(node.index), j1 = (j + 1) % w.size();
+          const auto& dv = params.vertex_derivatives[kk];
+          const Eigen::Vector2d d = w[j1] - w[j], dd = dv[j1] - dv[j];
+          rows(base, k) = cross(dd, state.q(i)) - lambda * (cross(dd, w[j]) + cross(d, dv[j]));
+          rows(base + 1, k) = dd.dot(state.u_t(i));
+          break;
+        }
+        case TangentialBranch::kSmoothSlip: {
+          const Eigen::Vector2d dw =
+              exposed_point_axis_jacobian(law.semi_axes(), state.u_t(i)) * params.semi_axis_derivatives[kk];
+          for (int c = 0; c < 2; ++c) rows(base + c, k) = -lambda * dw(c);
+          break;
+        }
+        case TangentialBranch::kStick:
+        case TangentialBranch::kZeroFriction: break;
+      }
+    }
+  }
+  return rows;
+}
+
+ContactStateDerivative contact_state_derivative(const PieceLinearization& piece, const Eigen::MatrixXd& delassus,
+                                                const Eigen::Ref<const Eigen::MatrixXd>& contact_rows,
+                                                const Eigen::Ref<const Eigen::MatrixXd>& equilibrium_image) {
+  const Eigen::Index m = delassus.rows();
+  const Eigen::Index k = std::max(contact_rows.cols(), equilibrium_image.cols());
+  if (contact_rows.size() && contact_rows.rows() != m)
+    throw InvalidInput(fmt::format("contact_state_derivative: contact_rows has {} rows; expected {}", contact_rows.rows(), m));
+  if (equilibrium_image.size() && equilibrium_image.rows() != m)
+    throw InvalidInput(
+        fmt::format("contact_state_derivative: equilibrium_image has {} rows; expected {}", equilibrium_image.rows(), m));
+  if (contact_rows.size() && equilibrium_image.size() && contact_rows.cols() != equilibrium_image.cols())
+    throw InvalidInput("contact_state_derivative: contact_rows and equilibrium_image have different column counts");
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(m, k);
+  Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(m, k);
+  if (contact_rows.size()) rhs -= contact_rows;
+  if (equilibrium_image.size()) {
+    Q = equilibrium_image;
+    rhs += piece.S * Q;
+  }
+  const Eigen::MatrixXd K = Eigen::MatrixXd(piece.S) * delassus + Eigen::MatrixXd(piece.Cz);
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(K);
+  ContactStateDerivative out;
+  out.reciprocal_condition = lu.rcond();
+  out.forces = lu.solve(rhs);
+  out.gradient = delassus * out.forces - Q;
+  // The adjoint's threshold (adjoint.cpp): below it the piece's Jacobian is numerically singular.
+  constexpr double kSingular = 1e-14;
+  if (!(out.reciprocal_condition > kSingular)) {
+    out.status = Status::kNumericalFailure;
+    out.message = fmt::format("the piece's contact matrix S M + C_z is singular (rcond {:.1e})", out.reciprocal_condition);
+  } else {
+    out.status = Status::kConverged;
+    out.message = "forward sensitivity solved";
+  }
+  return out;
+}
+
+}  // namespace frictopt::sensitivity
