@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: MIT
+// The optimality certificate of a design (thesis §5.3; spec 06 §6, spec 03 §8, §11.1): index
+// sets, the pieces 𝕃 and their ξ_i, the Clarke stationarity distance, condition (MF1′) and the
+// extreme-point (Mordukhovich) check.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "frictopt/core/status.hpp"
+#include "frictopt/optim/stationarity.hpp"
+#include "frictopt/sensitivity/index_sets.hpp"
+#include "frictopt/study/shape_oracle.hpp"
+
+namespace frictopt::study {
+
+struct CertifyOptions {
+  // Largest |𝕃| enumerated in full; above it a seeded sample of `cap` pieces (default piece
+  // first) is used and the Mordukhovich check is skipped (spec 03 §8; the thesis met 59049). >= 1.
+  int cap = 4096;
+  // A row of Υ is active when its slack is <= active_tolerance·max(1, |rhs|) (spec 06 §6.2). >= 0.
+  double active_tolerance = 1e-8;
+  // Numerical rank of the (MF1′) matrix: singular values > rank_tolerance·σ_max count, after
+  // scaling rows and columns to unit 2-norm (spec 03 §11.1 suggests 1e-10·σ_max). In (0, 1).
+  double rank_tolerance = 1e-10;
+  // ξ_i is an extreme point of conv{ξ_j} when dist(ξ_i, conv{ξ_j : ξ_j ≠ ξ_i}) >
+  // extreme_tolerance·max_j‖ξ_j‖ (spec 06 §6.3, step 1, with a margin for the QP's accuracy). > 0.
+  double extreme_tolerance = 1e-8;
+  // The extreme-point test costs one QP over the other generators per distinct ξ_i; above this
+  // many distinct ξ_i it is skipped (reported, not an error). >= 1.
+  int max_extreme_point_tests = 1024;
+  // Distances δ ≤ stationary_tolerance·max_i‖ξ_i‖ are reported as "stationary" (the thesis gives
+  // no tolerance; spec 05 §2.6 item 3 — read δ against its scale). > 0.
+  double stationary_tolerance = 1e-3;
+  void validate() const;  // throws InvalidInput naming field, value, expectation
+};
+
+/// Condition (MF1′) of spec 03 §11.1: full row rank of the tight system's Jacobian.
+struct Mf1Report {
+  bool computed = false;
+  Eigen::Index rows = 0;        ///< dim·p + m₀ (our contact-reduced form, see certificate.cpp)
+  Eigen::Index cols = 0;        ///< d + dim·p
+  int extra_conditions = 0;     ///< m₀: equations beyond one piece's dim·p ("other branches")
+  int rank = 0;                 ///< numerical rank
+  double sigma_max = kNaN;      ///< of the scaled matrix
+  double sigma_min = kNaN;      ///< smallest of its min(rows, cols) singular values
+  double tolerance = kNaN;      ///< absolute threshold used: rank_tolerance·σ_max
+  bool full_row_rank = false;   ///< rank == rows
+  Eigen::MatrixXd matrix;       ///< the scaled matrix (rows × cols), for inspection and tests
+};
+
+/// The extreme-point test of spec 06 §6.3 (needs the full 𝕃, not a sample).
+struct MordukhovichReport {
+  bool computed = false;
+  std::string message;                 ///< why not computed, or what was concluded
+  std::vector<int> extreme;            ///< columns of Certificate::subgradients that are extreme points
+  std::vector<double> hull_distances;  ///< per distinct tested column: dist(ξ_i, conv(other ξ_j))
+  /// δ_M = min over extreme ξ_i of dist(ξ_i, −N_Υ(α)) ≥ dist(0, ∂_MΘ + N_Υ) when (MF1′) holds.
+  double distance = kNaN;
+  int attaining = -1;                  ///< column attaining δ_M
+  /// Thesis criterion: the minimizer of the Clarke QP puts all weight on one extreme generator.
+  bool clarke_minimizer_is_extreme = false;
+  bool stationary = false;             ///< δ_M ≤ stationary_tolerance·scale
+};
+
+/// The certificate at one design.
+struct Certificate {
+  Status status = Status::kNotRun;
+  std::string message = "certify() has not been called";
+  Eigen::VectorXd alpha;
+  double value = kNaN;  ///< Θ(α)
+  sensitivity::IndexSets index_sets;
+  double cardinality = kNaN;   ///< |𝕃|
+  bool sampled = false;        ///< ξ_i below are for a sample of 𝕃 (|𝕃| > cap)
+  std::vector<std::string> piece_summaries;  ///< one per column of `subgradients`
+  Eigen::MatrixXd subgradients;              ///< d × m: ξ_i, column 0 = the default piece when sampled
+  int default_piece_column = 0;              ///< column of the default piece (what the optimizer saw)
+  double scale = kNaN;                       ///< max_i ‖ξ_i‖
+  /// δ = dist(0, conv{ξ_i} + N_Υ(α)) with weights θ and the active constraints (spec 06 §6.2).
+  optim::StationarityCertificate clarke;
+  double relative_distance = kNaN;           ///< δ / scale
+  /// Names of the active rows of Υ (bounds, slope rows by shape's names) and the equalities.
+  std::vector<std::string> active_constraints;
+  optim::StationarityCertificate default_piece;  ///< the same QP with the default ξ alone
+  double default_relative_distance = kNaN;
+  bool clarke_stationary = false;                ///< δ ≤ stationary_tolerance·scale
+  Mf1Report mf1;
+  MordukhovichReport mordukhovich;
+  double time_seconds = 0.0;
+  /// A few lines for the CLI.
+  [[nodiscard]] std::string report() const;
+};
+
+/// Computes the certificate of α (spec 06 §6; thesis §5.3) with the oracle's body and cost:
+/// solves the state, classifies, enumerates 𝕃 (or samples it), computes every ξ_i by one adjoint
+/// each, the stationarity QP, the (MF1′) matrix by d + dim·p solves with the existing
+/// factorization, and the extreme-point test. Throws InvalidInput when α has the wrong size,
+/// violates Υ by more than the active tolerance, or inverts an element; a failed state solve is
+/// a Status in the result.
+[[nodiscard]] Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const CertifyOptions& options = {});
+
+}  // namespace frictopt::study

@@ -1,0 +1,409 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/study/certificate.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "frictopt/contact/delassus.hpp"
+#include "frictopt/core/error.hpp"
+#include "frictopt/sensitivity/adjoint.hpp"
+#include "frictopt/sensitivity/piece.hpp"
+#include "frictopt/study/shape_optimization.hpp"
+
+namespace frictopt::study {
+namespace {
+
+// The (MF1′) matrix is dense, (dim·p + m₀) × (d + dim·p), and its SVD costs O(n³): above this
+// many contact unknowns (≈ 1 minute of SVD on 2 cores) it is skipped and the report says so.
+constexpr Eigen::Index kMaxMf1ContactUnknowns = 3000;
+// Local rows of one node are O(1) numbers (0, ±1, ±μ, polygon vertices): rank decided at 1e-12.
+constexpr double kLocalRankTolerance = 1e-12;
+// Subgradients equal up to this (max norm, relative to the scale) are one generator; matches
+// optim::StationarityOptions::duplicate_tolerance.
+constexpr double kDuplicateTolerance = 1e-12;
+
+std::string constraint_name(const std::string& origin, const shape::LinearConstraints& upsilon,
+                            const Eigen::VectorXd& alpha) {
+  // optim::GeneralForm names rows "lower[k]", "upper[k]", "A_in[j]".
+  const auto open = origin.find('['), close = origin.find(']');
+  if (open == std::string::npos || close == std::string::npos) return origin;
+  const std::string block = origin.substr(0, open);
+  const auto k = static_cast<Eigen::Index>(std::stol(origin.substr(open + 1, close - open - 1)));
+  if (block == "lower") return fmt::format("bound alpha[{}] >= {:g} (alpha = {:.3e})", k, upsilon.lower(k), alpha(k));
+  if (block == "upper") return fmt::format("bound alpha[{}] <= {:g} (alpha = {:.3e})", k, upsilon.upper(k), alpha(k));
+  if (block == "A_in" && k < static_cast<Eigen::Index>(upsilon.inequality_names.size()))
+    return fmt::format("{} <= {:g}", upsilon.inequality_names[static_cast<std::size_t>(k)], upsilon.b_in(k));
+  return origin;
+}
+
+// The stationarity QP of optim with the generators divided by `scale` (results scaled back).
+// N_Υ is a cone, so dist(0, conv{ξ_i/s} + N) = dist(0, conv{ξ_i} + N)/s; the dense QP's
+// tolerances are absolute, and ξ of a cost in N² (e.g. 1e14) against unit constraint normals
+// would leave it stuck at its start.
+optim::StationarityCertificate scaled_certificate(const Eigen::MatrixXd& Xi, const Eigen::VectorXd& x,
+                                                  const optim::LinearConstraints& constraints,
+                                                  const optim::StationarityOptions& options, double scale) {
+  const double s = scale > 0.0 ? scale : 1.0;
+  optim::StationarityCertificate c = optim::stationarity_certificate(Xi / s, x, constraints, options);
+  c.distance *= s;
+  c.subgradient_part *= s;
+  c.normal_part *= s;
+  c.subgradient_scale *= s;
+  return c;
+}
+
+// Columns of Xi equal up to kDuplicateTolerance: representative column of each group.
+std::vector<Eigen::Index> distinct_columns(const Eigen::MatrixXd& Xi, std::vector<Eigen::Index>& group) {
+  const double scale = std::max(1.0, Xi.cwiseAbs().maxCoeff());
+  std::vector<Eigen::Index> rep;
+  group.assign(static_cast<std::size_t>(Xi.cols()), -1);
+  for (Eigen::Index j = 0; j < Xi.cols(); ++j) {
+    for (std::size_t r = 0; r < rep.size(); ++r)
+      if ((Xi.col(j) - Xi.col(rep[r])).lpNorm<Eigen::Infinity>() <= kDuplicateTolerance * scale) {
+        group[static_cast<std::size_t>(j)] = static_cast<Eigen::Index>(r);
+        break;
+      }
+    if (group[static_cast<std::size_t>(j)] < 0) {
+      group[static_cast<std::size_t>(j)] = static_cast<Eigen::Index>(rep.size());
+      rep.push_back(j);
+    }
+  }
+  return rep;
+}
+
+// One equation of the tight system at a node, in the node's local unknowns: s·(G u)_i + c·z_i +
+// gap·g_i = 0 (the form of sensitivity::linearize_piece; g_i = (B̃α)_i).
+struct LocalRow {
+  Eigen::VectorXd s, c;
+  double gap = 0.0;
+  Eigen::VectorXd stacked() const {
+    Eigen::VectorXd v(s.size() + c.size() + 1);
+    v << s, c, gap;
+    return v;
+  }
+};
+
+// The tight system of spec 03 §11.1, node by node. READING: the spec's table lists, per node,
+// the equations of both branches of each degenerate alternative ((T) and (S) for weak stick, (C)
+// and (Z) for weak contact). We take, for every node, a basis of the span of the equations that
+// any of its node alternatives imposes (sensitivity::node_alternatives, i.e. exactly the pieces
+// of 𝕃). For strict nodes this is the piece's own dim rows; for K₀± and for I₀ nodes that slip it
+// is the spec's table (one extra row each). For I₀ nodes with u_t = 0 (rule R2: zero force, or
+// contact with slip+/slip−/stick) the span is {λ = 0, gap = 0, q = 0, u_t = 0}: two extra rows
+// where the spec's table counts one, because the contact-and-stick alternative needs both λ > 0
+// and |q| < μλ to be attained nearby; full row rank of this larger matrix is the sufficient
+// condition for every piece of 𝕃 to be essentially active. The 3D branches (ray slip, smooth slip)
+// are covered by the same construction.
+std::vector<std::vector<LocalRow>> tight_rows(const sensitivity::IndexSets& sets, const contact::FrictionLaw& law,
+                                              const contact::ContactState& state) {
+  const int dim = state.dim;
+  const auto p = static_cast<std::size_t>(state.num_nodes());
+  std::vector<std::vector<sensitivity::NodePiece>> alternatives(p);
+  std::size_t most = 1;
+  for (std::size_t i = 0; i < p; ++i) {
+    alternatives[i] = sensitivity::node_alternatives(sets.nodes[i], law);
+    most = std::max(most, alternatives[i].size());
+  }
+  std::vector<std::vector<LocalRow>> rows(p);
+  std::vector<Eigen::MatrixXd> basis(p);  // stacked rows chosen so far, per node
+  // Alternative k for every node at once (nodes with fewer alternatives repeat their last): one
+  // linearization per k instead of one per node and alternative.
+  for (std::size_t k = 0; k < most; ++k) {
+    sensitivity::Piece piece;
+    for (std::size_t i = 0; i < p; ++i) piece.nodes.push_back(alternatives[i][std::min(k, alternatives[i].size() - 1)]);
+    const sensitivity::PieceLinearization lin = sensitivity::linearize_piece(piece, law, state);
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> S = lin.S, Cz = lin.Cz;
+    std::vector<bool> is_gap(static_cast<std::size_t>(S.rows()), false);
+    for (Eigen::Index r : lin.gap_rows) is_gap[static_cast<std::size_t>(r)] = true;
+    for (std::size_t i = 0; i < p; ++i) {
+      if (k >= alternatives[i].size()) continue;
+      const Eigen::Index base = dim * static_cast<Eigen::Index>(i);
+      for (int a = 0; a < dim; ++a) {
+        const Eigen::Index r = base + a;
+        LocalRow row{Eigen::VectorXd::Zero(dim), Eigen::VectorXd::Zero(dim), is_gap[static_cast<std::size_t>(r)] ? 1.0 : 0.0};
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(S, r); it; ++it) {
+          FRICTOPT_ASSERT(it.col() >= base && it.col() < base + dim, "piece rows couple nodes");
+          row.s(it.col() - base) = it.value();
+        }
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Cz, r); it; ++it) {
+          FRICTOPT_ASSERT(it.col() >= base && it.col() < base + dim, "piece rows couple nodes");
+          row.c(it.col() - base) = it.value();
+        }
+        const Eigen::VectorXd v = row.stacked();
+        if (v.lpNorm<Eigen::Infinity>() == 0.0) continue;
+        Eigen::MatrixXd trial(basis[i].rows() + 1, v.size());
+        if (basis[i].rows()) trial.topRows(basis[i].rows()) = basis[i];
+        trial.bottomRows(1) = v.transpose() / v.norm();
+        Eigen::JacobiSVD<Eigen::MatrixXd> svd(trial);
+        const Eigen::VectorXd sv = svd.singularValues();
+        if (sv(sv.size() - 1) <= kLocalRankTolerance * sv(0) || trial.rows() > v.size()) continue;
+        basis[i] = trial;
+        rows[i].push_back(row);
+      }
+    }
+  }
+  return rows;
+}
+
+Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, const CertifyOptions& options) {
+  const ElasticBody& body = oracle.body();
+  const BodyState& state = oracle.last_state();
+  const contact::ContactState& cs = state.contact->state;
+  const contact::ContactBoundary& boundary = *body.contact_boundary();
+  const contact::FrictionLaw& law = body.definition().contact->law;
+  const fem::LinearElasticity& fem = body.elasticity();
+  const int dim = boundary.dim();
+  const Eigen::Index m = boundary.num_unknowns();
+  const Eigen::Index d = state.alpha.size();
+  Mf1Report out;
+  if (m > kMaxMf1ContactUnknowns) return out;
+
+  const auto rows = tight_rows(sets, law, cs);
+  Eigen::Index n_rows = 0;
+  for (const auto& r : rows) n_rows += static_cast<Eigen::Index>(r.size());
+
+  // M = G A⁻¹ Gᵀ and N = G A⁻¹ r_α (columns k: r_α e_k = ∂(A u − l)/∂α_k at the state), both
+  // with the existing factorization (d + dim·p solves).
+  const Eigen::MatrixXd M = state.contact->delassus_matrix ? *state.contact->delassus_matrix
+                                                           : contact::dense_delassus(fem.factorization(), boundary);
+  const Eigen::MatrixXd B = body.definition().shape.gap_matrix(boundary.plane_coordinates());
+  Eigen::MatrixXd N(m, d);
+  for (Eigen::Index k = 0; k < d; ++k) {
+    const Eigen::VectorXd Vh = fem.mesh().design_jacobian().col(k);
+    const Eigen::MatrixXd dX =
+        Eigen::Map<const Eigen::MatrixXd>(Vh.data(), dim, fem.mesh().num_nodes()).transpose();
+    const Eigen::VectorXd ra = fem.dofs().restrict(fem.residual_derivative(state.positions, state.displacement, dX));
+    N.col(k) = boundary.times(fem.factorization().solve(ra));
+  }
+
+  // H in the unknowns (α, z) after eliminating u = A(α)⁻¹(l(α) + Gᵀz) from the equilibrium rows:
+  // row s·(Gu)_i + c·z_i + gap·(B̃α)_i has ∂/∂z = s·M_(i,:) + c·e_(z_i) and
+  // ∂/∂α = −s·N_(i,:) + gap·B̃_(i,:). Eliminating u with the invertible A changes neither the
+  // row rank deficiency nor full row rank, so this H is equivalent to the spec's
+  // (3p + m₀) × (d + 3p) matrix in the variables (α, u_t, u_ν, λ) (2D): ours has p fewer rows and
+  // p fewer columns (q replaces u_t, u_ν is eliminated), and the same rows − rank.
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n_rows, d + m);
+  Eigen::Index r = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Eigen::Index base = dim * static_cast<Eigen::Index>(i);
+    for (const LocalRow& row : rows[i]) {
+      H.block(r, 0, 1, d) = -row.s.transpose() * N.middleRows(base, dim) + row.gap * B.row(static_cast<Eigen::Index>(i));
+      H.block(r, d, 1, m) = row.s.transpose() * M.middleRows(base, dim);
+      H.block(r, d + base, 1, dim) += row.c.transpose();
+      ++r;
+    }
+  }
+  // Rows mix displacements (m/N · N) and forces: scale rows, then columns, to unit 2-norm before
+  // the SVD so that the relative threshold means the same for every block. Scaling by positive
+  // diagonal matrices does not change the exact rank.
+  for (Eigen::Index i = 0; i < H.rows(); ++i)
+    if (const double n = H.row(i).norm(); n > 0.0) H.row(i) /= n;
+  for (Eigen::Index j = 0; j < H.cols(); ++j)
+    if (const double n = H.col(j).norm(); n > 0.0) H.col(j) /= n;
+
+  out.computed = true;
+  out.rows = H.rows();
+  out.cols = H.cols();
+  out.extra_conditions = static_cast<int>(n_rows - m);
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(H);
+  const Eigen::VectorXd sv = svd.singularValues();
+  out.sigma_max = sv.size() ? sv(0) : 0.0;
+  out.sigma_min = sv.size() ? sv(sv.size() - 1) : 0.0;
+  out.tolerance = options.rank_tolerance * out.sigma_max;
+  out.rank = static_cast<int>((sv.array() > out.tolerance).count());
+  out.full_row_rank = out.rank == out.rows;
+  out.matrix = std::move(H);
+  return out;
+}
+
+MordukhovichReport mordukhovich_report(const Certificate& c, const Eigen::VectorXd& alpha,
+                                       const optim::LinearConstraints& upsilon, const CertifyOptions& options) {
+  MordukhovichReport out;
+  if (c.sampled) {
+    out.message = fmt::format("not computed: |L| = {:.0f} > cap; the extreme points of a sample are not those of "
+                              "conv{{xi_i : i in L}}",
+                              c.cardinality);
+    return out;
+  }
+  std::vector<Eigen::Index> group;
+  const std::vector<Eigen::Index> rep = distinct_columns(c.subgradients, group);
+  if (static_cast<int>(rep.size()) > options.max_extreme_point_tests) {
+    out.message = fmt::format("not computed: {} distinct xi_i > max_extreme_point_tests = {}", rep.size(),
+                              options.max_extreme_point_tests);
+    return out;
+  }
+  const double threshold = options.extreme_tolerance * std::max(c.scale, 1e-300);
+  const optim::StationarityOptions qp{options.active_tolerance};
+  std::vector<bool> is_extreme(rep.size(), false);
+  for (std::size_t i = 0; i < rep.size(); ++i) {
+    // Spec 06 §6.3 step 1 as a distance: e_i = dist(ξ_i, conv{ξ_j : j ∈ D_i}) = dist(0, conv{ξ_j − ξ_i})
+    // by the min-norm QP; the LP "ξ_i ∈ conv D_i" is infeasible iff e_i > 0.
+    double e = std::numeric_limits<double>::infinity();
+    if (rep.size() > 1) {
+      Eigen::MatrixXd Y(c.subgradients.rows(), static_cast<Eigen::Index>(rep.size()) - 1);
+      Eigen::Index col = 0;
+      for (std::size_t j = 0; j < rep.size(); ++j)
+        if (j != i) Y.col(col++) = c.subgradients.col(rep[j]) - c.subgradients.col(rep[i]);
+      const auto hull = scaled_certificate(Y, Eigen::VectorXd::Zero(Y.rows()), {}, qp, c.scale);
+      if (hull.status != Status::kConverged) {
+        out.message = "extreme-point QP failed: " + hull.message;
+        return out;
+      }
+      e = hull.distance;
+    }
+    out.hull_distances.push_back(e);
+    is_extreme[i] = e > threshold;
+    if (!is_extreme[i]) continue;
+    out.extreme.push_back(static_cast<int>(rep[i]));
+    // Step 2: dist(ξ_i, −N_Υ(α)), a small NNLS problem (the same QP with one generator).
+    const auto single = scaled_certificate(c.subgradients.col(rep[i]), alpha, upsilon, qp, c.scale);
+    if (single.status != Status::kConverged) {
+      out.message = "distance QP failed: " + single.message;
+      return out;
+    }
+    if (!(single.distance >= out.distance)) {
+      out.distance = single.distance;
+      out.attaining = static_cast<int>(rep[i]);
+    }
+  }
+  out.computed = true;
+  // Thesis criterion: the Clarke minimizer is one extreme generator (weights summed per group).
+  if (c.clarke.weights.size() == c.subgradients.cols()) {
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rep.size()));
+    for (Eigen::Index j = 0; j < c.subgradients.cols(); ++j) w(group[static_cast<std::size_t>(j)]) += c.clarke.weights(j);
+    Eigen::Index top = 0;
+    const double largest = w.maxCoeff(&top);
+    out.clarke_minimizer_is_extreme = largest >= 1.0 - 1e-8 && is_extreme[static_cast<std::size_t>(top)];
+  }
+  out.stationary = out.extreme.empty() ? false : out.distance <= options.stationary_tolerance * c.scale;
+  out.message = out.extreme.empty()
+                    ? "no extreme point found (all generators within tolerance of the others' hull)"
+                    : fmt::format("{} of {} distinct xi_i are extreme points; delta_M = {:.6e} (relative {:.3e}) at "
+                                  "column {}: {}",
+                                  out.extreme.size(), rep.size(), out.distance,
+                                  c.scale > 0 ? out.distance / c.scale : 0.0, out.attaining,
+                                  out.stationary ? "M-stationary to this accuracy (given (MF1'))"
+                                                 : "no M-stationarity certified");
+  return out;
+}
+
+}  // namespace
+
+void CertifyOptions::validate() const {
+  if (cap < 1) throw InvalidInput(fmt::format("CertifyOptions::cap = {}; expected >= 1", cap));
+  if (!(active_tolerance >= 0.0))
+    throw InvalidInput(fmt::format("CertifyOptions::active_tolerance = {}; expected >= 0", active_tolerance));
+  if (!(rank_tolerance > 0.0 && rank_tolerance < 1.0))
+    throw InvalidInput(fmt::format("CertifyOptions::rank_tolerance = {}; expected in (0, 1)", rank_tolerance));
+  if (!(extreme_tolerance > 0.0))
+    throw InvalidInput(fmt::format("CertifyOptions::extreme_tolerance = {}; expected > 0", extreme_tolerance));
+  if (max_extreme_point_tests < 1)
+    throw InvalidInput(
+        fmt::format("CertifyOptions::max_extreme_point_tests = {}; expected >= 1", max_extreme_point_tests));
+  if (!(stationary_tolerance > 0.0))
+    throw InvalidInput(fmt::format("CertifyOptions::stationary_tolerance = {}; expected > 0", stationary_tolerance));
+}
+
+std::string Certificate::report() const {
+  std::string s;
+  if (status != Status::kConverged) return fmt::format("certificate: {}: {}\n", to_string(status), message);
+  s += fmt::format("Theta(alpha) = {:.6e}\n", value);
+  s += fmt::format("index sets: {} ({} weak nodes)\n", index_sets.summary(), index_sets.num_weak_nodes());
+  s += fmt::format("|L| = {:.0f}{}; {} subgradients computed, {} distinct; scale max_i |xi_i| = {:.6e}\n", cardinality,
+                   sampled ? " (sampled: > cap)" : "", subgradients.cols(), clarke.num_distinct_subgradients, scale);
+  s += fmt::format("Clarke distance dist(0, conv{{xi_i}} + N_Upsilon) = {:.6e} (relative {:.3e}): {}\n", clarke.distance,
+                   relative_distance, clarke_stationary ? "stationary at the stated tolerance" : "not stationary");
+  int used = 0;
+  for (Eigen::Index j = 0; j < clarke.weights.size(); ++j) used += clarke.weights(j) > 1e-12 ? 1 : 0;
+  s += fmt::format("  weights on {} piece(s); |normal-cone part| = {:.3e}; active constraints ({}):\n", used,
+                   clarke.normal_part.norm(), active_constraints.size());
+  for (const std::string& name : active_constraints) s += "    " + name + "\n";
+  s += fmt::format("default piece alone: distance {:.6e} (relative {:.3e})\n", default_piece.distance,
+                   default_relative_distance);
+  if (mf1.computed)
+    s += fmt::format("(MF1') matrix {} x {} (m0 = {} extra conditions), rank {} (tol {:.1e} sigma_max, sigma_min/sigma_max "
+                     "= {:.3e}): {}\n",
+                     mf1.rows, mf1.cols, mf1.extra_conditions, mf1.rank, mf1.tolerance / mf1.sigma_max,
+                     mf1.sigma_min / mf1.sigma_max,
+                     mf1.full_row_rank ? "full row rank, so dTheta = conv{xi_i}"
+                                       : fmt::format("rank deficient by {}", mf1.rows - mf1.rank));
+  else
+    s += "(MF1') not computed: contact set too large for the dense SVD\n";
+  s += "Mordukhovich (extreme-point test): " + mordukhovich.message + "\n";
+  return s;
+}
+
+Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const CertifyOptions& options) {
+  options.validate();
+  const auto start = std::chrono::steady_clock::now();
+  const ElasticBody& body = oracle.body();
+  const Eigen::Index d = body.definition().shape.num_controls();
+  if (alpha.size() != d)
+    throw InvalidInput(fmt::format("certify: the design has {} entries; expected {} (the shape's control points)",
+                                   alpha.size(), d));
+  Certificate c;
+  c.alpha = alpha;
+  const Evaluation& e = oracle.evaluate_design(alpha, true);
+  c.value = e.value;
+  if (!e.ok) {
+    c.status = Status::kNumericalFailure;
+    c.message = e.message;
+    return c;
+  }
+  // pieces() re-solves if the cache answered without touching the state: from here on the
+  // oracle's last state (and the body's factorization) is the one at α.
+  const sensitivity::PieceEnumeration enumeration = oracle.pieces(alpha, options.cap);
+  const contact::FrictionLaw& law = body.definition().contact->law;
+  c.index_sets = sensitivity::classify(oracle.last_state().contact->state, law);
+  c.cardinality = enumeration.cardinality;
+  c.sampled = enumeration.sampled;
+  const std::vector<Eigen::VectorXd> xi = oracle.subgradients(alpha, enumeration.pieces);
+  c.subgradients.resize(d, static_cast<Eigen::Index>(xi.size()));
+  const sensitivity::Piece default_piece = sensitivity::default_piece(c.index_sets);
+  for (std::size_t i = 0; i < xi.size(); ++i) {
+    c.subgradients.col(static_cast<Eigen::Index>(i)) = xi[i];
+    c.piece_summaries.push_back(enumeration.pieces[i].summary());
+    if (enumeration.pieces[i].nodes == default_piece.nodes) c.default_piece_column = static_cast<int>(i);
+  }
+  if (!c.subgradients.allFinite()) {
+    c.status = Status::kNumericalFailure;
+    c.message = "a piece's adjoint system is singular (non-finite xi_i)";
+    return c;
+  }
+  c.scale = c.subgradients.colwise().norm().maxCoeff();
+
+  const shape::LinearConstraints& upsilon = body.admissible_set();
+  const optim::LinearConstraints constraints = to_optim_constraints(upsilon);
+  const optim::StationarityOptions qp{options.active_tolerance};
+  c.clarke = scaled_certificate(c.subgradients, alpha, constraints, qp, c.scale);
+  c.default_piece = scaled_certificate(c.subgradients.col(c.default_piece_column), alpha, constraints, qp, c.scale);
+  if (c.clarke.status != Status::kConverged || c.default_piece.status != Status::kConverged) {
+    c.status = Status::kNumericalFailure;
+    c.message = c.clarke.status != Status::kConverged ? c.clarke.message : c.default_piece.message;
+    return c;
+  }
+  const double scale = c.scale > 0.0 ? c.scale : 1.0;  // all ξ_i = 0: distances are 0 anyway
+  c.relative_distance = c.clarke.distance / scale;
+  c.default_relative_distance = c.default_piece.distance / scale;
+  c.clarke_stationary = c.clarke.distance <= options.stationary_tolerance * c.scale;
+  for (const std::string& origin : c.clarke.active_names) c.active_constraints.push_back(constraint_name(origin, upsilon, alpha));
+  for (Eigen::Index r = 0; r < upsilon.A_eq.rows(); ++r)
+    c.active_constraints.push_back(fmt::format("volume: sum_k alpha_k = {:.6g} (equality{})", upsilon.b_eq(r),
+                                               upsilon.A_eq.rows() > 1 ? fmt::format(" {}", r) : std::string()));
+
+  c.mf1 = mf1_report(oracle, c.index_sets, options);
+  c.mordukhovich = mordukhovich_report(c, alpha, constraints, options);
+  c.status = Status::kConverged;
+  c.message.clear();
+  c.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return c;
+}
+
+}  // namespace frictopt::study
