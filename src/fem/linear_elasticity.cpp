@@ -131,8 +131,18 @@ void LinearElasticity::assemble(const Eigen::Ref<const Eigen::MatrixXd>& X) {
     assemble_impl<3>(X);
 }
 
+void LinearElasticity::set_trailing_dofs(std::vector<int> free_indices) {
+  trailing_ = std::move(free_indices);
+  cholesky_ = SparseCholesky();  // the next factorize() analyzes again with this ordering
+}
+
 Status LinearElasticity::factorize() {
-  if (!cholesky_.analyzed()) cholesky_.analyze(A_);
+  if (!cholesky_.analyzed()) {
+    if (trailing_.empty())
+      cholesky_.analyze(A_);
+    else
+      cholesky_.analyze(A_, trailing_);
+  }
   return cholesky_.factorize(A_);
 }
 

@@ -175,7 +175,69 @@ AdjointSensitivity::AdjointSensitivity(const fem::LinearElasticity& fem, const c
                                    gap_matrix_.rows(), boundary_.num_nodes()));
 }
 
-AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, const Eigen::MatrixXd& delassus,
+namespace {
+
+// The contact rows split into "identity" rows (z_k = 0 only: C_z row = e_k, S row empty) and
+// the active rest A; R = z-indices not fixed by identity rows; T = z-indices S acts on.
+// Then the contact-sized systems reduce to K[R, A] with M needed only on R × T (spec 03 §7's
+// elimination of λ = 0 and u_t = 0 unknowns, written for the dual variables).
+struct Reduction {
+  std::vector<Eigen::Index> active_rows;  // A
+  std::vector<Eigen::Index> free_z;       // R
+  std::vector<Eigen::Index> touched_z;    // T
+};
+
+Reduction reduce(const PieceLinearization& lin) {
+  const Eigen::Index m = lin.S.rows();
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> S = lin.S, Cz = lin.Cz;
+  std::vector<char> fixed(static_cast<std::size_t>(m), 0), touched(static_cast<std::size_t>(m), 0);
+  Reduction r;
+  for (Eigen::Index e = 0; e < m; ++e) {
+    bool s_empty = true;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(S, e); it; ++it)
+      if (it.value() != 0.0) s_empty = false;
+    Eigen::Index unit = -1;
+    int nonzeros = 0;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Cz, e); it; ++it)
+      if (it.value() != 0.0) {
+        ++nonzeros;
+        if (it.value() == 1.0) unit = it.col();
+      }
+    if (s_empty && nonzeros == 1 && unit >= 0 && !fixed[static_cast<std::size_t>(unit)]) {
+      fixed[static_cast<std::size_t>(unit)] = 1;
+      continue;
+    }
+    r.active_rows.push_back(e);
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(S, e); it; ++it)
+      touched[static_cast<std::size_t>(it.col())] = 1;
+  }
+  for (Eigen::Index k = 0; k < m; ++k) {
+    if (!fixed[static_cast<std::size_t>(k)]) r.free_z.push_back(k);
+    if (touched[static_cast<std::size_t>(k)]) r.touched_z.push_back(k);
+  }
+  FRICTOPT_ASSERT(r.free_z.size() == r.active_rows.size(), "reduction must stay square");
+  return r;
+}
+
+// Dense rows × cols block of a sparse matrix.
+Eigen::MatrixXd dense_block(const Eigen::SparseMatrix<double>& A, const std::vector<Eigen::Index>& rows,
+                            const std::vector<Eigen::Index>& cols) {
+  std::vector<Eigen::Index> col_position(static_cast<std::size_t>(A.cols()), -1);
+  for (std::size_t j = 0; j < cols.size(); ++j) col_position[static_cast<std::size_t>(cols[j])] = static_cast<Eigen::Index>(j);
+  std::vector<Eigen::Index> row_position(static_cast<std::size_t>(A.rows()), -1);
+  for (std::size_t i = 0; i < rows.size(); ++i) row_position[static_cast<std::size_t>(rows[i])] = static_cast<Eigen::Index>(i);
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
+  for (Eigen::Index c = 0; c < A.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
+      const Eigen::Index i = row_position[static_cast<std::size_t>(it.row())], j = col_position[static_cast<std::size_t>(c)];
+      if (i >= 0 && j >= 0) out(i, j) = it.value();
+    }
+  return out;
+}
+
+}  // namespace
+
+AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, const contact::DelassusMatrix& delassus,
                                                            const Eigen::Ref<const Eigen::MatrixXd>& X,
                                                            const Eigen::Ref<const Eigen::VectorXd>& u,
                                                            const contact::ContactState& state,
@@ -184,22 +246,31 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   const fem::DofMap& dofs = fem_.dofs();
   const fem::SparseCholesky& cholesky = fem_.factorization();
   const Eigen::Index m = boundary_.num_unknowns();
-  FRICTOPT_ASSERT(delassus.rows() == m && delassus.cols() == m, "Delassus size");
+  FRICTOPT_ASSERT(delassus.size() == m, "Delassus size");
   Result result;
 
   const PieceLinearization lin = linearize_piece(piece, law_, state);
+  const Reduction red = reduce(lin);
   const Eigen::VectorXd gu = dofs.restrict(partials.d_displacement);
   const Eigen::VectorXd gz = partials.d_contact.size() ? partials.d_contact : Eigen::VectorXd::Zero(m);
 
-  // Contact-sized system (M Sᵀ + C_zᵀ) ψ_z = −g_z − G A⁻¹ g_u.
+  // Contact-sized system (M Sᵀ + C_zᵀ) ψ_z = −g_z − G A⁻¹ g_u, reduced to rows R, columns A.
   const Eigen::VectorXd Ainv_gu = cholesky.solve(gu);
   const Eigen::VectorXd rhs = -gz - boundary_.times(Ainv_gu);
-  const Eigen::MatrixXd K = delassus * Eigen::MatrixXd(lin.S.transpose()) + Eigen::MatrixXd(lin.Cz.transpose());
+  const Eigen::MatrixXd St = dense_block(lin.S, red.active_rows, red.touched_z).transpose();  // T × A
+  Eigen::MatrixXd K = dense_block(lin.Cz, red.active_rows, red.free_z).transpose();          // R × A
+  if (!red.touched_z.empty()) K.noalias() += delassus.block(red.free_z, red.touched_z) * St;
+  Eigen::VectorXd r(static_cast<Eigen::Index>(red.free_z.size()));
+  for (std::size_t i = 0; i < red.free_z.size(); ++i) r(static_cast<Eigen::Index>(i)) = rhs(red.free_z[i]);
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(K);
-  result.summary.reciprocal_condition = lu.rcond();
-  result.psi_z = lu.solve(rhs);
-  result.summary.relative_residual = (K * result.psi_z - rhs).norm() / std::max(rhs.norm(), 1e-300);
+  result.summary.reciprocal_condition = K.size() ? lu.rcond() : 1.0;
+  const Eigen::VectorXd psi_active = K.size() ? Eigen::VectorXd(lu.solve(r)) : Eigen::VectorXd();
+  result.summary.relative_residual = K.size() ? (K * psi_active - r).norm() / std::max(r.norm(), 1e-300) : 0.0;
   result.summary.piece_residual = lin.relative_residual;
+  // ψ on the identity rows is not needed: their rows of S are empty, they carry no gap term
+  // and do not depend on α or μ.
+  result.psi_z = Eigen::VectorXd::Zero(m);
+  for (std::size_t i = 0; i < red.active_rows.size(); ++i) result.psi_z(red.active_rows[i]) = psi_active(static_cast<Eigen::Index>(i));
 
   // ψ_u = −A⁻¹(g_u + Gᵀ Sᵀ ψ_z).
   Eigen::VectorXd w = gu;
@@ -212,8 +283,7 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   result.subgradient = fem_.shape_derivative(X, u, psi_full);
   if (partials.d_alpha.size()) result.subgradient += partials.d_alpha;
   const int dim = boundary_.dim();
-  for (Eigen::Index r : lin.gap_rows) result.subgradient += result.psi_z(r) * gap_matrix_.row(r / dim).transpose();
-
+  for (Eigen::Index row : lin.gap_rows) result.subgradient += result.psi_z(row) * gap_matrix_.row(row / dim).transpose();
   result.friction_gradient = friction_parameter_gradient(piece, law_, state, result.psi_z);
 
   const double kSingular = 1e-14;  // below this rcond the piece's Jacobian is numerically singular
@@ -222,20 +292,22 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
     result.summary.message = "the piece's Jacobian is singular (is the friction coefficient too large for V4.4.1?)";
   } else {
     result.summary.status = Status::kConverged;
-    result.summary.message = "adjoint solved";
+    result.summary.message = fmt::format("adjoint solved ({} of {} contact rows active, M {})", red.active_rows.size(), m,
+                                         delassus.kind());
   }
   result.summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
 AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
-    const Piece& piece, const Eigen::MatrixXd& delassus, const Eigen::Ref<const Eigen::MatrixXd>& X,
+    const Piece& piece, const contact::DelassusMatrix& delassus, const Eigen::Ref<const Eigen::MatrixXd>& X,
     const Eigen::Ref<const Eigen::VectorXd>& u, const contact::ContactState& state,
     const Eigen::Ref<const Eigen::VectorXd>& h) const {
   const fem::DofMap& dofs = fem_.dofs();
   const fem::SparseCholesky& cholesky = fem_.factorization();
   const int dim = boundary_.dim();
   const PieceLinearization lin = linearize_piece(piece, law_, state);
+  const Reduction red = reduce(lin);
   const Eigen::VectorXd Vh = fem_.mesh().design_jacobian() * h;
   const Eigen::MatrixXd dX = Eigen::Map<const Eigen::MatrixXd>(Vh.data(), dim, fem_.mesh().num_nodes()).transpose();
   const Eigen::VectorXd ra = dofs.restrict(fem_.residual_derivative(X, u, dX));
@@ -243,10 +315,20 @@ AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
   const Eigen::VectorXd Bh = gap_matrix_ * h;
   for (Eigen::Index r : lin.gap_rows) rg(r) = Bh(r / dim);
   const Eigen::VectorXd Ainv_ra = cholesky.solve(ra);
-  const Eigen::MatrixXd K = Eigen::MatrixXd(lin.S) * delassus + Eigen::MatrixXd(lin.Cz);
+  // (S M + C_z) δz = −r_g + S G A⁻¹ r_α; identity rows give δz = 0 on their index (their
+  // right-hand side is zero), the rest is the A × R block.
   const Eigen::VectorXd rhs = -rg + lin.S * boundary_.times(Ainv_ra);
+  const Eigen::MatrixXd S_at = dense_block(lin.S, red.active_rows, red.touched_z);
+  Eigen::MatrixXd K = dense_block(lin.Cz, red.active_rows, red.free_z);
+  if (!red.touched_z.empty()) K.noalias() += S_at * delassus.block(red.touched_z, red.free_z);
+  Eigen::VectorXd r(static_cast<Eigen::Index>(red.active_rows.size()));
+  for (std::size_t i = 0; i < red.active_rows.size(); ++i) r(static_cast<Eigen::Index>(i)) = rhs(red.active_rows[i]);
   StateDerivative out;
-  out.contact = Eigen::PartialPivLU<Eigen::MatrixXd>(K).solve(rhs);
+  out.contact = Eigen::VectorXd::Zero(boundary_.num_unknowns());
+  if (K.size()) {
+    const Eigen::VectorXd dz = Eigen::PartialPivLU<Eigen::MatrixXd>(K).solve(r);
+    for (std::size_t i = 0; i < red.free_z.size(); ++i) out.contact(red.free_z[i]) = dz(static_cast<Eigen::Index>(i));
+  }
   Eigen::VectorXd w = -ra;
   boundary_.add_transpose_times(out.contact, w);
   const Eigen::VectorXd du = cholesky.solve(w);

@@ -38,6 +38,11 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
                                      definition_.contact->law.dim(), mesh_->dim()));
     definition_.contact->coulomb.validate();
     boundary_ = std::make_unique<contact::ContactBoundary>(*mesh_, fem_->dofs());
+    // Contact DOFs last, in z order: the trailing factor gives the Delassus matrix (spec 02 §5).
+    std::vector<int> trailing;
+    for (Eigen::Index i = 0; i < boundary_->num_nodes(); ++i)
+      for (int c = 0; c < mesh_->dim(); ++c) trailing.push_back(boundary_->free_dof(i, c));
+    fem_->set_trailing_dofs(std::move(trailing));
   }
 }
 
@@ -74,13 +79,15 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
     Eigen::VectorXd c = boundary_->times(u_free);
     for (Eigen::Index i = 0; i < boundary_->num_nodes(); ++i) c(dim * i + dim - 1) += result.gaps(i);
     const ContactDefinition& cd = *definition_.contact;
-    std::unique_ptr<contact::LinearOperator> delassus;
+    auto schur = std::make_shared<contact::SchurDelassus>(cholesky.trailing_factor(), dim);
     result.dense_delassus = boundary_->num_unknowns() <= cd.dense_delassus_max_unknowns;
     if (result.dense_delassus) {
-      result.delassus_matrix = std::make_shared<const Eigen::MatrixXd>(contact::dense_delassus(cholesky, *boundary_));
-      delassus = std::make_unique<contact::DenseOperator>(*result.delassus_matrix);
-    } else
-      delassus = std::make_unique<contact::FactorizedDelassus>(cholesky, *boundary_);
+      result.delassus_matrix = std::make_shared<const Eigen::MatrixXd>(schur->dense());
+      result.delassus = std::make_shared<contact::DenseDelassus>(*result.delassus_matrix);
+    } else {
+      result.delassus = std::move(schur);
+    }
+    const contact::LinearOperator* delassus = result.delassus.get();
     result.state = warm_start_ && warm_start_->z.size() == boundary_->num_unknowns()
                        ? *warm_start_
                        : contact::ContactState(dim, boundary_->num_nodes());

@@ -54,16 +54,12 @@ void ShapeOracle::solve_state(const Eigen::VectorXd& alpha) {
   if (state_ && state_alpha_.size() == alpha.size() && state_alpha_ == alpha) return;
   state_ = body_.solve(alpha, "design");
   state_alpha_ = alpha;
-  delassus_ = state_->contact ? state_->contact->delassus_matrix : nullptr;
+  delassus_ = state_->contact ? state_->contact->delassus : nullptr;
   ++state_solves_;
 }
 
-const Eigen::MatrixXd& ShapeOracle::delassus() {
-  // Large contact sets solve the state with M applied through the factorization; the adjoint's
-  // contact-sized LU needs M itself, assembled here once per design.
-  if (!delassus_)
-    delassus_ = std::make_shared<const Eigen::MatrixXd>(
-        contact::dense_delassus(body_.elasticity().factorization(), *body_.contact_boundary()));
+const contact::DelassusMatrix& ShapeOracle::delassus() {
+  FRICTOPT_ASSERT(delassus_ != nullptr, "the state solve provides the Delassus matrix");
   return *delassus_;
 }
 

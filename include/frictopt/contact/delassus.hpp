@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
-// The Delassus operator M = G A⁻¹ Gᵀ of the dual contact QP (spec 02, §7 and §9.2), applied
-// through the sparse factorization of A, or assembled densely for small contact sets.
+// The Delassus operator M = G A⁻¹ Gᵀ of the dual contact QP (spec 02, §7 and §9.2): applied to
+// vectors by the QP solvers, and read block by block by the sensitivity analysis.
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "frictopt/contact/contact_boundary.hpp"
 #include "frictopt/contact/linear_operator.hpp"
@@ -11,15 +12,65 @@
 
 namespace frictopt::contact {
 
-/// y = G A⁻¹ Gᵀ x with one sparse forward/back substitution per application.
+/// M as an operator that can also return dense blocks M[rows, cols] (the adjoint needs the
+/// block of the nodes in contact only, spec 03 §7).
+class DelassusMatrix : public LinearOperator {
+ public:
+  virtual Eigen::MatrixXd block(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& cols) const = 0;
+  /// Short name for reports: "dense", "schur", "factorized".
+  virtual const char* kind() const = 0;
+};
+
+/// M stored densely (small contact sets).
+class DenseDelassus final : public DelassusMatrix {
+ public:
+  explicit DenseDelassus(Eigen::MatrixXd matrix) : matrix_(std::move(matrix)) {}
+  Eigen::Index size() const override { return matrix_.rows(); }
+  void apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const override;
+  Eigen::VectorXd diagonal() const override { return matrix_.diagonal(); }
+  Eigen::MatrixXd block(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& cols) const override;
+  const char* kind() const override { return "dense"; }
+  const Eigen::MatrixXd& matrix() const { return matrix_; }
+
+ private:
+  Eigen::MatrixXd matrix_;
+};
+
+/// M = D S⁻¹ D from the Cholesky factor L of the contact Schur complement S = L Lᵀ (the
+/// trailing block of a factorization that ordered the contact DOFs last, in z order;
+/// fem::SparseCholesky::trailing_factor) and the signs D = diag(±1) of G (−1 tangential,
+/// +1 normal). An apply is two dense triangular solves (2m² flops), a block of k columns one
+/// triangular solve with k right-hand sides: no sparse solve and no m³ work.
+class SchurDelassus final : public DelassusMatrix {
+ public:
+  SchurDelassus(Eigen::MatrixXd schur_factor, int dim);
+  Eigen::Index size() const override { return L_.rows(); }
+  void apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const override;
+  /// diag(M)_k = ‖L⁻¹ e_k‖²: one triangular solve with m right-hand sides (computed once, cached).
+  Eigen::VectorXd diagonal() const override;
+  Eigen::MatrixXd block(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& cols) const override;
+  const char* kind() const override { return "schur"; }
+  /// The dense M (m² memory, m³/3 flops).
+  Eigen::MatrixXd dense() const;
+
+ private:
+  Eigen::MatrixXd L_;
+  Eigen::VectorXd signs_;
+  mutable Eigen::VectorXd diagonal_;
+};
+
+/// y = G A⁻¹ Gᵀ x with one sparse forward/back substitution per application (no extra memory).
 /// Lifetime: `cholesky` (factorized) and `boundary` must outlive this operator.
-class FactorizedDelassus final : public LinearOperator {
+class FactorizedDelassus final : public DelassusMatrix {
  public:
   FactorizedDelassus(const fem::SparseCholesky& cholesky, const ContactBoundary& boundary);
   Eigen::Index size() const override { return boundary_.num_unknowns(); }
   void apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const override;
   /// Exact diagonal: costs dim·p solves (blocked); computed on the first call and cached.
   Eigen::VectorXd diagonal() const override;
+  /// One sparse solve per column.
+  Eigen::MatrixXd block(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& cols) const override;
+  const char* kind() const override { return "factorized"; }
 
  private:
   const fem::SparseCholesky& cholesky_;

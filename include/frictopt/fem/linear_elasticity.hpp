@@ -38,6 +38,10 @@ class LinearElasticity {
   void assemble(const Eigen::Ref<const Eigen::MatrixXd>& X);
   const Eigen::SparseMatrix<double>& stiffness() const { return A_; }  ///< free × free, full symmetric storage
   const Eigen::VectorXd& load() const { return l_; }                   ///< free
+  /// Orders these free-DOF indices last in the factorization (before the first factorize):
+  /// the trailing block of L is then the Cholesky factor of the Schur complement onto them
+  /// (fem::SparseCholesky::trailing_factor), e.g. the contact DOFs for the Delassus matrix.
+  void set_trailing_dofs(std::vector<int> free_indices);
   /// Factorizes the last assembled A (symbolic analysis on the first call only).
   [[nodiscard]] Status factorize();
   const SparseCholesky& factorization() const { return cholesky_; }
@@ -90,6 +94,7 @@ class LinearElasticity {
   Eigen::VectorXd l_;
   std::vector<int> scatter_;  // per element, per (local i, local j): index into A_'s values or −1
   SparseCholesky cholesky_;
+  std::vector<int> trailing_;
 };
 
 }  // namespace frictopt::fem

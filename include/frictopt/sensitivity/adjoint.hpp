@@ -10,6 +10,7 @@
 
 #include "frictopt/contact/contact_boundary.hpp"
 #include "frictopt/contact/contact_state.hpp"
+#include "frictopt/contact/delassus.hpp"
 #include "frictopt/contact/friction_law.hpp"
 #include "frictopt/core/status.hpp"
 #include "frictopt/fem/linear_elasticity.hpp"
@@ -51,8 +52,11 @@ PieceLinearization linearize_piece(const Piece& piece, const contact::FrictionLa
 ///   (M Sᵀ + C_zᵀ) ψ_z = −∇_z J − G A⁻¹ ∇_u J,      ψ_u = −A⁻¹(∇_u J + Gᵀ Sᵀ ψ_z),
 /// with M = G A⁻¹ Gᵀ the Delassus matrix; then (spec 03, §9, ξ = ∇_α J + Ξᵀψ)
 ///   ξ = ∇_α J + ∇_α[ψ_uᵀ(A(α)u − l(α))] + Σ_{gap rows} ψ_z,r B̃_{node(r)}.
-/// Two sparse solves with the existing factorization plus one dense LU of size dim·p: never a
-/// dense inverse of the stiffness matrix.
+/// Rows that only fix a force to zero (λ_i = 0, q_i = 0: separated nodes, frictionless
+/// components) are eliminated first — their columns of the contact-sized matrix are unit
+/// vectors — so the dense LU and the M block are of the size of the nodes in contact, not of
+/// all of Γ_c. Two sparse solves with the existing factorization plus that LU: never a dense
+/// inverse of the stiffness matrix.
 /// Lifetime: `fem` (factorized at the design) and `boundary` must outlive this object.
 class AdjointSensitivity {
  public:
@@ -83,7 +87,7 @@ class AdjointSensitivity {
     Eigen::VectorXd displacement;  ///< δu over all DOFs (zero at prescribed ones)
     Eigen::VectorXd contact;       ///< δz = (δq, δλ) per node
   };
-  [[nodiscard]] StateDerivative state_derivative(const Piece& piece, const Eigen::MatrixXd& delassus,
+  [[nodiscard]] StateDerivative state_derivative(const Piece& piece, const contact::DelassusMatrix& delassus,
                                                  const Eigen::Ref<const Eigen::MatrixXd>& X,
                                                  const Eigen::Ref<const Eigen::VectorXd>& u,
                                                  const contact::ContactState& state,
@@ -94,8 +98,8 @@ class AdjointSensitivity {
                      Eigen::MatrixXd gap_matrix, contact::FrictionLaw law);
 
   /// ξ for `piece` at the state (positions X, full displacement u, contact state) with the
-  /// cost's partials. `delassus` is the dense M = G A⁻¹ Gᵀ at this design.
-  [[nodiscard]] Result subgradient(const Piece& piece, const Eigen::MatrixXd& delassus,
+  /// cost's partials. `delassus` is M = G A⁻¹ Gᵀ at this design (only a block is read).
+  [[nodiscard]] Result subgradient(const Piece& piece, const contact::DelassusMatrix& delassus,
                                    const Eigen::Ref<const Eigen::MatrixXd>& X,
                                    const Eigen::Ref<const Eigen::VectorXd>& u, const contact::ContactState& state,
                                    const CostPartials& partials) const;

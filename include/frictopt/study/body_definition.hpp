@@ -24,9 +24,10 @@ struct ContactDefinition {
   /// The friction law at every contact node (2D: an interval law; 3D: disc, polygon, ellipse).
   contact::FrictionLaw law = contact::FrictionLaw::disc(0.0);
   contact::CoulombSolver::Options coulomb;
-  /// Largest number of contact unknowns dim·p for which M = G A⁻¹ Gᵀ is assembled densely
-  /// (dim·p solves once per design, then cheap products); above it M is applied through the
-  /// sparse factorization (one solve per product). See bench/contact for the crossover.
+  /// Largest number of contact unknowns m = dim·p for which M = G A⁻¹ Gᵀ is formed densely
+  /// (m³/3 flops from the Schur factor, then m² per product); above it M is applied through
+  /// the Schur factor L (two triangular solves, 2m² per product, no m³ work). The contact
+  /// DOFs are always ordered last in the factorization so that L comes with it.
   int dense_delassus_max_unknowns = 1500;
 };
 

@@ -11,6 +11,7 @@
 #include "frictopt/contact/contact_boundary.hpp"
 #include "frictopt/contact/contact_state.hpp"
 #include "frictopt/contact/coulomb_solver.hpp"
+#include "frictopt/contact/delassus.hpp"
 #include "frictopt/core/status.hpp"
 #include "frictopt/fem/linear_elasticity.hpp"
 #include "frictopt/fem/stress_recovery.hpp"
@@ -36,8 +37,10 @@ struct ContactResult {
   contact::ContactState state;       ///< z = (q, λ) per node, u_t and u_ν + g, node statuses
   Eigen::VectorXd gaps;              ///< initial gaps g = B̃α at the contact nodes [m]
   contact::CoulombSolver::Summary summary;
-  bool dense_delassus = false;       ///< used: dense M (true) or factorization-applied M
-  /// The dense M = G A⁻¹ Gᵀ when it was assembled (reused by the sensitivity analysis).
+  bool dense_delassus = false;       ///< used: dense M (true) or the Schur-factor operator
+  /// M = G A⁻¹ Gᵀ at this design (dense or from the Schur factor), reused by the sensitivity.
+  std::shared_ptr<const contact::DelassusMatrix> delassus;
+  /// The dense M when dense_delassus (else null).
   std::shared_ptr<const Eigen::MatrixXd> delassus_matrix;
 };
 

@@ -72,14 +72,14 @@ class ShapeOracle final : public optim::Oracle {
  private:
   void solve_state(const Eigen::VectorXd& alpha);
   sensitivity::CostPartials partials() const;
-  const Eigen::MatrixXd& delassus();
+  const contact::DelassusMatrix& delassus();
 
   ElasticBody& body_;
   std::unique_ptr<cost::CostFunctional> cost_;
   Eigen::MatrixXd gap_matrix_;  // B̃ at the contact nodes
   std::optional<BodyState> state_;
   Eigen::VectorXd state_alpha_;
-  std::shared_ptr<const Eigen::MatrixXd> delassus_;
+  std::shared_ptr<const contact::DelassusMatrix> delassus_;
   std::map<std::vector<double>, Evaluation> cache_;
   int state_solves_ = 0;
 };
