@@ -7,8 +7,9 @@ For each FILE.vtu:
                     that the largest warp is 10% of the body size; the factor is in the
                     title), coloured by `von_mises` (point or cell data) with a scalar bar,
                     over the grey outline of the undeformed body. In 3D the body is cut at
-                    the mid plane x2 = b/2 and the back half is shown, so the stresses under
-                    the contact are visible (--no-cut shows the whole body).
+                    the mesh plane nearest to x2 = b/2 (in the undeformed body, then warped,
+                    so the cut face is flat) and the back half is shown, so the stresses
+                    under the contact are visible (--no-cut shows the whole body).
   FILE_contact.png  only if `contact_pressure` and/or `contact_status` exist: a top-down map
                     (3D) or a profile along x1 (2D) of them on the contact surface. Nodes off
                     the contact surface carry NaN pressure / status -1 and are skipped.
@@ -108,33 +109,37 @@ def render_body(grid, png_path, width, height, cut=True):
     outline_actor.GetProperty().SetColor(0.55, 0.55, 0.55)
     outline_actor.GetProperty().SetLineWidth(1.5)
 
-    # Deformed body.
-    if scale is not None:
-        warp = vtk.vtkWarpVector()
-        warp.SetInputData(grid)
-        warp.SetInputArrayToProcess(0, 0, 0, vtk.vtkDataObject.FIELD_ASSOCIATION_POINTS,
-                                    "displacement")
-        warp.SetScaleFactor(scale)
-        deformed = warp.GetOutputPort()
-    else:
-        passthrough = vtk.vtkPassThrough()
-        passthrough.SetInputData(grid)
-        deformed = passthrough.GetOutputPort()
+    # Deformed body. In 3D the stresses that matter sit under the contact, inside the body:
+    # keep the cells behind the mesh plane x2 = const nearest to the middle and look at the cut
+    # from the front. The cut is made in the undeformed configuration (where the planes
+    # x2 = const of the structured mesh are exact) and warped afterwards, so the cut face is
+    # one flat mesh plane: cutting the warped body instead gives stair-steps where the warp
+    # moves nodes across the plane.
     x0, x1, y0, y1, z0, z1 = grid.GetBounds()
-    y_mid = 0.5 * (y0 + y1)
+    source = vtk.vtkPassThrough()
+    source.SetInputData(grid)
+    deformed = source.GetOutputPort()
+    y_cut = 0.5 * (y0 + y1)
     if cut:
-        # In 3D the stresses that matter sit under the contact, inside the body: keep the
-        # cells behind the mid plane x2 = y_mid (whole cells, so the cut face shows the mesh
-        # rather than a triangulated slice) and look at the cut from the front.
+        points = vtk_to_numpy(grid.GetPoints().GetData())
+        levels = np.unique(np.round(points[:, 1], 12))
+        y_cut = float(levels[np.argmin(np.abs(levels - y_cut))])
         plane = vtk.vtkPlane()
-        plane.SetOrigin(0.0, y_mid, 0.0)
-        plane.SetNormal(0.0, -1.0, 0.0)  # "inside" (value < 0) is x2 > y_mid
+        plane.SetOrigin(0.0, y_cut - 1e-9 * (y1 - y0), 0.0)
+        plane.SetNormal(0.0, -1.0, 0.0)  # "inside" (value < 0) is x2 > y_cut
         half = vtk.vtkExtractGeometry()
         half.SetInputConnection(deformed)
         half.SetImplicitFunction(plane)
         half.ExtractInsideOn()
-        half.ExtractBoundaryCellsOn()
+        half.ExtractBoundaryCellsOff()
         deformed = half.GetOutputPort()
+    if scale is not None:
+        warp = vtk.vtkWarpVector()
+        warp.SetInputConnection(deformed)
+        warp.SetInputArrayToProcess(0, 0, 0, vtk.vtkDataObject.FIELD_ASSOCIATION_POINTS,
+                                    "displacement")
+        warp.SetScaleFactor(scale)
+        deformed = warp.GetOutputPort()
     body = surface_filter()
     body.SetInputConnection(deformed)
     mapper = vtk.vtkDataSetMapper()
@@ -193,7 +198,7 @@ def render_body(grid, png_path, width, height, cut=True):
     else:
         warp_text = (f"displacement x {scale:.3g} "
                      f"(largest warp = {WARP_FRACTION:.0%} of body size)")
-    cut_text = f", cut at x2 = {y_mid:.3g} (back half)" if cut else ""
+    cut_text = f", cut at x2 = {y_cut:.3g} (back half)" if cut else ""
     title = vtk.vtkTextActor()
     title.SetInput(f"{name}: coloured by {colour_name}{cut_text}\n{warp_text}")
     title.GetTextProperty().SetFontSize(20)
