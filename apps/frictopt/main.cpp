@@ -408,6 +408,9 @@ int run_certify(const std::filesystem::path& run_dir, int cap) {
   mf1["full_row_rank"] = c.mf1.full_row_rank;
   mf1["sigma_min_over_max"] = c.mf1.sigma_min / c.mf1.sigma_max;
   mf1["rank_tolerance_relative"] = options.rank_tolerance;
+  mf1["spec_table_rows"] = c.mf1.spec_rows;
+  mf1["spec_table_rank"] = c.mf1.spec_rank;
+  mf1["spec_table_full_row_rank"] = c.mf1.spec_full_row_rank;
   json["mf1"] = mf1;
   io::JsonValue m = io::JsonValue::object();
   m["computed"] = c.mordukhovich.computed;

@@ -83,6 +83,9 @@ std::vector<Eigen::Index> distinct_columns(const Eigen::MatrixXd& Xi, std::vecto
 struct LocalRow {
   Eigen::VectorXd s, c;
   double gap = 0.0;
+  // u_t = 0 of the contact-and-stick alternative of an I₀ node (rule R2): the rows the spec's
+  // table of §11.1 does not list (it counts such nodes as (T) without (S)).
+  bool beyond_spec_table = false;
   Eigen::VectorXd stacked() const {
     Eigen::VectorXd v(s.size() + c.size() + 1);
     v << s, c, gap;
@@ -127,7 +130,11 @@ std::vector<std::vector<LocalRow>> tight_rows(const sensitivity::IndexSets& sets
       const Eigen::Index base = dim * static_cast<Eigen::Index>(i);
       for (int a = 0; a < dim; ++a) {
         const Eigen::Index r = base + a;
-        LocalRow row{Eigen::VectorXd::Zero(dim), Eigen::VectorXd::Zero(dim), is_gap[static_cast<std::size_t>(r)] ? 1.0 : 0.0};
+        const sensitivity::NodePiece& alternative = alternatives[i][k];
+        LocalRow row{Eigen::VectorXd::Zero(dim), Eigen::VectorXd::Zero(dim), is_gap[static_cast<std::size_t>(r)] ? 1.0 : 0.0,
+                     sets.nodes[i].normal == sensitivity::NormalSet::kWeakContact &&
+                         alternative.normal == sensitivity::NormalBranch::kGapClosed &&
+                         alternative.tangential == sensitivity::TangentialBranch::kStick && a < dim - 1};
         for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(S, r); it; ++it) {
           FRICTOPT_ASSERT(it.col() >= base && it.col() < base + dim, "piece rows couple nodes");
           row.s(it.col() - base) = it.value();
@@ -219,6 +226,23 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   out.tolerance = options.rank_tolerance * out.sigma_max;
   out.rank = static_cast<int>((sv.array() > out.tolerance).count());
   out.full_row_rank = out.rank == out.rows;
+  // The same test on the rows of the spec's table alone (without the R2 stick rows).
+  std::vector<Eigen::Index> spec_rows;
+  Eigen::Index index = 0;
+  for (const auto& node_rows : rows)
+    for (const LocalRow& row : node_rows) {
+      if (!row.beyond_spec_table) spec_rows.push_back(index);
+      ++index;
+    }
+  out.spec_rows = static_cast<Eigen::Index>(spec_rows.size());
+  if (out.spec_rows == out.rows) {
+    out.spec_rank = out.rank;
+  } else {
+    const Eigen::MatrixXd Hs = H(spec_rows, Eigen::all);
+    const Eigen::VectorXd ss = Eigen::BDCSVD<Eigen::MatrixXd>(Hs).singularValues();
+    out.spec_rank = ss.size() ? static_cast<int>((ss.array() > options.rank_tolerance * ss(0)).count()) : 0;
+  }
+  out.spec_full_row_rank = out.spec_rank == out.spec_rows;
   out.matrix = std::move(H);
   return out;
 }
@@ -282,14 +306,17 @@ MordukhovichReport mordukhovich_report(const Certificate& c, const Eigen::Vector
     const double largest = w.maxCoeff(&top);
     out.clarke_minimizer_is_extreme = largest >= 1.0 - 1e-8 && is_extreme[static_cast<std::size_t>(top)];
   }
-  out.stationary = out.extreme.empty() ? false : out.distance <= options.stationary_tolerance * c.scale;
+  // Extreme points of conv{ξ_i} lie in ∂_MΘ only when ∂Θ = conv{ξ_i}, i.e. under (MF1′).
+  const bool small = !out.extreme.empty() && out.distance <= options.stationary_tolerance * c.scale;
+  out.stationary = small && c.mf1.full_row_rank;
   out.message = out.extreme.empty()
                     ? "no extreme point found (all generators within tolerance of the others' hull)"
                     : fmt::format("{} of {} distinct xi_i are extreme points; delta_M = {:.6e} (relative {:.3e}) at "
                                   "column {}: {}",
                                   out.extreme.size(), rep.size(), out.distance,
                                   c.scale > 0 ? out.distance / c.scale : 0.0, out.attaining,
-                                  out.stationary ? "M-stationary to this accuracy (given (MF1'))"
+                                  out.stationary ? "M-stationary to this accuracy ((MF1') holds)"
+                                  : small        ? "small, but (MF1') is not verified: no conclusion"
                                                  : "no M-stationarity certified");
   return out;
 }
@@ -327,6 +354,7 @@ std::string Certificate::report() const {
   for (const std::string& name : active_constraints) s += "    " + name + "\n";
   s += fmt::format("default piece alone: distance {:.6e} (relative {:.3e})\n", default_piece.distance,
                    default_relative_distance);
+  if (!mf1.computed) s += "(MF1') not computed: contact set too large for the dense SVD\n";
   if (mf1.computed)
     s += fmt::format("(MF1') matrix {} x {} (m0 = {} extra conditions), rank {} (tol {:.1e} sigma_max, sigma_min/sigma_max "
                      "= {:.3e}): {}\n",
@@ -334,8 +362,9 @@ std::string Certificate::report() const {
                      mf1.sigma_min / mf1.sigma_max,
                      mf1.full_row_rank ? "full row rank, so dTheta = conv{xi_i}"
                                        : fmt::format("rank deficient by {}", mf1.rows - mf1.rank));
-  else
-    s += "(MF1') not computed: contact set too large for the dense SVD\n";
+  if (mf1.computed && mf1.spec_rows != mf1.rows)
+    s += fmt::format("  rows of spec 03 §11.1's table only (no R2 stick rows): {} x {}, rank {}: {}\n", mf1.spec_rows,
+                     mf1.cols, mf1.spec_rank, mf1.spec_full_row_rank ? "full row rank" : "rank deficient");
   s += "Mordukhovich (extreme-point test): " + mordukhovich.message + "\n";
   return s;
 }

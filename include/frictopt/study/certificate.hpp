@@ -47,6 +47,11 @@ struct Mf1Report {
   double sigma_min = kNaN;      ///< smallest of its min(rows, cols) singular values
   double tolerance = kNaN;      ///< absolute threshold used: rank_tolerance·σ_max
   bool full_row_rank = false;   ///< rank == rows
+  /// The rows of spec 03 §11.1's table alone (which omits u_t = 0 for the contact-and-stick
+  /// alternative of I₀ nodes with u_t = 0, rule R2), same columns: row count, rank, verdict.
+  Eigen::Index spec_rows = 0;
+  int spec_rank = 0;
+  bool spec_full_row_rank = false;
   Eigen::MatrixXd matrix;       ///< the scaled matrix (rows × cols), for inspection and tests
 };
 
@@ -61,7 +66,7 @@ struct MordukhovichReport {
   int attaining = -1;                  ///< column attaining δ_M
   /// Thesis criterion: the minimizer of the Clarke QP puts all weight on one extreme generator.
   bool clarke_minimizer_is_extreme = false;
-  bool stationary = false;             ///< δ_M ≤ stationary_tolerance·scale
+  bool stationary = false;             ///< δ_M ≤ stationary_tolerance·scale and (MF1′) full row rank
 };
 
 /// The certificate at one design.

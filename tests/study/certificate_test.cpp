@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: MIT
+// study::certify (thesis §5.3; spec 06 §6, spec 03 §8, §11.1): the distance at a strict point
+// against its closed form, |𝕃| and the (MF1′) matrix at a constructed weak point, and the
+// distance falling along a short optimization run.
+#include "frictopt/study/certificate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "frictopt/core/error.hpp"
+#include "frictopt/cost/cost_functional.hpp"
+#include "frictopt/sensitivity/piece.hpp"
+#include "frictopt/study/shape_optimization.hpp"
+
+namespace frictopt::study {
+namespace {
+
+// The thesis' 2D body (spec 05 §2.1) on a coarse mesh with tight solver tolerances, and the
+// volume equality Σα = 0.75 (C2 = 1.9 with a = 2, C4 = 1, d = 15: Σα = d(C4 − C2/a)), which the
+// initial design α = 0.05 satisfies.
+BodyDefinition thesis_body_2d(int n1, int nv) {
+  BodyDefinition b;
+  b.shape = shape::BezierShape::curve(2.0, 15);
+  b.height = 1.0;
+  b.resolution = {{n1, 0, nv}, 1.0};
+  b.material = {1e9, 0.3, fem::PlaneModel::kPlaneStrain};
+  b.dirichlet = {{mesh::Face::kLeft, {}, {}}};
+  b.tractions = {{mesh::Face::kTop, Eigen::Vector2d(-8e7, -5e7)}};
+  b.admissible.upper_bound = 0.75;
+  b.admissible.height = 1.0;
+  b.admissible.volume = 1.9;
+  b.initial_design = Eigen::VectorXd::Constant(15, 0.05);
+  ContactDefinition c;
+  c.law = contact::FrictionLaw::interval(0.25, 0.25);
+  c.coulomb.relative_tolerance = 1e-14;
+  c.coulomb.max_iterations = 200;
+  c.coulomb.tresca.relative_tolerance = 1e-14;
+  c.coulomb.tresca.max_iterations = 200000;
+  b.contact = c;
+  return b;
+}
+
+TEST(Certify, StrictPointHasOnePieceAndTheClosedFormDistance) {
+  ElasticBody body(thesis_body_2d(20, 8));
+  ShapeOracle oracle(body, cost::make_compliance());
+  const Eigen::VectorXd alpha = body.definition().initial_design;
+  const Certificate c = certify(oracle, alpha);
+  ASSERT_EQ(c.status, Status::kConverged) << c.message;
+  std::printf("%s", c.report().c_str());
+  ASSERT_EQ(c.index_sets.num_weak_nodes(), 0) << c.index_sets.summary();
+  EXPECT_EQ(c.cardinality, 1.0);
+  EXPECT_FALSE(c.sampled);
+  ASSERT_EQ(c.subgradients.cols(), 1);
+  const Eigen::VectorXd xi = c.subgradients.col(0);
+  EXPECT_TRUE(xi.isApprox(oracle.evaluate_design(alpha).subgradient, 1e-12));
+  // Only the volume equality is active (0 < α < C0, equal neighbours): N_Υ = span{1}, so the
+  // distance is ‖ξ − mean(ξ)·1‖, and the certificate's parts add up to it.
+  EXPECT_EQ(c.active_constraints.size(), 1u);
+  const double expected = (xi.array() - xi.mean()).matrix().norm();
+  EXPECT_NEAR(c.clarke.distance, expected, 1e-8 * xi.norm());
+  EXPECT_NEAR(c.clarke.distance, (xi + c.clarke.normal_part).norm(), 1e-10 * xi.norm());
+  EXPECT_DOUBLE_EQ(c.default_piece.distance, c.clarke.distance);
+  EXPECT_DOUBLE_EQ(c.scale, xi.norm());
+  EXPECT_NEAR(c.relative_distance, expected / xi.norm(), 1e-8);
+  // Strict point: no extra conditions, (MF1′) is the piece's own system, which is nonsingular.
+  ASSERT_TRUE(c.mf1.computed);
+  const auto p = body.contact_boundary()->num_nodes();
+  EXPECT_EQ(c.mf1.extra_conditions, 0);
+  EXPECT_EQ(c.mf1.rows, 2 * p);
+  EXPECT_EQ(c.mf1.cols, 15 + 2 * p);
+  EXPECT_TRUE(c.mf1.full_row_rank);
+  // One generator is its own extreme point: δ_M = δ, and the thesis criterion holds.
+  ASSERT_TRUE(c.mordukhovich.computed) << c.mordukhovich.message;
+  EXPECT_EQ(c.mordukhovich.extreme.size(), 1u);
+  EXPECT_NEAR(c.mordukhovich.distance, c.clarke.distance, 1e-10 * xi.norm());
+  EXPECT_TRUE(c.mordukhovich.clarke_minimizer_is_extreme);
+}
+
+// Zero load and zero gaps: every contact node touches without force (I₀ with u_t = 0, rule R2),
+// as in tests/sensitivity/adjoint_test.cpp (weak_contact_body).
+TEST(Certify, WeakPointEnumeratesLAndReportsTheMf1Rank) {
+  BodyDefinition definition = thesis_body_2d(3, 2);
+  definition.tractions.clear();
+  definition.admissible.volume.reset();
+  definition.initial_design = Eigen::VectorXd::Zero(15);
+  ElasticBody body(definition);
+  const auto p = body.contact_boundary()->num_nodes();
+  ShapeOracle oracle(body, cost::make_target_normal_force(Eigen::VectorXd::LinSpaced(p, 1e6, 2e6)));
+  const Eigen::VectorXd alpha = definition.initial_design;
+  const Certificate c = certify(oracle, alpha);
+  ASSERT_EQ(c.status, Status::kConverged) << c.message;
+  std::printf("%s", c.report().c_str());
+  EXPECT_EQ(c.index_sets.count(sensitivity::NormalSet::kWeakContact), p) << c.index_sets.summary();
+  const sensitivity::PieceEnumeration pieces = oracle.pieces(alpha, 1 << 20);
+  EXPECT_EQ(c.cardinality, pieces.cardinality);
+  EXPECT_FALSE(c.sampled);
+  EXPECT_EQ(static_cast<double>(c.subgradients.cols()), pieces.cardinality);
+  EXPECT_GT(c.cardinality, 1.0);
+  // conv{ξ_i} contains the default piece's ξ: the full distance is never larger.
+  EXPECT_LE(c.clarke.distance, c.default_piece.distance * (1 + 1e-12));
+  EXPECT_NEAR(c.clarke.weights.sum(), 1.0, 1e-12);
+  EXPECT_GE(c.clarke.weights.minCoeff(), 0.0);
+  // Each R2 node contributes λ = 0, gap = 0, q = 0 and u_t = 0: two conditions beyond a piece's
+  // two rows (spec 03 §11.1 reading in certificate.cpp).
+  ASSERT_TRUE(c.mf1.computed);
+  EXPECT_EQ(c.mf1.extra_conditions, 2 * p);
+  EXPECT_EQ(c.mf1.rows, 2 * p + c.mf1.extra_conditions);
+  EXPECT_EQ(c.mf1.cols, 15 + 2 * p);
+  EXPECT_GT(c.mf1.rank, 0);
+  EXPECT_LE(c.mf1.rank, c.mf1.rows);
+  EXPECT_EQ(c.mf1.full_row_rank, c.mf1.rank == c.mf1.rows);
+  // Zero load: z = 0 gives u = 0 whatever α, so u_t cannot be steered by the design and the
+  // u_t = 0 rows are dependent (one per node); the spec's table (λ, q, gap per node) is full rank.
+  EXPECT_EQ(c.mf1.rows - c.mf1.rank, p);
+  EXPECT_EQ(c.mf1.spec_rows, 3 * p);
+  EXPECT_TRUE(c.mf1.spec_full_row_rank);
+  // The extreme-point test ran on the full 𝕃 and δ_M bounds δ from above.
+  ASSERT_TRUE(c.mordukhovich.computed) << c.mordukhovich.message;
+  EXPECT_FALSE(c.mordukhovich.extreme.empty());
+  EXPECT_GE(c.mordukhovich.distance, c.clarke.distance * (1 - 1e-10));
+
+  // A cap below |𝕃| samples and skips the Mordukhovich check.
+  CertifyOptions small;
+  small.cap = 3;
+  const Certificate s = certify(oracle, alpha, small);
+  ASSERT_EQ(s.status, Status::kConverged) << s.message;
+  EXPECT_TRUE(s.sampled);
+  EXPECT_EQ(s.cardinality, c.cardinality);
+  EXPECT_EQ(s.subgradients.cols(), 3);
+  EXPECT_FALSE(s.mordukhovich.computed);
+}
+
+TEST(Certify, DistanceFallsAlongAShortOptimization) {
+  ElasticBody body(thesis_body_2d(20, 8));
+  ShapeOracle oracle(body, cost::make_compliance());
+  const Eigen::VectorXd alpha0 = body.definition().initial_design;
+  const Certificate before = certify(oracle, alpha0);
+  ASSERT_EQ(before.status, Status::kConverged) << before.message;
+  optim::BundleTrust::Options options = default_study_options(body);
+  options.max_iterations = 15;
+  const optim::BundleTrust::Summary run = optimize(oracle, options, {});
+  const Certificate after = certify(oracle, run.x);
+  ASSERT_EQ(after.status, Status::kConverged) << after.message;
+  std::printf("before: %s\nafter %d iterations: %s", before.report().c_str(), run.iterations, after.report().c_str());
+  EXPECT_LT(after.value, before.value);
+  EXPECT_LT(after.clarke.distance, before.clarke.distance);
+}
+
+TEST(Certify, RejectsBadInput) {
+  ElasticBody body(thesis_body_2d(6, 2));
+  ShapeOracle oracle(body, cost::make_compliance());
+  EXPECT_THROW((void)certify(oracle, Eigen::VectorXd::Constant(14, 0.05)), InvalidInput);
+  CertifyOptions bad;
+  bad.cap = 0;
+  EXPECT_THROW((void)certify(oracle, body.definition().initial_design, bad), InvalidInput);
+  // Outside Υ (volume equality violated): N_Υ is undefined there.
+  EXPECT_THROW((void)certify(oracle, Eigen::VectorXd::Constant(15, 0.1)), InvalidInput);
+}
+
+}  // namespace
+}  // namespace frictopt::study
