@@ -125,6 +125,7 @@ class Design:
 def read_grid(path):
     if not os.path.isfile(path):
         raise RunError(f"{path}: missing")
+    vtk.vtkObject.GlobalWarningDisplayOff()  # a broken file gets our message, not VTK's dump
     reader = vtk.vtkXMLUnstructuredGridReader()
     reader.SetFileName(path)
     reader.Update()
