@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -191,6 +192,30 @@ struct OutputSpec {
   std::string name;  ///< base name of output files; default the case file stem
 };
 
+/// [identification] (issue 7): robust loss on each normalized residual.
+enum class LossKind { kNone, kHuber, kCauchy };
+
+/// One [identification.parameters.<name>] table: a parameter (group) to identify. `name` is
+/// "young" or a coefficient of the case's friction kind: "mu" (isotropic, disc_exact),
+/// "mu_vertices" (3D polygon: one parameter per vertex), "mu_x", "mu_y" (ellipse kinds),
+/// "mu_plus", "mu_minus" (2D polygon).
+struct IdentifiedParameterSpec {
+  std::string name;
+  std::vector<double> initial;  ///< empty: the case's value(s); else 1 entry or one per vertex
+  std::vector<double> lower;    ///< 1 entry (every vertex) or one per vertex; >= 0 (young: > 0)
+  std::vector<double> upper;    ///< idem; lower <= initial <= upper entrywise
+};
+
+/// [identification]: identify friction coefficients (and E) from measurements (docs/identification.md).
+struct IdentificationSpec {
+  /// The measurement CSV; a relative path is resolved against the case file's directory.
+  std::filesystem::path measurements;
+  std::vector<IdentifiedParameterSpec> parameters;  ///< at least one, in the file's order
+  LossKind loss = LossKind::kNone;
+  double loss_scale = 1.0;            ///< > 0, in standard deviations
+  std::optional<int> max_iterations;  ///< >= 1
+};
+
 /// A validated case: every field satisfies the ranges documented above, and the
 /// dimension-dependent sizes (cells, traction, displacement, control_points) match
 /// geometry.dim. Consumers may trust it without re-validating.
@@ -207,6 +232,7 @@ struct CaseDescription {
   std::optional<CostSpec> cost;                  ///< absent: only `solve` is possible
   OptimizationSpec optimization;
   OutputSpec output;
+  std::optional<IdentificationSpec> identification;  ///< [identification], absent: no `identify`
 };
 
 }  // namespace frictopt::io

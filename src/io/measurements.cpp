@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/io/measurements.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <string_view>
+
+#include "atomic_file.hpp"
+#include "frictopt/core/error.hpp"
+
+namespace frictopt::io {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string_view> split(std::string_view s, char separator) {
+  std::vector<std::string_view> out;
+  std::size_t start = 0;
+  while (true) {
+    const auto pos = s.find(separator, start);
+    out.push_back(trim(s.substr(start, pos == std::string_view::npos ? std::string_view::npos : pos - start)));
+    if (pos == std::string_view::npos) break;
+    start = pos + 1;
+  }
+  return out;
+}
+
+// A whole field as a double (no trailing characters), or nullopt.
+std::optional<double> to_double(std::string_view text) {
+  if (text.empty()) return std::nullopt;
+  if (text.front() == '+') text.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+std::optional<int> to_int(std::string_view text) {
+  int value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+constexpr std::string_view kHeader = "quantity,location,value,sigma";
+
+}  // namespace
+
+std::vector<study::Measurement> read_measurements(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InvalidInput(fmt::format("{}: measurement file not found (or not a regular file)", path.string()));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidInput(fmt::format("{}: measurement file could not be opened", path.string()));
+  std::vector<study::Measurement> out;
+  std::string line;
+  int number = 0;
+  bool header_seen = false;
+  while (std::getline(in, line)) {
+    ++number;
+    const std::string_view text = trim(line);
+    if (text.empty() || text.front() == '#') continue;
+    const std::string where = fmt::format("{}:{}", path.string(), number);
+    const std::vector<std::string_view> fields = split(text, ',');
+    if (!header_seen) {
+      std::string joined;
+      for (std::string_view f : fields) joined += (joined.empty() ? "" : ",") + std::string(f);
+      if (joined != kHeader)
+        throw InvalidInput(fmt::format("{}: header \"{}\"; expected \"{}\"", where, joined, kHeader));
+      header_seen = true;
+      continue;
+    }
+    if (fields.size() != 4)
+      throw InvalidInput(fmt::format("{}: {} fields; expected 4 ({})", where, fields.size(), kHeader));
+    study::Measurement m;
+    m.label = where;
+    try {
+      m.quantity = study::parse_measured_quantity(fields[0]);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("{}: {}", where, e.what()));
+    }
+    const std::string_view location = fields[1];
+    if (study::is_total(m.quantity)) {
+      if (!location.empty() && location != "all")
+        throw InvalidInput(fmt::format("{}: location = \"{}\"; expected \"all\" or empty for the sum {}", where,
+                                       location, fields[0]));
+    } else if (location.starts_with("x=")) {
+      const std::vector<std::string_view> coords = split(location.substr(2), ';');
+      Eigen::VectorXd x(static_cast<Eigen::Index>(coords.size()));
+      for (std::size_t k = 0; k < coords.size(); ++k) {
+        const auto v = to_double(coords[k]);
+        if (!v || !std::isfinite(*v))
+          throw InvalidInput(fmt::format("{}: location = \"{}\": coordinate {} = \"{}\"; expected a number [m]", where,
+                                         location, k + 1, coords[k]));
+        x(static_cast<Eigen::Index>(k)) = *v;
+      }
+      if (x.size() < 1 || x.size() > 2)
+        throw InvalidInput(fmt::format("{}: location = \"{}\"; expected x=x1 (2D) or x=x1;x2 (3D)", where, location));
+      m.point = x;
+    } else {
+      const auto node = to_int(location);
+      if (!node || *node < 0)
+        throw InvalidInput(fmt::format("{}: location = \"{}\"; expected a contact-node index >= 0 or a point "
+                                       "x=x1;x2 on the contact surface",
+                                       where, location));
+      m.node = *node;
+    }
+    const auto value = to_double(fields[2]);
+    if (!value || !std::isfinite(*value))
+      throw InvalidInput(fmt::format("{}: value = \"{}\"; expected a finite number", where, fields[2]));
+    m.value = *value;
+    const auto sigma = to_double(fields[3]);
+    if (!sigma || !(*sigma > 0) || !std::isfinite(*sigma))
+      throw InvalidInput(fmt::format("{}: sigma = \"{}\"; expected a standard deviation > 0", where, fields[3]));
+    m.sigma = *sigma;
+    out.push_back(std::move(m));
+  }
+  if (!header_seen) throw InvalidInput(fmt::format("{}: empty measurement file; expected the header \"{}\"", path.string(), kHeader));
+  if (out.empty()) throw InvalidInput(fmt::format("{}: no measurements after the header", path.string()));
+  return out;
+}
+
+void write_measurements(const std::filesystem::path& path, const std::vector<study::Measurement>& measurements,
+                        const std::string& comment) {
+  std::ostringstream text;
+  if (!comment.empty()) text << "# " << comment << '\n';
+  text << kHeader << '\n';
+  for (const study::Measurement& m : measurements) {
+    std::string location;
+    if (study::is_total(m.quantity)) location = "all";
+    else if (m.point) {
+      location = "x=";
+      for (Eigen::Index k = 0; k < m.point->size(); ++k) location += fmt::format("{}{}", k ? ";" : "", (*m.point)(k));
+    } else location = std::to_string(m.node);
+    text << fmt::format("{},{},{},{}\n", study::to_string(m.quantity), location, m.value, m.sigma);
+  }
+  detail::write_file_atomically(path, text.str());
+}
+
+study::Identification::Options make_identification_options(const CaseDescription& c) {
+  if (!c.identification) throw InvalidInput(fmt::format("{}: the case has no [identification] table", c.origin));
+  const IdentificationSpec& spec = *c.identification;
+  study::Identification::Options o;
+  for (const IdentifiedParameterSpec& p : spec.parameters) {
+    const bool vector = p.name == "mu_vertices";
+    const std::size_t count = vector ? c.contact->friction.mu_vertices.size() : 1;
+    for (std::size_t j = 0; j < count; ++j) {
+      const auto pick = [&](const std::vector<double>& v) { return v.size() == 1 ? v[0] : v[j]; };
+      study::ParameterSpec s;
+      s.name = vector ? fmt::format("mu_vertices[{}]", j) : p.name;
+      if (!p.initial.empty()) s.initial = pick(p.initial);
+      s.lower = pick(p.lower);
+      s.upper = pick(p.upper);
+      o.parameters.push_back(s);
+    }
+  }
+  o.loss = spec.loss == LossKind::kHuber ? study::RobustLoss::kHuber
+           : spec.loss == LossKind::kCauchy ? study::RobustLoss::kCauchy
+                                            : study::RobustLoss::kNone;
+  o.loss_scale = spec.loss_scale;
+  if (spec.max_iterations) o.max_iterations = *spec.max_iterations;
+  return o;
+}
+
+}  // namespace frictopt::io

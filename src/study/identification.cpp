@@ -1,0 +1,710 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/study/identification.hpp"
+
+#include <ceres/ceres.h>
+#include <ceres/covariance.h>
+#include <fmt/format.h>
+
+#include <Eigen/SVD>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <set>
+
+#include "frictopt/contact/delassus.hpp"
+#include "frictopt/contact/linear_operator.hpp"
+#include "frictopt/core/error.hpp"
+#include "frictopt/sensitivity/adjoint.hpp"
+#include "frictopt/sensitivity/friction_parameters.hpp"
+#include "frictopt/sensitivity/index_sets.hpp"
+#include "frictopt/sensitivity/parameter_sensitivity.hpp"
+#include "frictopt/sensitivity/piece.hpp"
+#include "frictopt/study/elastic_body.hpp"
+
+namespace frictopt::study {
+namespace {
+
+struct QuantitySpelling {
+  MeasuredQuantity quantity;
+  std::string_view name;
+};
+constexpr std::array<QuantitySpelling, 11> kQuantities{{
+    {MeasuredQuantity::kNormalForce, "normal_force"},
+    {MeasuredQuantity::kPressure, "pressure"},
+    {MeasuredQuantity::kTangentialForceX1, "tangential_force_x1"},
+    {MeasuredQuantity::kTangentialForceX2, "tangential_force_x2"},
+    {MeasuredQuantity::kTractionX1, "traction_x1"},
+    {MeasuredQuantity::kTractionX2, "traction_x2"},
+    {MeasuredQuantity::kSlipX1, "slip_x1"},
+    {MeasuredQuantity::kSlipX2, "slip_x2"},
+    {MeasuredQuantity::kTotalNormalForce, "total_normal_force"},
+    {MeasuredQuantity::kTotalTangentialForceX1, "total_tangential_force_x1"},
+    {MeasuredQuantity::kTotalTangentialForceX2, "total_tangential_force_x2"},
+}};
+
+constexpr std::array<std::pair<RobustLoss, std::string_view>, 3> kLosses{
+    {{RobustLoss::kNone, "none"}, {RobustLoss::kHuber, "huber"}, {RobustLoss::kCauchy, "cauchy"}}};
+
+constexpr std::array<std::pair<Identifiability, std::string_view>, 4> kIdentifiability{
+    {{Identifiability::kDetermined, "determined"},
+     {Identifiability::kAtBound, "at_bound"},
+     {Identifiability::kNotDetermined, "not_determined"},
+     {Identifiability::kCorrelated, "correlated"}}};
+
+// Tangential component (0 or 1) of a quantity, or −1 for normal quantities.
+int tangential_component(MeasuredQuantity q) {
+  switch (q) {
+    case MeasuredQuantity::kTangentialForceX1:
+    case MeasuredQuantity::kTractionX1:
+    case MeasuredQuantity::kSlipX1:
+    case MeasuredQuantity::kTotalTangentialForceX1: return 0;
+    case MeasuredQuantity::kTangentialForceX2:
+    case MeasuredQuantity::kTractionX2:
+    case MeasuredQuantity::kSlipX2:
+    case MeasuredQuantity::kTotalTangentialForceX2: return 1;
+    default: return -1;
+  }
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string format_point(const Eigen::VectorXd& x) {
+  std::string s = "(";
+  for (Eigen::Index k = 0; k < x.size(); ++k) s += fmt::format("{}{:g}", k ? ", " : "", x(k));
+  return s + ")";
+}
+
+// Gauge of x with respect to the friction set W: the smallest t with x ∈ t·W.
+double gauge(const contact::FrictionLaw& law, const Eigen::Vector2d& x) {
+  if (law.is_polygonal()) {
+    if (law.kind() == contact::FrictionLawKind::kInterval) {
+      const auto w = law.vertices();
+      return x(0) >= 0 ? x(0) / w[1](0) : x(0) / w[0](0);
+    }
+    double g = 0.0;
+    const auto e = law.edge_normals();
+    const auto h = law.edge_heights();
+    for (std::size_t j = 0; j < e.size(); ++j) g = std::max(g, e[j].dot(x) / h[j]);
+    return g;
+  }
+  const Eigen::Vector2d a = law.semi_axes();
+  return std::hypot(x(0) / a(0), x(1) / a(1));
+}
+
+}  // namespace
+
+std::string_view to_string(MeasuredQuantity quantity) {
+  for (const auto& q : kQuantities)
+    if (q.quantity == quantity) return q.name;
+  return "unknown";
+}
+
+MeasuredQuantity parse_measured_quantity(std::string_view text) {
+  std::string list;
+  for (const auto& q : kQuantities) {
+    if (q.name == text) return q.quantity;
+    list += (list.empty() ? "" : ", ") + std::string(q.name);
+  }
+  throw InvalidInput(fmt::format("quantity = \"{}\"; expected one of {}", text, list));
+}
+
+bool is_total(MeasuredQuantity q) {
+  return q == MeasuredQuantity::kTotalNormalForce || q == MeasuredQuantity::kTotalTangentialForceX1 ||
+         q == MeasuredQuantity::kTotalTangentialForceX2;
+}
+
+std::string_view to_string(RobustLoss loss) {
+  for (const auto& [l, name] : kLosses)
+    if (l == loss) return name;
+  return "unknown";
+}
+
+RobustLoss parse_robust_loss(std::string_view text) {
+  for (const auto& [l, name] : kLosses)
+    if (name == text) return l;
+  throw InvalidInput(fmt::format("loss = \"{}\"; expected one of none, huber, cauchy", text));
+}
+
+std::string_view to_string(Identifiability identifiability) {
+  for (const auto& [i, name] : kIdentifiability)
+    if (i == identifiability) return name;
+  return "unknown";
+}
+
+void Identification::Options::validate() const {
+  const auto fail = [](std::string_view field, const std::string& value, std::string_view expected) {
+    throw InvalidInput(fmt::format("Identification::Options::{} = {}; expected {}", field, value, expected));
+  };
+  if (parameters.empty()) fail("parameters", "[]", "at least one parameter to identify");
+  std::set<std::string> seen;
+  for (std::size_t k = 0; k < parameters.size(); ++k) {
+    const ParameterSpec& p = parameters[k];
+    const std::string field = fmt::format("parameters[{}] ({})", k, p.name);
+    if (!seen.insert(p.name).second) fail(field + ".name", p.name, "distinct parameter names");
+    if (!(std::isfinite(p.lower) && std::isfinite(p.upper)))
+      fail(field, fmt::format("[{}, {}]", p.lower, p.upper), "finite bounds");
+    if (!(p.lower <= p.upper))
+      fail(field, fmt::format("lower {} > upper {}", p.lower, p.upper), "lower <= upper");
+    if (p.name == "young" ? !(p.lower > 0) : !(p.lower >= 0))
+      fail(field + ".lower", fmt::format("{}", p.lower), p.name == "young" ? "> 0" : ">= 0");
+    if (!std::isnan(p.initial) && !(p.initial >= p.lower && p.initial <= p.upper))
+      fail(field + ".initial", fmt::format("{}", p.initial), fmt::format("within [{}, {}]", p.lower, p.upper));
+  }
+  if (!(loss_scale > 0 && std::isfinite(loss_scale))) fail("loss_scale", fmt::format("{}", loss_scale), "> 0");
+  if (max_iterations < 1) fail("max_iterations", fmt::format("{}", max_iterations), ">= 1");
+  if (!(function_tolerance > 0)) fail("function_tolerance", fmt::format("{}", function_tolerance), "> 0");
+  if (!(parameter_tolerance > 0)) fail("parameter_tolerance", fmt::format("{}", parameter_tolerance), "> 0");
+  if (!(gradient_tolerance > 0)) fail("gradient_tolerance", fmt::format("{}", gradient_tolerance), "> 0");
+  if (!(state_tolerance > 0 && state_tolerance < 1)) fail("state_tolerance", fmt::format("{}", state_tolerance), "in (0, 1)");
+  if (!(zero_column_tolerance > 0)) fail("zero_column_tolerance", fmt::format("{}", zero_column_tolerance), "> 0");
+  if (!(rank_tolerance > 0 && rank_tolerance < 1)) fail("rank_tolerance", fmt::format("{}", rank_tolerance), "in (0, 1)");
+}
+
+std::string Identification::Summary::brief_report() const {
+  std::string params;
+  for (const ParameterEstimate& e : estimates)
+    params += fmt::format("{}{} = {:.6g}{}", params.empty() ? "" : ", ", e.name, e.value,
+                          std::isnan(e.standard_deviation) ? std::string(" (") + std::string(to_string(e.identifiability)) + ")"
+                                                           : fmt::format(" ± {:.2g}", e.standard_deviation));
+  return fmt::format("identification: {} ({}); {} iterations, {} state solves, cost {:.6e} -> {:.6e}, chi² {:.4g} "
+                     "({} dof); {}; {:.2f} s",
+                     frictopt::to_string(status), message, iterations, state_solves, initial_cost, final_cost,
+                     chi_square, degrees_of_freedom, params, time_seconds);
+}
+
+// ------------------------------------------------------------------------------------------
+// The model: the contact problem of the body at its design, in contact space (spec 02, §7):
+// z solves the Coulomb problem with M(E) = (E₀/E) M₀ and c(E) = (E₀/E) c_traction + c_dirichlet
+// + (0, g): A(E) = (E/E₀) A₀ and the Dirichlet lifting −A_fd u_d scales with E, the tractions do not.
+
+struct Identification::Impl {
+  BodyDefinition definition;
+  std::unique_ptr<ElasticBody> body;
+  Options options;
+  std::vector<Measurement> measurements;
+  std::vector<std::string> names;
+  std::vector<int> friction_index;  // per identified parameter: index into the law's parameters, −1 = young
+  contact::FrictionLaw law0 = contact::FrictionLaw::disc(0.0);
+  Eigen::VectorXd friction_values0;
+  double young0 = 0.0;
+  Eigen::VectorXd initial, scale;
+  int dim = 3;
+  Eigen::Index num_nodes = 0;
+  Eigen::MatrixXd M0;
+  Eigen::VectorXd c_traction, c_dirichlet, gap_vector;  // gap_vector = (0, g) per node
+  contact::CoulombSolver::Options coulomb;
+  std::optional<contact::ContactState> warm_start;
+  Eigen::SparseMatrix<double> Lz, Lg;  // prediction = Lz z + Lg ∇
+  // Cache of the last trial point (Ceres evaluates every residual block at the same point).
+  Eigen::VectorXd cached_parameters;
+  std::optional<Prediction> cached;
+  contact::ContactState cached_state;
+  int state_solves = 0, jacobian_evaluations = 0;
+
+  void setup_parameters();
+  void setup_contact();
+  void resolve_measurements();
+  const Prediction& predict(const Eigen::VectorXd& p, bool with_jacobian);
+  void add_jacobian(const Eigen::VectorXd& p, Prediction& out);
+  contact::FrictionLaw law_for(const Eigen::VectorXd& p) const;
+  double young_for(const Eigen::VectorXd& p) const;
+};
+
+void Identification::Impl::setup_parameters() {
+  law0 = definition.contact->law;
+  young0 = definition.material.young;
+  const sensitivity::FrictionParameters fp = sensitivity::friction_parameters(law0);
+  friction_values0 = fp.values;
+  std::string accepted;
+  for (const std::string& n : fp.names) accepted += n + ", ";
+  accepted += "young";
+  const Eigen::Index n = static_cast<Eigen::Index>(options.parameters.size());
+  initial.resize(n);
+  scale.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const ParameterSpec& spec = options.parameters[static_cast<std::size_t>(k)];
+    names.push_back(spec.name);
+    double case_value;
+    if (spec.name == "young") {
+      friction_index.push_back(-1);
+      case_value = young0;
+    } else {
+      const auto it = std::find(fp.names.begin(), fp.names.end(), spec.name);
+      if (it == fp.names.end())
+        throw InvalidInput(fmt::format("identification parameter \"{}\" is not a parameter of the law {}; expected one of {}",
+                                       spec.name, law0.describe(), accepted));
+      const int index = static_cast<int>(it - fp.names.begin());
+      friction_index.push_back(index);
+      case_value = fp.values(index);
+    }
+    initial(k) = std::isnan(spec.initial) ? case_value : spec.initial;
+    if (!(initial(k) >= spec.lower && initial(k) <= spec.upper))
+      throw InvalidInput(fmt::format("identification parameter \"{}\": initial value {} (the case's value) is outside "
+                                     "[{}, {}]; give an initial value within the bounds",
+                                     spec.name, initial(k), spec.lower, spec.upper));
+    // Ceres works on p/scale, O(1) for coefficients and moduli alike.
+    scale(k) = initial(k) != 0.0 ? std::abs(initial(k)) : std::max({std::abs(spec.lower), std::abs(spec.upper), 1e-300});
+  }
+}
+
+void Identification::Impl::setup_contact() {
+  // The FE problem does not depend on the parameters except through E (a scalar factor):
+  // assemble, factorize and build M once, from a state solve at the case's parameters.
+  const BodyState s = body->solve(definition.initial_design, "initial design");
+  if (!s.contact)
+    throw InvalidInput("identification: the elasticity problem at the initial design could not be factorized: " +
+                       s.summary.message);
+  const contact::ContactBoundary& boundary = *body->contact_boundary();
+  const fem::LinearElasticity& fem = body->elasticity();
+  dim = boundary.dim();
+  num_nodes = boundary.num_nodes();
+  M0 = s.contact->delassus_matrix ? *s.contact->delassus_matrix
+                                  : contact::dense_delassus(fem.factorization(), boundary);
+  const Eigen::VectorXd l_traction = fem.dofs().restrict(fem.traction_load(s.positions));
+  const Eigen::VectorXd l_lift = fem.load() - l_traction;
+  c_traction = boundary.times(fem.factorization().solve(l_traction));
+  c_dirichlet = boundary.times(fem.factorization().solve(l_lift));
+  gap_vector = Eigen::VectorXd::Zero(boundary.num_unknowns());
+  for (Eigen::Index i = 0; i < num_nodes; ++i) gap_vector(dim * i + dim - 1) = s.contact->gaps(i);
+  if (s.contact->summary.converged()) warm_start = s.contact->state;
+}
+
+void Identification::Impl::resolve_measurements() {
+  const contact::ContactBoundary& boundary = *body->contact_boundary();
+  const Eigen::MatrixXd& plane = boundary.plane_coordinates();
+  const Eigen::VectorXd& areas = boundary.tributary_areas();
+  const Eigen::Index p = num_nodes, m = dim * p;
+  // Node spacing: the largest nearest-neighbour distance (a point on Γ_c is within it of a node).
+  double spacing = 0.0;
+  for (Eigen::Index i = 0; i < p; ++i) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (Eigen::Index j = 0; j < p; ++j)
+      if (j != i) nearest = std::min(nearest, (plane.row(i) - plane.row(j)).norm());
+    if (std::isfinite(nearest)) spacing = std::max(spacing, nearest);
+  }
+  if (measurements.empty()) throw InvalidInput("identification: no measurements; expected at least one");
+  std::vector<Eigen::Triplet<double>> tz, tg;
+  for (std::size_t r = 0; r < measurements.size(); ++r) {
+    Measurement& meas = measurements[r];
+    const std::string where = meas.label.empty() ? fmt::format("measurement {}", r) : meas.label;
+    const int c = tangential_component(meas.quantity);
+    if (dim == 2 && c == 1)
+      throw InvalidInput(fmt::format("{}: quantity = {}; expected a 2D quantity (x1 components only) for this 2D case",
+                                     where, to_string(meas.quantity)));
+    if (!(std::isfinite(meas.value)))
+      throw InvalidInput(fmt::format("{}: value = {}; expected a finite number", where, meas.value));
+    if (!(meas.sigma > 0 && std::isfinite(meas.sigma)))
+      throw InvalidInput(fmt::format("{}: sigma = {}; expected a standard deviation > 0", where, meas.sigma));
+    const auto row = static_cast<int>(r);
+    if (is_total(meas.quantity)) {
+      if (meas.node >= 0 || meas.point)
+        throw InvalidInput(fmt::format("{}: quantity {} is a sum over all contact nodes; expected no node or location",
+                                       where, to_string(meas.quantity)));
+      for (Eigen::Index i = 0; i < p; ++i) {
+        if (c < 0) tz.emplace_back(row, dim * i + dim - 1, 1.0);
+        else tz.emplace_back(row, dim * i + c, -1.0);  // τ = −q
+      }
+      continue;
+    }
+    if (meas.point) {
+      if (meas.point->size() != dim - 1)
+        throw InvalidInput(fmt::format("{}: location {} has {} coordinate(s); expected {} (x1{}) in {}D", where,
+                                       format_point(*meas.point), meas.point->size(), dim - 1, dim == 3 ? ", x2" : "",
+                                       dim));
+      Eigen::Index best = 0;
+      const double distance = (plane.rowwise() - meas.point->transpose()).rowwise().norm().minCoeff(&best);
+      if (!(distance <= spacing))
+        throw InvalidInput(fmt::format("{}: location {} is {:.4g} m from the nearest contact node (node {} at {}); "
+                                       "expected a point on the contact surface, within one node spacing ({:.4g} m)",
+                                       where, format_point(*meas.point), distance, best,
+                                       format_point(plane.row(best).transpose()), spacing));
+      meas.node = static_cast<int>(best);
+    } else if (meas.node < 0 || meas.node >= p) {
+      throw InvalidInput(fmt::format("{}: node = {}; expected a contact node index in [0, {}) or a location", where,
+                                     meas.node, p));
+    }
+    const Eigen::Index i = meas.node;
+    const double inv_area = 1.0 / areas(i);
+    switch (meas.quantity) {
+      case MeasuredQuantity::kNormalForce: tz.emplace_back(row, dim * i + dim - 1, 1.0); break;
+      case MeasuredQuantity::kPressure: tz.emplace_back(row, dim * i + dim - 1, inv_area); break;
+      case MeasuredQuantity::kTangentialForceX1:
+      case MeasuredQuantity::kTangentialForceX2: tz.emplace_back(row, dim * i + c, -1.0); break;
+      case MeasuredQuantity::kTractionX1:
+      case MeasuredQuantity::kTractionX2: tz.emplace_back(row, dim * i + c, -inv_area); break;
+      case MeasuredQuantity::kSlipX1:
+      case MeasuredQuantity::kSlipX2: tg.emplace_back(row, dim * i + c, -1.0); break;  // u_t = −∇_q
+      default: break;
+    }
+  }
+  const auto rows = static_cast<Eigen::Index>(measurements.size());
+  Lz.resize(rows, m);
+  Lz.setFromTriplets(tz.begin(), tz.end());
+  Lg.resize(rows, m);
+  Lg.setFromTriplets(tg.begin(), tg.end());
+}
+
+contact::FrictionLaw Identification::Impl::law_for(const Eigen::VectorXd& p) const {
+  Eigen::VectorXd values = friction_values0;
+  for (std::size_t k = 0; k < friction_index.size(); ++k)
+    if (friction_index[k] >= 0) values(friction_index[k]) = p(static_cast<Eigen::Index>(k));
+  return sensitivity::with_friction_parameters(law0, values);
+}
+
+double Identification::Impl::young_for(const Eigen::VectorXd& p) const {
+  for (std::size_t k = 0; k < friction_index.size(); ++k)
+    if (friction_index[k] < 0) return p(static_cast<Eigen::Index>(k));
+  return young0;
+}
+
+const Identification::Prediction& Identification::Impl::predict(const Eigen::VectorXd& p, bool with_jacobian) {
+  if (cached && cached_parameters.size() == p.size() && cached_parameters == p) {
+    if (with_jacobian && cached->ok && cached->jacobian.size() == 0) add_jacobian(p, *cached);
+    return *cached;
+  }
+  cached_parameters = p;
+  cached.emplace();
+  Prediction& out = *cached;
+  contact::FrictionLaw law = law0;
+  try {
+    law = law_for(p);
+  } catch (const InvalidInput& e) {
+    out.message = e.what();  // e.g. a non-convex polygon: Ceres shrinks its step
+    return out;
+  }
+  const double rho = young_for(p) / young0;
+  const contact::DenseOperator M(M0 / rho);
+  const Eigen::VectorXd c = c_traction / rho + c_dirichlet + gap_vector;
+  contact::ContactState state = warm_start ? *warm_start : contact::ContactState(dim, num_nodes);
+  const contact::CoulombSolver solver(M, law, coulomb);
+  out.contact = solver.solve(c, state);
+  ++state_solves;
+  if (!out.contact.converged()) {
+    out.message = "contact solve failed: " + out.contact.brief_report();
+    return out;
+  }
+  warm_start = state;
+  cached_state = state;
+  out.values = Lz * state.z + Lg * state.gradient;
+  out.index_sets = sensitivity::classify(state, law).summary();
+  for (Eigen::Index i = 0; i < num_nodes; ++i) out.num_slipping_nodes += state.is_slip(i) ? 1 : 0;
+  out.ok = true;
+  if (with_jacobian) add_jacobian(p, out);
+  return out;
+}
+
+void Identification::Impl::add_jacobian(const Eigen::VectorXd& p, Prediction& out) {
+  const contact::FrictionLaw law = law_for(p);
+  const double young = young_for(p);
+  const Eigen::MatrixXd M = M0 * (young0 / young);
+  const contact::ContactState& state = cached_state;
+  const sensitivity::Piece piece = sensitivity::default_piece(sensitivity::classify(state, law));
+  const sensitivity::PieceLinearization lin = sensitivity::linearize_piece(piece, law, state);
+  const Eigen::MatrixXd rows = sensitivity::friction_parameter_rows(piece, law, state);
+  const Eigen::Index n = p.size(), m = M.rows();
+  Eigen::MatrixXd Rz = Eigen::MatrixXd::Zero(m, n), Q = Eigen::MatrixXd::Zero(m, n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const int index = friction_index[static_cast<std::size_t>(k)];
+    if (index >= 0) Rz.col(k) = rows.col(index);
+    else Q.col(k) = (state.gradient - gap_vector - c_dirichlet) / young;  // G A⁻¹ (A u − l_lift)/E
+  }
+  const sensitivity::ContactStateDerivative d = sensitivity::contact_state_derivative(lin, M, Rz, Q);
+  ++jacobian_evaluations;
+  if (d.status != Status::kConverged) {
+    out.ok = false;
+    out.message = "forward sensitivity failed: " + d.message;
+    return;
+  }
+  out.jacobian = Lz * d.forces + Lg * d.gradient;
+}
+
+Identification::Identification(BodyDefinition definition, std::vector<Measurement> measurements, Options options)
+    : impl_(std::make_unique<Impl>()) {
+  options.validate();
+  Impl& s = *impl_;
+  if (!definition.contact) throw InvalidInput("identification needs a body in contact: add a [contact] table to the case");
+  // The Jacobian is exact only for a state far more accurate than Ceres' steps.
+  auto& co = definition.contact->coulomb;
+  co.relative_tolerance = std::min(co.relative_tolerance, options.state_tolerance);
+  co.tresca.relative_tolerance = std::min(co.tresca.relative_tolerance, options.state_tolerance);
+  co.max_iterations = std::max(co.max_iterations, 200);
+  co.tresca.max_iterations = std::max(co.tresca.max_iterations, 200000);
+  s.coulomb = co;
+  s.definition = std::move(definition);
+  s.options = std::move(options);
+  s.measurements = std::move(measurements);
+  s.setup_parameters();
+  s.body = std::make_unique<ElasticBody>(s.definition);
+  s.setup_contact();
+  s.resolve_measurements();
+}
+
+Identification::~Identification() = default;
+
+const std::vector<std::string>& Identification::parameter_names() const { return impl_->names; }
+Eigen::VectorXd Identification::initial_parameters() const { return impl_->initial; }
+const std::vector<Measurement>& Identification::measurements() const { return impl_->measurements; }
+
+Identification::Prediction Identification::predict(const Eigen::Ref<const Eigen::VectorXd>& parameters, bool with_jacobian) {
+  if (parameters.size() != static_cast<Eigen::Index>(impl_->names.size()))
+    throw InvalidInput(fmt::format("Identification::predict: {} parameter values; expected {}", parameters.size(),
+                                   impl_->names.size()));
+  return impl_->predict(parameters, with_jacobian);
+}
+
+// ------------------------------------------------------------------------------------------
+// Ceres: one residual block per measurement (so a robust loss acts on each normalized residual),
+// one size-1 parameter block per parameter (so bounds, constant blocks and covariance blocks are
+// per parameter); all blocks share the model's cache, so a trial point costs one state solve.
+
+namespace {
+class MeasurementResidual final : public ceres::CostFunction {
+ public:
+  MeasurementResidual(Identification::Impl& model, std::size_t row) : model_(model), row_(row) {
+    set_num_residuals(1);
+    for (std::size_t k = 0; k < model.names.size(); ++k) mutable_parameter_block_sizes()->push_back(1);
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Index n = model_.scale.size();
+    Eigen::VectorXd p(n);
+    for (Eigen::Index k = 0; k < n; ++k) p(k) = parameters[k][0] * model_.scale(k);
+    const Identification::Prediction& pr = model_.predict(p, jacobians != nullptr);
+    if (!pr.ok) return false;
+    const Measurement& m = model_.measurements[row_];
+    const auto r = static_cast<Eigen::Index>(row_);
+    residuals[0] = (pr.values(r) - m.value) / m.sigma;
+    if (jacobians)
+      for (Eigen::Index k = 0; k < n; ++k)
+        if (jacobians[k]) jacobians[k][0] = pr.jacobian(r, k) * model_.scale(k) / m.sigma;
+    return true;
+  }
+
+ private:
+  Identification::Impl& model_;
+  std::size_t row_;
+};
+
+Status status_of(ceres::TerminationType t) {
+  switch (t) {
+    case ceres::CONVERGENCE:
+    case ceres::USER_SUCCESS: return Status::kConverged;
+    case ceres::NO_CONVERGENCE: return Status::kMaxIterations;
+    case ceres::USER_FAILURE: return Status::kStoppedByCallback;
+    case ceres::FAILURE: return Status::kNumericalFailure;
+  }
+  return Status::kNumericalFailure;
+}
+}  // namespace
+
+Identification::Summary Identification::run() {
+  const auto start = std::chrono::steady_clock::now();
+  Impl& s = *impl_;
+  Summary out;
+  const Eigen::Index n = s.scale.size();
+  const auto nm = static_cast<Eigen::Index>(s.measurements.size());
+  const int solves_before = s.state_solves, jacobians_before = s.jacobian_evaluations;
+  std::vector<double> x(static_cast<std::size_t>(n));
+  for (Eigen::Index k = 0; k < n; ++k) x[static_cast<std::size_t>(k)] = s.initial(k) / s.scale(k);
+
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // one loss shared by all blocks
+  ceres::Problem problem(problem_options);
+  std::unique_ptr<ceres::LossFunction> loss;
+  if (s.options.loss == RobustLoss::kHuber) loss = std::make_unique<ceres::HuberLoss>(s.options.loss_scale);
+  if (s.options.loss == RobustLoss::kCauchy) loss = std::make_unique<ceres::CauchyLoss>(s.options.loss_scale);
+  std::vector<double*> blocks;
+  for (double& v : x) blocks.push_back(&v);
+  for (std::size_t r = 0; r < s.measurements.size(); ++r)
+    problem.AddResidualBlock(new MeasurementResidual(s, r), loss.get(), blocks);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const ParameterSpec& spec = s.options.parameters[static_cast<std::size_t>(k)];
+    double* b = blocks[static_cast<std::size_t>(k)];
+    problem.SetParameterLowerBound(b, 0, spec.lower / s.scale(k));
+    problem.SetParameterUpperBound(b, 0, spec.upper / s.scale(k));
+  }
+
+  ceres::Solver::Options solver_options;
+  solver_options.minimizer_type = ceres::TRUST_REGION;
+  solver_options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  solver_options.linear_solver_type = ceres::DENSE_QR;
+  solver_options.max_num_iterations = s.options.max_iterations;
+  solver_options.function_tolerance = s.options.function_tolerance;
+  solver_options.parameter_tolerance = s.options.parameter_tolerance;
+  solver_options.gradient_tolerance = s.options.gradient_tolerance;
+  solver_options.num_threads = 1;  // the model and its cache are not thread-safe
+  solver_options.logging_type = ceres::SILENT;  // the library never prints
+  ceres::Solver::Summary ceres_summary;
+  ceres::Solve(solver_options, &problem, &ceres_summary);
+  out.ceres_brief_report = ceres_summary.BriefReport();
+  out.ceres_full_report = ceres_summary.FullReport();
+  out.iterations = static_cast<int>(ceres_summary.iterations.size()) - 1;
+  out.initial_cost = ceres_summary.initial_cost;
+  out.final_cost = ceres_summary.final_cost;
+  out.status = status_of(ceres_summary.termination_type);
+  out.message = ceres_summary.message;
+  out.degrees_of_freedom = static_cast<int>(nm - n);
+
+  Eigen::VectorXd p(n);
+  for (Eigen::Index k = 0; k < n; ++k) p(k) = x[static_cast<std::size_t>(k)] * s.scale(k);
+  const Prediction final_prediction = s.predict(p, true);
+  out.estimates.resize(static_cast<std::size_t>(n));
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const ParameterSpec& spec = s.options.parameters[static_cast<std::size_t>(k)];
+    ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
+    e.name = spec.name;
+    e.initial = s.initial(k);
+    e.value = p(k);
+    e.lower = spec.lower;
+    e.upper = spec.upper;
+  }
+  out.covariance = Eigen::MatrixXd::Constant(n, n, kNaN);
+  out.correlation = Eigen::MatrixXd::Constant(n, n, kNaN);
+  if (!final_prediction.ok) {
+    out.status = Status::kNumericalFailure;
+    out.message = "the model could not be evaluated at the estimate: " + final_prediction.message;
+    out.time_seconds = seconds_since(start);
+    return out;
+  }
+  out.predictions = final_prediction.values;
+  Eigen::VectorXd sigma(nm), value(nm);
+  for (Eigen::Index r = 0; r < nm; ++r) {
+    sigma(r) = s.measurements[static_cast<std::size_t>(r)].sigma;
+    value(r) = s.measurements[static_cast<std::size_t>(r)].value;
+  }
+  out.residuals = (out.predictions - value).cwiseQuotient(sigma);
+  out.chi_square = out.residuals.squaredNorm();
+  out.index_sets = final_prediction.index_sets;
+
+  // Identifiability on the scaled Jacobian J_s = diag(1/σ) J diag(scale): column k is the change
+  // of the normalized residuals for a 100% change of parameter k.
+  const Eigen::MatrixXd Js = sigma.cwiseInverse().asDiagonal() * final_prediction.jacobian * s.scale.asDiagonal();
+  const Eigen::VectorXd column_norms = Js.colwise().norm();
+  std::vector<Eigen::Index> live;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
+    if (column_norms(k) <= s.options.zero_column_tolerance) {
+      e.identifiability = Identifiability::kNotDetermined;
+      const bool friction = s.friction_index[static_cast<std::size_t>(k)] >= 0;
+      if (friction && final_prediction.num_slipping_nodes == 0) {
+        // Every node sticks (or separates): any coefficient above the one that puts the most
+        // loaded friction force on the boundary of λW gives the same state.
+        const contact::FrictionLaw law = s.law_for(p);
+        double g = 0.0;
+        for (Eigen::Index i = 0; i < s.num_nodes; ++i) {
+          const double lambda = s.cached_state.lambda(i);
+          if (lambda > 0) g = std::max(g, gauge(law, s.cached_state.q(i) / lambda));
+        }
+        e.note = s.friction_values0.size() == 1
+                     ? fmt::format("only a lower bound: {} >= {:.6g} (every contact node sticks, so any larger "
+                                   "coefficient explains the data equally well)",
+                                   e.name, g * p(k))
+                     : fmt::format("only bounded from below: every contact node sticks (the friction forces lie "
+                                   "inside λ·W, scaling W by {:.4g} would still hold them), so the data cannot "
+                                   "determine the coefficients",
+                                   g);
+      } else {
+        e.note = friction ? "no measured quantity depends on it: no slipping node uses this coefficient at the "
+                            "estimate (its Jacobian column is zero)"
+                          : "no measured quantity depends on it (its Jacobian column is zero)";
+      }
+    } else {
+      live.push_back(k);
+    }
+  }
+  if (!live.empty()) {
+    Eigen::MatrixXd Jl(nm, static_cast<Eigen::Index>(live.size()));
+    for (std::size_t j = 0; j < live.size(); ++j) Jl.col(static_cast<Eigen::Index>(j)) = Js.col(live[j]);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Jl, Eigen::ComputeFullV);
+    out.singular_values = svd.singularValues();
+    const Eigen::VectorXd& sv = svd.singularValues();
+    std::vector<Eigen::Index> correlated;
+    if (sv.size() < static_cast<Eigen::Index>(live.size()) || sv(sv.size() - 1) <= s.options.rank_tolerance * sv(0)) {
+      // Parameters with a visible share in a null direction are only determined in combination.
+      for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(live.size()); ++j) {
+        double share = 0.0;
+        for (Eigen::Index c = 0; c < static_cast<Eigen::Index>(live.size()); ++c)
+          if (c >= sv.size() || sv(c) <= s.options.rank_tolerance * sv(0))
+            share = std::max(share, std::abs(svd.matrixV()(j, c)));
+        if (share > 1e-3) correlated.push_back(live[static_cast<std::size_t>(j)]);
+      }
+      for (Eigen::Index k : correlated) {
+        ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
+        e.identifiability = Identifiability::kCorrelated;
+        e.note = "only a combination with other parameters is determined (the Jacobian is rank deficient)";
+      }
+    }
+    std::vector<Eigen::Index> determined;
+    for (Eigen::Index k : live)
+      if (std::find(correlated.begin(), correlated.end(), k) == correlated.end()) determined.push_back(k);
+    // Covariance of the determined parameters with the others held fixed (Ceres, dense SVD).
+    for (Eigen::Index k = 0; k < n; ++k)
+      if (std::find(determined.begin(), determined.end(), k) == determined.end())
+        problem.SetParameterBlockConstant(blocks[static_cast<std::size_t>(k)]);
+    if (!determined.empty()) {
+      ceres::Covariance::Options co;
+      co.algorithm_type = ceres::DENSE_SVD;
+      co.num_threads = 1;
+      co.null_space_rank = 0;  // rank deficiency was handled above: fail rather than drop directions
+      co.min_reciprocal_condition_number = s.options.rank_tolerance * s.options.rank_tolerance;
+      ceres::Covariance covariance(co);
+      std::vector<std::pair<const double*, const double*>> pairs;
+      for (Eigen::Index a : determined)
+        for (Eigen::Index b : determined)
+          if (a <= b) pairs.emplace_back(blocks[static_cast<std::size_t>(a)], blocks[static_cast<std::size_t>(b)]);
+      if (covariance.Compute(pairs, &problem)) {
+        for (Eigen::Index a : determined)
+          for (Eigen::Index b : determined) {
+            if (a > b) continue;
+            double v = kNaN;
+            (void)covariance.GetCovarianceBlock(blocks[static_cast<std::size_t>(a)], blocks[static_cast<std::size_t>(b)], &v);
+            out.covariance(a, b) = out.covariance(b, a) = v * s.scale(a) * s.scale(b);
+          }
+        for (Eigen::Index k : determined) {
+          ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
+          e.standard_deviation = std::sqrt(out.covariance(k, k));
+          const double tol = 1e-9 * s.scale(k);
+          const bool at_bound = std::abs(e.value - e.lower) <= tol || std::abs(e.value - e.upper) <= tol;
+          e.identifiability = at_bound ? Identifiability::kAtBound : Identifiability::kDetermined;
+          if (at_bound)
+            e.note = "the estimate is on a bound: the deviation is that of the unconstrained problem";
+        }
+        for (Eigen::Index a : determined)
+          for (Eigen::Index b : determined)
+            out.correlation(a, b) = out.covariance(a, b) / std::sqrt(out.covariance(a, a) * out.covariance(b, b));
+      } else {
+        for (Eigen::Index k : determined) {
+          ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
+          e.identifiability = Identifiability::kCorrelated;
+          e.note = "ceres::Covariance found the Jacobian rank deficient";
+        }
+      }
+    }
+  }
+  out.state_solves = s.state_solves - solves_before;
+  out.jacobian_evaluations = s.jacobian_evaluations - jacobians_before;
+  out.time_seconds = seconds_since(start);
+  return out;
+}
+
+std::vector<Measurement> synthetic_measurements(const std::vector<Measurement>& templates,
+                                                const Eigen::Ref<const Eigen::VectorXd>& exact, std::uint64_t seed,
+                                                bool add_noise) {
+  if (exact.size() != static_cast<Eigen::Index>(templates.size()))
+    throw InvalidInput(fmt::format("synthetic_measurements: {} exact values for {} templates", exact.size(), templates.size()));
+  std::mt19937_64 rng{seed};
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<Measurement> out = templates;
+  for (std::size_t r = 0; r < out.size(); ++r) {
+    out[r].value = exact(static_cast<Eigen::Index>(r));
+    if (add_noise) out[r].value += out[r].sigma * normal(rng);
+  }
+  return out;
+}
+
+}  // namespace frictopt::study
