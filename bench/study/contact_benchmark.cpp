@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: MIT
+// One Coulomb state solve and one subgradient on 3D punch problems of about 20k, 100k and 200k
+// unknowns (625, 1681 and 2601 contact nodes), against the floor of one sparse Cholesky
+// factorization + solve of the same stiffness matrix (issue 3 item 8, issue 4 item 7).
+//   build/bench/study/contact_benchmark                 (all sizes; the largest takes minutes)
+//   build/bench/study/contact_benchmark --benchmark_filter=cells:24
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include <chrono>
+
+#include "frictopt/cost/cost_functional.hpp"
+#include "frictopt/study/shape_oracle.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+double peak_rss_megabytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+// The punch of cases3d/punch with an n × n × n/2 grid: a plate presses the top down and
+// sideways, a dish-shaped 4 × 4 Bézier bottom, isotropic 16-gon friction μ = 0.3.
+frictopt::study::BodyDefinition punch(int n) {
+  using namespace frictopt;
+  study::BodyDefinition b;
+  b.shape = shape::BezierShape::surface(1.0, 1.0, 4, 4);
+  b.height = 0.5;
+  b.resolution = {{n, n, n / 2}, 1.5};
+  b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
+  b.dirichlet = {{mesh::Face::kTop, {}, Eigen::Vector3d(1e-4, 0.0, -1.2e-3)}};
+  b.admissible.upper_bound = 5e-3;
+  b.admissible.height = 0.5;
+  b.initial_design.resize(16);
+  b.initial_design << 1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3, 1.0e-3, 0.5e-3, 0.5e-3, 1.0e-3, 1.0e-3, 0.5e-3, 0.5e-3, 1.0e-3,
+      1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3;
+  study::ContactDefinition c;
+  c.law = contact::FrictionLaw::regular_polygon(0.3, 16);
+  b.contact = c;
+  return b;
+}
+
+void BM_CoulombSolveAndSubgradient(benchmark::State& state) {
+  using namespace frictopt;
+  const int n = static_cast<int>(state.range(0));
+  const study::BodyDefinition definition = punch(n);
+  double floor_s = 0, state_s = 0, subgradient_s = 0, factorization_s = 0;
+  int unknowns = 0, contact_nodes = 0, fixed_point = 0, qp = 0, applies = 0;
+  double kkt = 0;
+  for (auto _ : state) {
+    // Floor: one factorization (CHOLMOD's own ordering) + one solve of the same matrix.
+    {
+      study::BodyDefinition plain = definition;
+      plain.contact.reset();
+      study::ElasticBody elastic(plain);
+      const auto t0 = Clock::now();
+      const study::BodyState s = elastic.solve(plain.initial_design);
+      floor_s = seconds(t0, Clock::now()) - s.summary.assembly_seconds;
+      benchmark::DoNotOptimize(s.displacement.data());
+    }
+    study::ElasticBody body(definition);
+    study::ShapeOracle oracle(body, cost::make_compliance());
+    const auto t0 = Clock::now();
+    const study::Evaluation& e = oracle.evaluate_design(definition.initial_design, false);
+    const auto t1 = Clock::now();
+    const study::Evaluation& g = oracle.evaluate_design(definition.initial_design, true);
+    const auto t2 = Clock::now();
+    if (!g.ok) state.SkipWithError(g.message.c_str());
+    state_s = seconds(t0, t1) - e.state.assembly_seconds;
+    subgradient_s = seconds(t1, t2);
+    factorization_s = e.state.factorization_seconds;
+    unknowns = body.elasticity().dofs().num_free();
+    contact_nodes = static_cast<int>(body.contact_boundary()->num_nodes());
+    fixed_point = e.contact.iterations;
+    qp = e.contact.qp_iterations;
+    applies = e.contact.operator_applications;
+    kkt = e.contact.kkt_residual;
+  }
+  state.counters["unknowns"] = unknowns;
+  state.counters["contact_nodes"] = contact_nodes;
+  state.counters["floor_s"] = floor_s;
+  state.counters["state_s"] = state_s;
+  state.counters["factorization_s"] = factorization_s;
+  state.counters["subgradient_s"] = subgradient_s;
+  state.counters["state_over_floor"] = state_s / floor_s;
+  state.counters["subgradient_over_state"] = subgradient_s / state_s;
+  state.counters["fixed_point_its"] = fixed_point;
+  state.counters["qp_its"] = qp;
+  state.counters["applies"] = applies;
+  state.counters["kkt"] = kkt;
+  state.counters["peak_rss_MB"] = peak_rss_megabytes();
+}
+
+// cells 24, 40, 50: 3·25²·13 ≈ 20k, 3·41²·21 ≈ 106k, 3·51²·26 ≈ 203k unknowns.
+BENCHMARK(BM_CoulombSolveAndSubgradient)
+    ->ArgName("cells")
+    ->Arg(24)
+    ->Arg(40)
+    ->Arg(50)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
