@@ -449,6 +449,17 @@ Identification::~Identification() = default;
 
 const std::vector<std::string>& Identification::parameter_names() const { return impl_->names; }
 Eigen::VectorXd Identification::initial_parameters() const { return impl_->initial; }
+Eigen::VectorXd Identification::case_parameters() const {
+  Eigen::VectorXd p(static_cast<Eigen::Index>(impl_->names.size()));
+  for (std::size_t k = 0; k < impl_->names.size(); ++k) {
+    const int index = impl_->friction_index[k];
+    p(static_cast<Eigen::Index>(k)) = index >= 0 ? impl_->friction_values0(index) : impl_->young0;
+  }
+  return p;
+}
+const Eigen::MatrixXd& Identification::contact_coordinates() const {
+  return impl_->body->contact_boundary()->plane_coordinates();
+}
 const std::vector<Measurement>& Identification::measurements() const { return impl_->measurements; }
 
 Identification::Prediction Identification::predict(const Eigen::Ref<const Eigen::VectorXd>& parameters, bool with_jacobian) {

@@ -174,6 +174,11 @@ class Identification {
   const std::vector<std::string>& parameter_names() const;
   /// The starting point (the options' initial values, or the case's).
   Eigen::VectorXd initial_parameters() const;
+  /// The body definition's own values of the parameters (its friction law and E): the "true"
+  /// values when synthetic data are generated from the case.
+  Eigen::VectorXd case_parameters() const;
+  /// In-plane coordinates x' of the contact nodes (p × dim−1), for reports and plots.
+  const Eigen::MatrixXd& contact_coordinates() const;
   /// The measurements with their locations resolved to contact nodes (node >= 0 or totals).
   const std::vector<Measurement>& measurements() const;
 
