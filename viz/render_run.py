@@ -155,7 +155,7 @@ def read_history(path):
             rows = list(csv.DictReader(stream))
     except OSError as error:
         raise RunError(f"{path}: {error}") from error
-    needed = {"iteration", "step", "theta", "stationarity"}
+    needed = {"iteration", "step", "theta", "stationarity_relative"}
     if rows and not needed <= set(rows[0]):
         raise RunError(f"{path}: columns {sorted(needed - set(rows[0]))} missing")
     history = []
@@ -814,7 +814,7 @@ def picture_history(run, out_dir):
     iterations = [0] + [int(r["iteration"]) for r in rows]
     theta = [run.summary.get("initial_cost", float("nan"))] + [r["theta"] for r in rows]
     steps = [""] + [r.get("step", "") for r in rows]
-    stationarity = [float("nan")] + [r.get("stationarity", float("nan")) for r in rows]
+    stationarity = [float("nan")] + [r.get("stationarity_relative", float("nan")) for r in rows]
     iterations, theta, stationarity = (np.array(iterations), np.array(theta, dtype=float),
                                        np.array(stationarity, dtype=float))
 
@@ -846,7 +846,7 @@ def picture_history(run, out_dir):
         right.plot(iterations, stationarity, "--", color="#2171b5", lw=1.2)
         if np.all(stationarity[np.isfinite(stationarity)] > 0):
             right.set_yscale("log")
-        right.set_ylabel("stationarity measure (history.csv)", color="#2171b5")
+        right.set_ylabel("stationarity ‖z+ω‖ / |Θ(α⁰)|", color="#2171b5")
         right.tick_params(axis="y", colors="#2171b5")
         handles.append(Line2D([], [], ls="--", color="#2171b5", lw=1.2))
         labels.append("stationarity measure (right axis)")

@@ -251,7 +251,7 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
   };
 
   io::CsvWriter history(out_dir / "history.csv",
-                        {"iteration", "evaluations", "step", "theta", "t", "stationarity", "aggregate_error",
+                        {"iteration", "evaluations", "step", "theta", "t", "stationarity_relative", "aggregate_error_relative",
                          "bundle_size", "serious_steps", "null_steps", "state_solves", "coulomb_iterations",
                          "qp_iterations", "weak_nodes", "elapsed_seconds"},
                         resume ? io::CsvWriter::Mode::kAppend : io::CsvWriter::Mode::kTruncate);
@@ -259,8 +259,10 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
              definition.shape.num_controls(), body.contact_boundary()->num_nodes(), oracle.cost().name(),
              fmt::format("{} inequalities and {} equalities", body.admissible_set().A_in.rows(),
                          body.admissible_set().A_eq.rows()));
+  // The method minimizes Θ/|Θ(α⁰)| (study defaults): its stationarity measure ‖z + ω‖ and
+  // aggregate error are relative to |Θ(α⁰)| per unit of α; summary.json also gives them in Θ's units.
   fmt::print("{:>5} {:>6} {:>14} {:>14} {:>10} {:>12} {:>8} {:>9}\n", "iter", "evals", "theta", "step", "t",
-             "stationarity", "QP its", "elapsed");
+             "stat. (rel)", "QP its", "elapsed");
   const auto on_progress = [&](const study::OptimizationProgress& p) {
     const auto& m = p.method;
     history.write_row({static_cast<std::int64_t>(m.iteration), static_cast<std::int64_t>(m.evaluations),
@@ -310,8 +312,11 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
   json["null_steps"] = summary.null_steps;
   json["evaluations"] = summary.evaluations;
   json["failed_evaluations"] = summary.failed_evaluations;
-  json["stationarity"] = summary.stationarity;
+  json["stationarity"] = summary.stationarity;  // ‖z + ω‖ in units of Θ per unit of α
   json["aggregate_error"] = summary.aggregate_error;
+  json["objective_scale"] = summary.objective_scale;  // |Θ(α⁰)|: history.csv's columns are relative to it
+  json["stationarity_relative"] = summary.stationarity / summary.objective_scale;
+  json["cost_kind"] = std::string(io::to_string(description.cost->kind));
   json["state_solves"] = oracle.num_state_solves();
   json["time_seconds"] = summary.time_seconds;
   json["final_index_sets"] = final.index_sets.summary();
