@@ -460,6 +460,31 @@ TEST(Identification, RecoversWithinTheReportedStandardDeviationsFromNoisyData) {
   EXPECT_GE(within_one, total / 2);
 }
 
+TEST(Identification, HuberLossResistsAnOutlier) {
+  // Noise-free data with one traction value off by 50σ: plain least squares is pulled away from
+  // the truth, a Huber loss (scale 1σ) turns the outlier's pull into a constant and stays close.
+  Synthetic data = synthesize(block(kTrueLaw), sensor_templates(49, 1), polygon_parameters(kTrueMu), kTrueMu, 0.01,
+                              kSeed, false);
+  Measurement& outlier = data.measurements[3 * 30];  // tangential_force_x1 at node 30
+  outlier.value += 50.0 * outlier.sigma;
+  double error[2] = {0, 0};
+  for (const RobustLoss loss : {RobustLoss::kNone, RobustLoss::kHuber}) {
+    Identification::Options o;
+    o.parameters = polygon_parameters(Eigen::Vector4d::Constant(0.3));
+    o.loss = loss;
+    o.loss_scale = 1.0;
+    Identification id(block(contact::FrictionLaw::polygon({0.3, 0.3, 0.3, 0.3})), data.measurements, o);
+    const Identification::Summary s = id.run();
+    print_estimates(s, kTrueMu);
+    ASSERT_EQ(s.status, Status::kConverged) << s.message;
+    Eigen::Vector4d estimate;
+    for (int k = 0; k < 4; ++k) estimate(k) = s.estimates[static_cast<std::size_t>(k)].value;
+    error[loss == RobustLoss::kHuber] = (estimate - kTrueMu).cwiseQuotient(kTrueMu).cwiseAbs().maxCoeff();
+  }
+  std::printf("largest relative error: least squares %.2e, Huber %.2e\n", error[0], error[1]);
+  EXPECT_LT(error[1], 0.5 * error[0]);
+}
+
 TEST(Identification, ReportsOnlyALowerBoundWhenEveryNodeSticks) {
   // Large μ and no sideways motion of a flat-bottomed block: every contact node sticks, the data
   // cannot tell μ from any larger value, and the report must say so instead of a deviation.
