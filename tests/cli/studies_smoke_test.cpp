@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// Smoke test of the shipped study cases (cases2d/, cases3d/): each parses and `frictopt solve`s
+// on a coarsened copy (the [mesh] cells line replaced by a small grid), and a short 2D
+// `frictopt optimize` run writes its history, summary and VTK series, continues with --resume
+// (the history gains rows) and refuses an existing run directory without --resume/--force.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "frictopt/io/json.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exit_code;
+  std::string output;
+};
+
+RunResult run(const std::string& arguments) {
+  const fs::path log = fs::temp_directory_path() / "frictopt_studies_smoke.log";
+  const std::string command = std::string(FRICTOPT_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream in(log);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+}
+
+fs::path fresh_directory(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("frictopt_studies_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// Replaces the first line starting with `key =` by `key = value` (the rest of the file kept).
+std::string replace_key(const std::string& text, const std::string& key, const std::string& value) {
+  const std::regex line("^" + key + R"( *=[^\n]*)", std::regex::multiline);
+  EXPECT_TRUE(std::regex_search(text, line)) << "no '" << key << " =' line";
+  return std::regex_replace(text, line, key + " = " + value, std::regex_constants::format_first_only);
+}
+
+int count_lines(const fs::path& path) {
+  std::ifstream in(path);
+  int n = 0;
+  for (std::string row; std::getline(in, row);)
+    if (!row.empty()) ++n;
+  return n;
+}
+
+std::vector<fs::path> shipped_cases(const std::string& folder) {
+  std::vector<fs::path> cases;
+  for (const auto& entry : fs::directory_iterator(fs::path(FRICTOPT_SOURCE_DIR) / folder))
+    if (fs::exists(entry.path() / "case.toml")) cases.push_back(entry.path() / "case.toml");
+  std::sort(cases.begin(), cases.end());
+  return cases;
+}
+
+TEST(StudiesSmoke, EveryShipped2dCaseSolves) {
+  const auto cases = shipped_cases("cases2d");
+  ASSERT_GE(cases.size(), 4u);  // thesis-body and ex521–ex523
+  for (const fs::path& c : cases) {
+    SCOPED_TRACE(c.string());
+    const std::string name = c.parent_path().filename().string();
+    // The 2D cases are the thesis' 450-node mesh: fast enough as they are.
+    const RunResult r = run("solve " + c.string() + " -o " + fresh_directory("solve_" + name).string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("Coulomb"), std::string::npos) << r.output;
+  }
+}
+
+TEST(StudiesSmoke, EveryShipped3dCaseSolvesOnACoarsenedCopy) {
+  const auto cases = shipped_cases("cases3d");
+  ASSERT_GE(cases.size(), 6u);  // punch, the four punch studies and punch-large
+  for (const fs::path& c : cases) {
+    SCOPED_TRACE(c.string());
+    const std::string name = c.parent_path().filename().string();
+    const fs::path dir = fresh_directory("solve_" + name);
+    const fs::path coarse = dir / (name + ".toml");
+    write_text(coarse, replace_key(read_text(c), "cells", "[6, 6, 3]"));
+    const RunResult r = run("solve " + coarse.string() + " -o " + (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir / "out" / "summary.json")) << r.output;
+  }
+}
+
+TEST(StudiesSmoke, ShortOptimizeRunWritesOutputsResumesAndRefusesAnExistingRun) {
+  const fs::path dir = fresh_directory("optimize");
+  const fs::path case_path = dir / "ex521.toml";
+  std::string text = read_text(fs::path(FRICTOPT_SOURCE_DIR) / "cases2d/ex521-target-pressure/case.toml");
+  text = replace_key(text, "max_iterations", "3");
+  text = replace_key(text, "every", "1");
+  text = replace_key(text, "name", "\"smoke\"");
+  write_text(case_path, text);
+  const fs::path out = dir / "run";
+
+  const RunResult first = run("optimize " + case_path.string() + " -o " + out.string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  for (const char* file : {"history.csv", "summary.json", "checkpoint.json", "final_design.json", "smoke.pvd",
+                           "smoke_iter0000.vtu", "case.toml"})
+    EXPECT_TRUE(fs::exists(out / file)) << file << "\n" << first.output;
+  const int rows_first = count_lines(out / "history.csv");
+  EXPECT_EQ(rows_first, 1 + 3);  // header + one row per iteration
+  const auto summary = frictopt::io::parse_json(read_text(out / "summary.json"));
+  EXPECT_EQ(summary.at("iterations").as_number(), 3);
+  EXPECT_LE(summary.at("final_cost").as_number(), summary.at("initial_cost").as_number());
+
+  // An existing run is refused without --resume or --force (exit code 2, invalid input).
+  const RunResult refused = run("optimize " + case_path.string() + " -o " + out.string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("--resume"), std::string::npos) << refused.output;
+  EXPECT_EQ(count_lines(out / "history.csv"), rows_first);
+
+  // --resume continues from the checkpoint with the run's own case copy; allow 2 more iterations.
+  write_text(out / "case.toml", replace_key(read_text(out / "case.toml"), "max_iterations", "5"));
+  const RunResult resumed = run("optimize " + case_path.string() + " -o " + out.string() + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("resuming at iteration 3"), std::string::npos) << resumed.output;
+  EXPECT_EQ(count_lines(out / "history.csv"), rows_first + 2);
+  EXPECT_EQ(frictopt::io::parse_json(read_text(out / "summary.json")).at("iterations").as_number(), 5);
+
+  // --force replaces the run.
+  const RunResult forced = run("optimize " + case_path.string() + " -o " + out.string() + " --force");
+  ASSERT_EQ(forced.exit_code, 0) << forced.output;
+  EXPECT_EQ(count_lines(out / "history.csv"), rows_first);
+}
+
+}  // namespace
