@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: MIT
+// The subcommands of the frictopt command line, one file each (*_command.cpp). They load the
+// case through io, call study, print one-line reports and return the exit code; main.cpp only
+// parses arguments. Bad input throws frictopt::InvalidInput, which main maps to exit code 2.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+
+namespace frictopt::app {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitInvalidInput = 2;
+inline constexpr int kExitNumericalFailure = 3;
+
+int run_solve(const std::filesystem::path& case_path, const std::filesystem::path& out_dir);
+int run_export_fclib(const std::filesystem::path& case_path, const std::filesystem::path& out_path,
+                     bool normalize_units, bool include_solution);
+int run_check_gradient(const std::filesystem::path& case_path, const std::filesystem::path& design_path,
+                       double relative_step);
+int run_optimize(const std::filesystem::path& case_argument, const std::filesystem::path& out_dir, bool resume,
+                 bool force);
+int run_certify(const std::filesystem::path& run_dir, int cap);
+int run_identify(const std::filesystem::path& case_path, const std::filesystem::path& out_dir, bool generate,
+                 std::uint64_t seed, bool noise_free);
+
+}  // namespace frictopt::app

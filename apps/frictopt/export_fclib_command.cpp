@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+// `frictopt export-fclib`: see apps/frictopt/commands.hpp.
+#include "commands.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include "frictopt/core/error.hpp"
+#include "frictopt/io/case_file.hpp"
+#include "frictopt/io/fclib_export.hpp"
+#include "frictopt/io/checkpoint.hpp"
+#include "frictopt/io/csv_writer.hpp"
+#include "frictopt/io/design_file.hpp"
+#include "frictopt/io/pvd_writer.hpp"
+#include "frictopt/io/json.hpp"
+#include "frictopt/io/measurements.hpp"
+#include "frictopt/study/identification.hpp"
+#include "frictopt/sensitivity/friction_parameters.hpp"
+#include "frictopt/study/certificate.hpp"
+#include "frictopt/study/shape_optimization.hpp"
+#include "frictopt/study/shape_oracle.hpp"
+#include "frictopt/io/state_output.hpp"
+#include "frictopt/io/study_setup.hpp"
+#include "frictopt/study/elastic_body.hpp"
+
+namespace frictopt::app {
+
+// `frictopt export-fclib CASE OUT.hdf5`: the contact problem at the initial design in FCLIB's
+// local format, with our solution (docs/contact.md, "FCLIB export").
+int run_export_fclib(const std::filesystem::path& case_path, const std::filesystem::path& out_path,
+                     bool normalize_units, bool include_solution) {
+  using namespace frictopt;
+  const io::CaseDescription description = io::load_case(case_path);
+  study::ElasticBody body(io::make_body_definition(description));
+  if (!body.contact_boundary())
+    throw InvalidInput(fmt::format("{}: the case has no [contact]; there is no contact problem to export",
+                                   case_path.string()));
+  study::BodyState state = body.solve(body.definition().initial_design, "initial design");
+  if (!state.contact) {  // the elasticity factorization failed before the contact solve
+    fmt::print("{}\n", state.summary.brief_report());
+    return kExitNumericalFailure;
+  }
+  fmt::print("{}\n", state.contact->summary.brief_report());
+  io::FclibExportOptions options;
+  options.case_name = case_path.string();
+  options.normalize_units = normalize_units;
+  options.include_solution = include_solution;
+  const io::FclibLocalProblem problem = io::export_fclib_local(out_path, body, state, options);
+  fmt::print("wrote {}: FCLIB local problem, spacedim {}, {} contacts, mu = {:.6g}, units {:.6g} N / {:.6g} m; {}\n",
+             out_path.string(), problem.spacedim, problem.num_contacts(),
+             problem.mu.size() > 0 ? problem.mu(0) : 0.0, problem.force_unit, problem.length_unit,
+             !include_solution ? "no solution stored"
+             : problem.solution_is_exact
+                 ? fmt::format("solution stored (natural-map residual {:.2e})",
+                               io::fclib_natural_map_residual(problem, problem.r))
+                 : "our solution stored as initial guess only (not exact for this problem)");
+  if (!state.contact->summary.converged())
+    fmt::print("warning: the contact solve did not converge; the problem is exported, our solution only as a guess\n");
+  return kExitOk;
+}
+
+}  // namespace frictopt::app

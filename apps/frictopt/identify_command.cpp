@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: MIT
+// `frictopt identify`: see apps/frictopt/commands.hpp.
+#include "commands.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include "frictopt/core/error.hpp"
+#include "frictopt/io/case_file.hpp"
+#include "frictopt/io/fclib_export.hpp"
+#include "frictopt/io/checkpoint.hpp"
+#include "frictopt/io/csv_writer.hpp"
+#include "frictopt/io/design_file.hpp"
+#include "frictopt/io/pvd_writer.hpp"
+#include "frictopt/io/json.hpp"
+#include "frictopt/io/measurements.hpp"
+#include "frictopt/study/identification.hpp"
+#include "frictopt/sensitivity/friction_parameters.hpp"
+#include "frictopt/study/certificate.hpp"
+#include "frictopt/study/shape_optimization.hpp"
+#include "frictopt/study/shape_oracle.hpp"
+#include "frictopt/io/state_output.hpp"
+#include "frictopt/io/study_setup.hpp"
+#include "frictopt/study/elastic_body.hpp"
+
+namespace frictopt::app {
+
+// frictopt identify: friction coefficients (and E) from the measurements named in the case's
+// [identification] table (issue 7, docs/identification.md). Writes fit.csv (measured vs fitted
+// per measurement), summary.json (estimates, covariance, correlation, Ceres report) and
+// ceres_report.txt. With --generate-synthetic it instead writes measurements.csv: the rows of
+// the case's measurement file with values from the case's own law plus N(0, σ²) noise (--seed).
+int run_identify(const std::filesystem::path& case_path, const std::filesystem::path& out_dir, bool generate,
+                 std::uint64_t seed, bool noise_free) {
+  using namespace frictopt;
+  const io::CaseDescription description = io::load_case(case_path);
+  if (!description.identification)
+    throw InvalidInput(case_path.string() + ": identify needs an [identification] table (docs/identification.md)");
+  const std::vector<study::Measurement> measurements = io::read_measurements(description.identification->measurements);
+  study::Identification identification(io::make_body_definition(description), measurements,
+                                       io::make_identification_options(description));
+  const auto& names = identification.parameter_names();
+  std::filesystem::create_directories(out_dir);
+  if (generate) {
+    const Eigen::VectorXd truth = identification.case_parameters();
+    const study::Identification::Prediction exact = identification.predict(truth);
+    if (!exact.ok) {
+      fmt::print("error: the model could not be evaluated at the case's parameters: {}\n", exact.message);
+      return kExitNumericalFailure;
+    }
+    std::string truth_text;
+    for (std::size_t k = 0; k < names.size(); ++k)
+      truth_text += fmt::format("{}{} = {}", k ? ", " : "", names[k], truth(static_cast<Eigen::Index>(k)));
+    const auto synthetic = study::synthetic_measurements(measurements, exact.values, seed, !noise_free);
+    const auto path = out_dir / "measurements.csv";
+    io::write_measurements(path, synthetic,
+                           fmt::format("synthetic: frictopt identify {} --generate-synthetic --seed {}{}; {}; {}",
+                                       case_path.filename().string(), seed, noise_free ? " --noise-free" : "",
+                                       truth_text, exact.index_sets));
+    fmt::print("{}\nwrote {} ({} measurements; truth {})\n", exact.contact.brief_report(), path.string(),
+               synthetic.size(), truth_text);
+    return kExitOk;
+  }
+  fmt::print("{}: {} measurements, {} parameters\n", case_path.string(), measurements.size(), names.size());
+  const study::Identification::Summary s = identification.run();
+  fmt::print("{}\n{}\n", s.ceres_brief_report, s.brief_report());
+  fmt::print("{:<18} {:>14} {:>14} {:>12} {:>24}  {}\n", "parameter", "initial", "estimate", "std. dev.", "bounds",
+             "identifiability");
+  for (const auto& e : s.estimates)
+    fmt::print("{:<18} {:>14.8g} {:>14.8g} {:>12} {:>24}  {}{}\n", e.name, e.initial, e.value,
+               std::isnan(e.standard_deviation) ? std::string("-") : fmt::format("{:.3g}", e.standard_deviation),
+               fmt::format("[{:g}, {:g}]", e.lower, e.upper), study::to_string(e.identifiability),
+               e.note.empty() ? "" : ": " + e.note);
+  if (s.correlation.size() && names.size() > 1) {
+    fmt::print("correlation:\n");
+    for (Eigen::Index a = 0; a < s.correlation.rows(); ++a) {
+      std::string row;
+      for (Eigen::Index b = 0; b < s.correlation.cols(); ++b)
+        row += std::isnan(s.correlation(a, b)) ? fmt::format("{:>8}", "-") : fmt::format("{:>8.3f}", s.correlation(a, b));
+      fmt::print("  {:<16}{}\n", names[static_cast<std::size_t>(a)], row);
+    }
+  }
+  std::ofstream(out_dir / "ceres_report.txt") << s.ceres_full_report;
+  if (s.predictions.size()) {
+    io::CsvWriter fit(out_dir / "fit.csv",
+                      {"quantity", "node", "x1", "x2", "measured", "sigma", "fitted", "normalized_residual"});
+    const Eigen::MatrixXd& xy = identification.contact_coordinates();
+    const auto& ms = identification.measurements();
+    for (std::size_t r = 0; r < ms.size(); ++r) {
+      const auto& m = ms[r];
+      const auto R = static_cast<Eigen::Index>(r);
+      const double x1 = m.node >= 0 ? xy(m.node, 0) : kNaN;
+      const double x2 = m.node >= 0 && xy.cols() > 1 ? xy(m.node, 1) : kNaN;
+      fit.write_row({std::string(study::to_string(m.quantity)), std::int64_t{m.node}, x1, x2, m.value, m.sigma,
+                     s.predictions(R), s.residuals(R)});
+    }
+  }
+  io::JsonValue summary = io::JsonValue::object();
+  summary["case"] = case_path.string();
+  summary["command"] = "identify";
+  summary["status"] = std::string(to_string(s.status));
+  summary["message"] = s.message;
+  summary["ceres_brief_report"] = s.ceres_brief_report;
+  summary["iterations"] = s.iterations;
+  summary["state_solves"] = s.state_solves;
+  summary["initial_cost"] = s.initial_cost;
+  summary["final_cost"] = s.final_cost;
+  summary["chi_square"] = s.chi_square;
+  summary["degrees_of_freedom"] = s.degrees_of_freedom;
+  summary["time_seconds"] = s.time_seconds;
+  summary["index_sets"] = s.index_sets;
+  io::JsonValue estimates = io::JsonValue::array();
+  for (const auto& e : s.estimates) {
+    io::JsonValue j = io::JsonValue::object();
+    j["name"] = e.name;
+    j["initial"] = e.initial;
+    j["value"] = e.value;
+    j["lower"] = e.lower;
+    j["upper"] = e.upper;
+    j["standard_deviation"] = e.standard_deviation;
+    j["identifiability"] = std::string(study::to_string(e.identifiability));
+    j["note"] = e.note;
+    estimates.push_back(j);
+  }
+  summary["estimates"] = estimates;
+  io::JsonValue correlation = io::JsonValue::array();
+  for (Eigen::Index a = 0; a < s.correlation.rows(); ++a) correlation.push_back(io::JsonValue(Eigen::VectorXd(s.correlation.row(a).transpose())));
+  summary["correlation"] = correlation;
+  summary["singular_values"] = s.singular_values;
+  io::write_json(out_dir / "summary.json", summary);
+  fmt::print("wrote {}, {}, {}\n", (out_dir / "fit.csv").string(), (out_dir / "summary.json").string(),
+             (out_dir / "ceres_report.txt").string());
+  return s.status == Status::kConverged ? kExitOk : kExitNumericalFailure;
+}
+
+}  // namespace frictopt::app
