@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
-# The README's main job: set-up, build, then run the default 3D case and write VTK (and,
-# when the viz scripts apply, PNG pictures) into ./demo-output.
+# The README's main job: set-up, build, then optimize the default 3D case (a punch pressed onto
+# the foundation with isotropic Coulomb friction, target uniform contact pressure) and write
+# VTK series, history, summary and PNG pictures into ./demo-output (or the directory given).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$root/scripts/build.sh"
 build="${FRICTOPT_BUILD_DIR:-$root/build}"
 out="${1:-$root/demo-output}"
-"$build/apps/frictopt/frictopt" solve "$root/cases3d/punch/case.toml" -o "$out"
-if [ -f "$root/viz/render_vtu.py" ]; then
-  bash "$root/viz/run_headless.sh" /usr/bin/python3 "$root/viz/render_vtu.py" "$out" || {
-    echo "demo: picture rendering failed (VTK files are in $out)" >&2; exit 1; }
-fi
-echo "demo: outputs in $out"
+case_file="$root/cases3d/punch-target-pressure/case.toml"
+"$build/apps/frictopt/frictopt" optimize "$case_file" -o "$out" --force
+"$build/apps/frictopt/frictopt" certify "$out"
+bash "$root/viz/run_headless.sh" /usr/bin/python3 "$root/viz/render_run.py" "$out"
+echo "demo: VTK series $out/*.pvd (open in ParaView), pictures in $out/pictures/, summary $out/summary.json"
