@@ -4,6 +4,8 @@
 // input error (exit code 2) naming the file.
 #include <gtest/gtest.h>
 
+#include "common/cli_runner.hpp"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -15,27 +17,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exit_code;
-  std::string output;
-};
+using frictopt::testing::RunResult;
+using frictopt::testing::read_text;
+RunResult run(const std::string& arguments) { return frictopt::testing::run_frictopt(arguments); }
 
-RunResult run(const std::string& arguments) {
-  const fs::path log = fs::temp_directory_path() / "frictopt_cli_certify_test.log";
-  const std::string command = std::string(FRICTOPT_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 TEST(CliCertify, WritesCertificateJsonForAFreshRun) {
   const fs::path dir = fs::temp_directory_path() / "frictopt_cli_certify_run";

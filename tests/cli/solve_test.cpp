@@ -3,6 +3,8 @@
 // displacement and stress arrays, a summary.json, and rejects bad cases with a clear message.
 #include <gtest/gtest.h>
 
+#include "common/cli_runner.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -16,26 +18,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exit_code;
-  std::string output;
-};
+using frictopt::testing::RunResult;
+using frictopt::testing::fresh_directory;
+RunResult run(const std::string& arguments) { return frictopt::testing::run_frictopt(arguments); }
 
-RunResult run(const std::string& arguments) {
-  const fs::path log = fs::temp_directory_path() / "frictopt_cli_test.log";
-  const std::string command = std::string(FRICTOPT_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
-
-fs::path fresh_directory(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("frictopt_cli_" + name);
-  fs::remove_all(dir);
-  return dir;
-}
 
 TEST(CliSolve, Writes3dVtuWithDisplacementAndStressArrays) {
   const fs::path out = fresh_directory("solve3d");

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+// Runs the frictopt binary from a test and captures its exit code and output. The binary's path
+// comes from the FRICTOPT_BINARY compile definition (see tests/cli/CMakeLists.txt).
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace frictopt::testing {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Runs `frictopt <arguments>`; the log file is unique per test and process, so tests may run
+/// in parallel (ctest -j).
+inline RunResult run_frictopt(const std::string& arguments) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string tag = info ? std::string(info->test_suite_name()) + "." + info->name() : "frictopt";
+  const std::filesystem::path log =
+      std::filesystem::temp_directory_path() / ("frictopt_" + tag + "_" + std::to_string(::getpid()) + ".log");
+  const std::string command = std::string(FRICTOPT_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  RunResult result{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(log)};
+  std::filesystem::remove(log);
+  return result;
+}
+
+/// An empty directory under the temporary directory, removed first if it exists.
+inline std::filesystem::path fresh_directory(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("frictopt_" + name);
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+}  // namespace frictopt::testing
