@@ -7,74 +7,15 @@
 #include <chrono>
 
 #include "frictopt/core/error.hpp"
-#include "frictopt/sensitivity/friction_parameters.hpp"
+#include "friction_geometry.hpp"
+#include "frictopt/sensitivity/parameter_sensitivity.hpp"
 
 namespace frictopt::sensitivity {
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a(0) * b(1) - a(1) * b(0); }
-
 // max_c |v_c| over the first n (1 or 2) components; a loop rather than v.head(n) because GCC 12
 // reports a false -Warray-bounds for dynamic heads of fixed-size vectors.
 double max_abs(const Eigen::Vector2d& v, int n) { return n == 1 ? std::abs(v(0)) : std::max(std::abs(v(0)), std::abs(v(1))); }
-
-// w(d) = argmax_{w∈W}⟨w, d⟩ for a disc/ellipse with semi-axes (a, b): Ad/√(dᵀAd), A = diag(a², b²),
-// and its Jacobian ∂w/∂d = A/s − (Ad)(Ad)ᵀ/s³, s = √(dᵀAd).
-Eigen::Matrix2d smooth_exposed_jacobian(const Eigen::Vector2d& semi_axes, const Eigen::Vector2d& d) {
-  const Eigen::Matrix2d A = semi_axes.cwiseProduct(semi_axes).asDiagonal();
-  const Eigen::Vector2d Ad = A * d;
-  const double s = std::sqrt(d.dot(Ad));
-  return A / s - Ad * Ad.transpose() / (s * s * s);
-}
-
-// ∂w/∂(a, b) of the exposed point w(d) = A d/√(dᵀAd), A = diag(a², b²): columns ∂/∂a, ∂/∂b.
-Eigen::Matrix2d smooth_exposed_axis_jacobian(const Eigen::Vector2d& semi_axes, const Eigen::Vector2d& d) {
-  const double a = semi_axes(0), b = semi_axes(1);
-  const double s = std::sqrt(a * a * d(0) * d(0) + b * b * d(1) * d(1));
-  const double ds_da = a * d(0) * d(0) / s, ds_db = b * d(1) * d(1) / s;
-  Eigen::Matrix2d J;
-  J(0, 0) = 2 * a * d(0) / s - a * a * d(0) * ds_da / (s * s);
-  J(1, 0) = -b * b * d(1) * ds_da / (s * s);
-  J(0, 1) = -a * a * d(0) * ds_db / (s * s);
-  J(1, 1) = 2 * b * d(1) / s - b * b * d(1) * ds_db / (s * s);
-  return J;
-}
-
-// ∂(contact rows)/∂p_k · ψ_z summed: the friction-parameter gradient of Θ for one piece.
-Eigen::VectorXd friction_parameter_gradient(const Piece& piece, const contact::FrictionLaw& law,
-                                            const contact::ContactState& state, const Eigen::VectorXd& psi_z) {
-  const FrictionParameters params = friction_parameters(law);
-  const Eigen::Index np = params.values.size();
-  Eigen::VectorXd grad = Eigen::VectorXd::Zero(np);
-  const int dim = state.dim;
-  const auto w = law.vertices();
-  for (Eigen::Index i = 0; i < state.num_nodes(); ++i) {
-    const NodePiece& node = piece.nodes[static_cast<std::size_t>(i)];
-    if (node.normal != NormalBranch::kGapClosed) continue;
-    const Eigen::Index base = dim * i;
-    const double lambda = state.lambda(i);
-    for (Eigen::Index k = 0; k < np; ++k) {
-      double contribution = 0.0;
-      if (node.tangential == TangentialBranch::kVertexSlip) {
-        const Eigen::Vector2d& dw = params.vertex_derivatives[static_cast<std::size_t>(k)][static_cast<std::size_t>(node.index)];
-        for (int c = 0; c < dim - 1; ++c) contribution += psi_z(base + c) * (-lambda * dw(c));
-      } else if (node.tangential == TangentialBranch::kRaySlip) {
-        const std::size_t j = static_cast<std::size_t>(node.index), j1 = (j + 1) % w.size();
-        const auto& dv = params.vertex_derivatives[static_cast<std::size_t>(k)];
-        const Eigen::Vector2d d = w[j1] - w[j], dd = dv[j1] - dv[j];
-        const Eigen::Vector2d q = state.q(i), ut = state.u_t(i);
-        contribution += psi_z(base) * (cross(dd, q) - lambda * (cross(dd, w[j]) + cross(d, dv[j])));
-        contribution += psi_z(base + 1) * dd.dot(ut);
-      } else if (node.tangential == TangentialBranch::kSmoothSlip) {
-        const Eigen::Vector2d dw = smooth_exposed_axis_jacobian(law.semi_axes(), state.u_t(i)) *
-                                   params.semi_axis_derivatives[static_cast<std::size_t>(k)];
-        for (int c = 0; c < 2; ++c) contribution += psi_z(base + c) * (-lambda * dw(c));
-      }
-      grad(k) += contribution;
-    }
-  }
-  return grad;
-}
 
 }  // namespace
 
@@ -128,18 +69,18 @@ PieceLinearization linearize_piece(const Piece& piece, const contact::FrictionLa
         // (i) d × q − λ d × w_j = 0: q on the edge's line.
         cz.emplace_back(base, base, -d(1));
         cz.emplace_back(base, base + 1, d(0));
-        cz.emplace_back(base, normal, -cross(d, wj));
+        cz.emplace_back(base, normal, -detail::cross(d, wj));
         // (ii) ⟨d, u_t⟩ = 0: u_t on the edge's normal ray; u_t = −(Gu)_t.
         s.emplace_back(base + 1, base, -d(0));
         s.emplace_back(base + 1, base + 1, -d(1));
-        residual = std::max(residual, std::abs(cross(d, q - lambda * wj)) / (d.norm() * force_scale));
+        residual = std::max(residual, std::abs(detail::cross(d, q - lambda * wj)) / (d.norm() * force_scale));
         residual = std::max(residual, std::abs(d.dot(ut)) / (d.norm() * disp_scale));
         break;
       }
       case TangentialBranch::kSmoothSlip: {
         // q − λ w(u_t) = 0; δ: δq − w δλ − λ Dw δu_t, with δu_t = −(G δu)_t.
         const Eigen::Vector2d w = law.exposed_point(ut);
-        const Eigen::Matrix2d Dw = smooth_exposed_jacobian(law.semi_axes(), ut);
+        const Eigen::Matrix2d Dw = detail::exposed_point_jacobian(law.semi_axes(), ut);
         for (int c = 0; c < 2; ++c) {
           cz.emplace_back(base + c, base + c, 1.0);
           cz.emplace_back(base + c, normal, -w(c));
@@ -284,7 +225,8 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   if (partials.d_alpha.size()) result.subgradient += partials.d_alpha;
   const int dim = boundary_.dim();
   for (Eigen::Index row : lin.gap_rows) result.subgradient += result.psi_z(row) * gap_matrix_.row(row / dim).transpose();
-  result.friction_gradient = friction_parameter_gradient(piece, law_, state, result.psi_z);
+  // ∂Θ/∂p = (∂ contact rows/∂p)ᵀ ψ_z: the costs do not depend on μ, the equilibrium rows neither.
+  result.friction_gradient = friction_parameter_rows(piece, law_, state).transpose() * result.psi_z;
 
   const double kSingular = 1e-14;  // below this rcond the piece's Jacobian is numerically singular
   if (!(result.summary.reciprocal_condition > kSingular)) {

@@ -6,26 +6,14 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "friction_geometry.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::sensitivity {
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a(0) * b(1) - a(1) * b(0); }
-
-// ∂w/∂(a, b) of the exposed point w(d) = A d/√(dᵀAd), A = diag(a², b²) (columns ∂/∂a, ∂/∂b);
-// the same formula as the adjoint's (src/sensitivity/adjoint.cpp), kept private there.
-Eigen::Matrix2d exposed_point_axis_jacobian(const Eigen::Vector2d& semi_axes, const Eigen::Vector2d& d) {
-  const double a = semi_axes(0), b = semi_axes(1);
-  const double s = std::sqrt(a * a * d(0) * d(0) + b * b * d(1) * d(1));
-  const double ds_da = a * d(0) * d(0) / s, ds_db = b * d(1) * d(1) / s;
-  Eigen::Matrix2d J;
-  J(0, 0) = 2 * a * d(0) / s - a * a * d(0) * ds_da / (s * s);
-  J(1, 0) = -b * b * d(1) * ds_da / (s * s);
-  J(0, 1) = -a * a * d(0) * ds_db / (s * s);
-  J(1, 1) = 2 * b * d(1) / s - b * b * d(1) * ds_db / (s * s);
-  return J;
-}
+using detail::cross;
+using detail::exposed_point_axis_jacobian;
 
 }  // namespace
 
