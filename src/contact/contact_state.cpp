@@ -8,16 +8,17 @@
 #include <string>
 #include <utility>
 
+#include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::contact {
 namespace {
 
-constexpr std::array<std::pair<NodeStatus, std::string_view>, 3> kNodeStatusNames{{
+constexpr frictopt::detail::EnumTable<NodeStatus, 3> kNodeStatusNames{{{
     {NodeStatus::kSeparated, "separated"},
     {NodeStatus::kStick, "stick"},
     {NodeStatus::kSlip, "slip"},
-}};
+}}};
 
 // Floor of the solution scales Λ and U: far below any physical force or displacement, above
 // denormals, so that an all-zero state has finite (and zero) residuals.
@@ -33,21 +34,9 @@ Eigen::Vector2d tangential(const Eigen::Ref<const Eigen::VectorXd>& v, int dim, 
 
 }  // namespace
 
-std::string_view to_string(NodeStatus status) {
-  for (const auto& [value, name] : kNodeStatusNames)
-    if (value == status) return name;
-  return "unknown";
-}
+std::string_view to_string(NodeStatus status) { return kNodeStatusNames.name(status); }
 
-NodeStatus parse_node_status(std::string_view text) {
-  std::string accepted;
-  for (const auto& [value, name] : kNodeStatusNames) {
-    if (name == text) return value;
-    accepted += (accepted.empty() ? "" : ", ") + std::string(name);
-  }
-  throw InvalidInput("node status '" + std::string(text) + "' is unknown; expected one of " +
-                     accepted);
-}
+NodeStatus parse_node_status(std::string_view text) { return kNodeStatusNames.parse(text, "node status"); }
 
 ContactState::ContactState(int dimension, Eigen::Index num_nodes)
     : dim(dimension),

@@ -9,15 +9,16 @@
 #include <sstream>
 #include <utility>
 
+#include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::contact {
 namespace {
 
-constexpr std::array<std::pair<CoulombMethod, std::string_view>, 2> kMethodNames{{
+constexpr frictopt::detail::EnumTable<CoulombMethod, 2> kMethodNames{{{
     {CoulombMethod::kFixedPoint, "fixed_point"},
     {CoulombMethod::kSplit, "split"},
-}};
+}}};
 
 // Loosest inner tolerance: early fixed-point iterates are far from the solution, so solving
 // their QPs beyond 1e-6 is wasted work.
@@ -37,21 +38,9 @@ CoulombSolver::Options validated(CoulombSolver::Options options) {
 
 }  // namespace
 
-std::string_view to_string(CoulombMethod method) {
-  for (const auto& [value, name] : kMethodNames)
-    if (value == method) return name;
-  return "unknown";
-}
+std::string_view to_string(CoulombMethod method) { return kMethodNames.name(method); }
 
-CoulombMethod parse_coulomb_method(std::string_view text) {
-  std::string accepted;
-  for (const auto& [value, name] : kMethodNames) {
-    if (name == text) return value;
-    accepted += (accepted.empty() ? "" : ", ") + std::string(name);
-  }
-  throw InvalidInput("Coulomb method '" + std::string(text) + "' is unknown; expected one of " +
-                     accepted);
-}
+CoulombMethod parse_coulomb_method(std::string_view text) { return kMethodNames.parse(text, "Coulomb method"); }
 
 void CoulombSolver::Options::validate() const {
   auto fail = [](const char* field, const std::string& value, const char* expected) {

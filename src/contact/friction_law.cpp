@@ -9,39 +9,29 @@
 #include <sstream>
 #include <utility>
 
+#include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::contact {
 namespace {
 
-constexpr std::array<std::pair<FrictionLawKind, std::string_view>, 6> kKindNames{{
+constexpr frictopt::detail::EnumTable<FrictionLawKind, 6> kKindNames{{{
     {FrictionLawKind::kInterval, "interval"},
     {FrictionLawKind::kDisc, "disc"},
     {FrictionLawKind::kRegularPolygon, "regular_polygon"},
     {FrictionLawKind::kPolygon, "polygon"},
     {FrictionLawKind::kEllipse, "ellipse"},
     {FrictionLawKind::kEllipsePolygon, "ellipse_polygon"},
-}};
+}}};
 
-constexpr std::array<std::pair<FrictionFace, std::string_view>, 5> kFaceNames{{
+constexpr frictopt::detail::EnumTable<FrictionFace, 5> kFaceNames{{{
     {FrictionFace::kInterior, "interior"},
     {FrictionFace::kEdge, "edge"},
     {FrictionFace::kVertex, "vertex"},
     {FrictionFace::kSmooth, "smooth"},
     {FrictionFace::kDegenerate, "degenerate"},
-}};
+}}};
 
-template <class Enum, std::size_t N>
-Enum parse_from_table(const std::array<std::pair<Enum, std::string_view>, N>& table,
-                      std::string_view text, const char* what) {
-  std::string accepted;
-  for (const auto& [value, name] : table) {
-    if (name == text) return value;
-    accepted += (accepted.empty() ? "" : ", ") + std::string(name);
-  }
-  throw InvalidInput(std::string(what) + " '" + std::string(text) + "' is unknown; expected one of " +
-                     accepted);
-}
 
 std::string num(double x) {
   std::ostringstream s;
@@ -92,22 +82,10 @@ double disc_max_step(const Eigen::Vector2d& q, const Eigen::Vector2d& d) {
 
 }  // namespace
 
-std::string_view to_string(FrictionLawKind kind) {
-  for (const auto& [value, name] : kKindNames)
-    if (value == kind) return name;
-  return "unknown";
-}
-FrictionLawKind parse_friction_law_kind(std::string_view text) {
-  return parse_from_table(kKindNames, text, "friction law kind");
-}
-std::string_view to_string(FrictionFace face) {
-  for (const auto& [value, name] : kFaceNames)
-    if (value == face) return name;
-  return "unknown";
-}
-FrictionFace parse_friction_face(std::string_view text) {
-  return parse_from_table(kFaceNames, text, "friction face");
-}
+std::string_view to_string(FrictionLawKind kind) { return kKindNames.name(kind); }
+FrictionLawKind parse_friction_law_kind(std::string_view text) { return kKindNames.parse(text, "friction law kind"); }
+std::string_view to_string(FrictionFace face) { return kFaceNames.name(face); }
+FrictionFace parse_friction_face(std::string_view text) { return kFaceNames.parse(text, "friction face"); }
 
 // ---------------------------------------------------------------------------------------------
 // Factories

@@ -9,16 +9,17 @@
 #include <sstream>
 #include <utility>
 
+#include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::contact {
 namespace {
 
-constexpr std::array<std::pair<TrescaAlgorithm, std::string_view>, 3> kAlgorithmNames{{
+constexpr frictopt::detail::EnumTable<TrescaAlgorithm, 3> kAlgorithmNames{{{
     {TrescaAlgorithm::kAutomatic, "automatic"},
     {TrescaAlgorithm::kJointMpgp, "joint_mpgp"},
     {TrescaAlgorithm::kSplit, "split"},
-}};
+}}};
 
 // A tangential block counts as free (interior) when its boundary offset is below
 // −kInteriorRelativeMargin·s·μ_max. After a feasible half-step or a projection the block sits on
@@ -253,21 +254,9 @@ std::string num(double x) {
 
 }  // namespace
 
-std::string_view to_string(TrescaAlgorithm algorithm) {
-  for (const auto& [value, name] : kAlgorithmNames)
-    if (value == algorithm) return name;
-  return "unknown";
-}
+std::string_view to_string(TrescaAlgorithm algorithm) { return kAlgorithmNames.name(algorithm); }
 
-TrescaAlgorithm parse_tresca_algorithm(std::string_view text) {
-  std::string accepted;
-  for (const auto& [value, name] : kAlgorithmNames) {
-    if (name == text) return value;
-    accepted += (accepted.empty() ? "" : ", ") + std::string(name);
-  }
-  throw InvalidInput("Tresca algorithm '" + std::string(text) + "' is unknown; expected one of " +
-                     accepted);
-}
+TrescaAlgorithm parse_tresca_algorithm(std::string_view text) { return kAlgorithmNames.parse(text, "Tresca algorithm"); }
 
 void TrescaSolver::Options::validate() const {
   auto fail = [](const char* field, const std::string& value, const char* expected) {

@@ -5,11 +5,12 @@
 #include <string>
 #include <utility>
 
+#include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt {
 namespace {
-constexpr std::array<std::pair<Status, std::string_view>, 7> kStatusNames{{
+constexpr frictopt::detail::EnumTable<Status, 7> kStatusNames{{{
     {Status::kNotRun, "not_run"},
     {Status::kConverged, "converged"},
     {Status::kMaxIterations, "max_iterations"},
@@ -17,22 +18,11 @@ constexpr std::array<std::pair<Status, std::string_view>, 7> kStatusNames{{
     {Status::kDiverged, "diverged"},
     {Status::kNumericalFailure, "numerical_failure"},
     {Status::kStoppedByCallback, "stopped_by_callback"},
-}};
+}}};
 }  // namespace
 
-std::string_view to_string(Status status) {
-  for (const auto& [value, name] : kStatusNames)
-    if (value == status) return name;
-  return "unknown";
-}
+std::string_view to_string(Status status) { return kStatusNames.name(status); }
 
-Status parse_status(std::string_view text) {
-  std::string accepted;
-  for (const auto& [value, name] : kStatusNames) {
-    if (name == text) return value;
-    accepted += (accepted.empty() ? "" : ", ") + std::string(name);
-  }
-  throw InvalidInput("status '" + std::string(text) + "' is unknown; expected one of " + accepted);
-}
+Status parse_status(std::string_view text) { return kStatusNames.parse(text, "status"); }
 
 }  // namespace frictopt

@@ -3,10 +3,13 @@
 // parse_*) and the case parser (which adds the field and line to its messages).
 #pragma once
 
-#include "enum_table.hpp"
+#include "frictopt/core/enum_table.hpp"
 #include "frictopt/io/case_description.hpp"
 
 namespace frictopt::io::detail {
+
+using frictopt::detail::EnumTable;
+using frictopt::detail::make_enum_table;
 
 inline constexpr auto kFaceTable = make_enum_table<Face>(
     std::pair{Face::kLeft, "left"}, std::pair{Face::kRight, "right"},

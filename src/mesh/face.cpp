@@ -5,33 +5,23 @@
 #include <string>
 #include <utility>
 
+#include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::mesh {
 namespace {
-constexpr std::array<std::pair<Face, std::string_view>, 6> kFaceNames{{
+constexpr frictopt::detail::EnumTable<Face, 6> kFaceNames{{{
     {Face::kLeft, "left"},
     {Face::kRight, "right"},
     {Face::kFront, "front"},
     {Face::kBack, "back"},
     {Face::kBottom, "bottom"},
     {Face::kTop, "top"},
-}};
+}}};
 }  // namespace
 
-std::string_view to_string(Face face) {
-  for (const auto& [value, name] : kFaceNames)
-    if (value == face) return name;
-  return "unknown";
-}
+std::string_view to_string(Face face) { return kFaceNames.name(face); }
 
-Face parse_face(std::string_view name) {
-  std::string accepted;
-  for (const auto& [value, spelling] : kFaceNames) {
-    if (spelling == name) return value;
-    accepted += (accepted.empty() ? "" : ", ") + std::string(spelling);
-  }
-  throw InvalidInput("face '" + std::string(name) + "' is unknown; expected one of " + accepted);
-}
+Face parse_face(std::string_view name) { return kFaceNames.parse(name, "face"); }
 
 }  // namespace frictopt::mesh

@@ -12,7 +12,7 @@
 
 #include "frictopt/core/error.hpp"
 
-namespace frictopt::io::detail {
+namespace frictopt::detail {
 
 template <class Enum, std::size_t N>
 struct EnumTable {
@@ -53,4 +53,4 @@ constexpr auto make_enum_table(Pairs... pairs) {
   return EnumTable<Enum, sizeof...(Pairs)>{{std::pair<Enum, std::string_view>(pairs)...}};
 }
 
-}  // namespace frictopt::io::detail
+}  // namespace frictopt::detail
