@@ -34,7 +34,7 @@ void BM_ElasticityPhases(benchmark::State& state) {
   const Eigen::MatrixXd X = mesh.positions(alpha);
   const fem::IsotropicMaterial steel{2.1e11, 0.3, fem::PlaneModel::kPlaneStrain};
   double assembly = 0, analysis = 0, factorization = 0, solve = 0;
-  double factor_nnz = 0;
+  double factor_nnz = 0, factor_flops = 0;
   int unknowns = 0;
   for (auto _ : state) {
     fem::LinearElasticity problem(mesh, steel, fem::expand_dirichlet(mesh, {{mesh::Face::kLeft, {}, {}}}),
@@ -64,6 +64,7 @@ void BM_ElasticityPhases(benchmark::State& state) {
     factorization += seconds(t2, t3);
     solve += seconds(t3, t4);
     factor_nnz = cholesky.factor_nonzeros();
+    factor_flops = cholesky.factor_flops();
   }
   const double runs = static_cast<double>(state.iterations());
   state.counters["unknowns"] = unknowns;
@@ -73,6 +74,7 @@ void BM_ElasticityPhases(benchmark::State& state) {
   state.counters["solve_s"] = solve / runs;
   state.counters["assembly_over_factorization"] = assembly / factorization;
   state.counters["factor_nnz_M"] = factor_nnz / 1e6;
+  state.counters["factor_Gflop"] = factor_flops / 1e9;
   state.counters["peak_rss_MB"] = peak_rss_megabytes();
 }
 

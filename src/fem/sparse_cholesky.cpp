@@ -96,8 +96,10 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A, const std::ve
       local[static_cast<std::size_t>(i)] = static_cast<int>(leading.size());
       leading.push_back(i);
     }
-  // Fill-reducing ordering of the leading block A_ff alone (CHOLMOD's default: AMD, METIS if
-  // AMD fills much), then the trailing indices appended.
+  // Fill-reducing ordering of the leading block A_ff alone, then the trailing indices appended.
+  // Both AMD and METIS are tried and the one with fewer flops kept: CHOLMOD's default would
+  // stop at AMD for A_ff (its fill test passes), but the coupling to the trailing block makes
+  // nested dissection far better on 3D grids (100k unknowns: 3.9e11 vs 9.5e11 flops).
   std::vector<Eigen::Triplet<double>> entries;
   for (int col : leading)
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, col); it; ++it) {
@@ -110,7 +112,15 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A, const std::ve
   cholmod_sparse a_ff = view(A_ff);
   impl_->reset();
   impl_->common.supernodal = CHOLMOD_SUPERNODAL;
+  const int saved_nmethods = impl_->common.nmethods, saved_ordering0 = impl_->common.method[0].ordering,
+            saved_ordering1 = impl_->common.method[1].ordering;
+  impl_->common.nmethods = 2;
+  impl_->common.method[0].ordering = CHOLMOD_AMD;
+  impl_->common.method[1].ordering = CHOLMOD_METIS;
   cholmod_factor* leading_analysis = cholmod_analyze(&a_ff, &impl_->common);
+  impl_->common.nmethods = saved_nmethods;
+  impl_->common.method[0].ordering = saved_ordering0;
+  impl_->common.method[1].ordering = saved_ordering1;
   FRICTOPT_ASSERT(leading_analysis != nullptr, "cholmod_analyze of the leading block failed");
   std::vector<int> perm;
   perm.reserve(static_cast<std::size_t>(n));
@@ -171,6 +181,7 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::Ref<const Eigen::VectorXd>& b
 }
 
 double SparseCholesky::factor_nonzeros() const { return impl_->common.lnz; }
+double SparseCholesky::factor_flops() const { return impl_->common.fl; }
 
 Eigen::MatrixXd SparseCholesky::trailing_factor() const {
   const cholmod_factor* L = impl_->factor;

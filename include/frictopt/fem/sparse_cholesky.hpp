@@ -43,6 +43,8 @@ class SparseCholesky {
   Eigen::MatrixXd solve_many(const Eigen::Ref<const Eigen::MatrixXd>& B) const;
   /// Nonzeros in the factor L (a measure of fill and memory); 0 before factorize.
   double factor_nonzeros() const;
+  /// Flop count of the numeric factorization from the last analysis (deterministic, unlike times).
+  double factor_flops() const;
   /// The dense lower-triangular L_tt (m × m, in the order of `trailing`) of the last
   /// factorization; requires analyze(A, trailing).
   Eigen::MatrixXd trailing_factor() const;
