@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <vector>
 #include <iostream>
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
@@ -87,6 +89,28 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
     io::write_pvd(out_dir / (name + ".pvd"), series);
   };
 
+  // A resumed run continues the counters of the interrupted one (elapsed time, state solves),
+  // read from the last row of its history.
+  double elapsed_offset = 0.0;
+  std::int64_t solves_offset = 0;
+  if (resume) {
+    std::ifstream previous(out_dir / "history.csv");
+    std::string line, header, last;
+    std::getline(previous, header);
+    while (std::getline(previous, line))
+      if (!line.empty()) last = line;
+    const auto split = [](const std::string& text) {
+      std::vector<std::string> fields;
+      std::stringstream stream(text);
+      for (std::string field; std::getline(stream, field, ',');) fields.push_back(field);
+      return fields;
+    };
+    const std::vector<std::string> names = split(header), values = split(last);
+    for (std::size_t k = 0; k < names.size() && k < values.size(); ++k) {
+      if (names[k] == "elapsed_seconds") elapsed_offset = std::stod(values[k]);
+      if (names[k] == "state_solves") solves_offset = std::stoll(values[k]);
+    }
+  }
   io::CsvWriter history(out_dir / "history.csv",
                         {"iteration", "evaluations", "step", "theta", "t", "stationarity_relative", "aggregate_error_relative",
                          "bundle_size", "serious_steps", "null_steps", "state_solves", "coulomb_iterations",
@@ -105,13 +129,15 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
     history.write_row({static_cast<std::int64_t>(m.iteration), static_cast<std::int64_t>(m.evaluations),
                        std::string(optim::to_string(m.step)), m.f, m.t, m.stationarity, m.aggregate_error,
                        static_cast<std::int64_t>(m.bundle.size()), static_cast<std::int64_t>(m.serious_steps),
-                       static_cast<std::int64_t>(m.null_steps), static_cast<std::int64_t>(p.state_solves),
+                       static_cast<std::int64_t>(m.null_steps), solves_offset + static_cast<std::int64_t>(p.state_solves),
                        static_cast<std::int64_t>(p.center.contact.iterations),
                        static_cast<std::int64_t>(p.center.contact.qp_iterations),
-                       static_cast<std::int64_t>(p.center.index_sets.num_weak_nodes()), p.elapsed_seconds});
+                       static_cast<std::int64_t>(p.center.index_sets.num_weak_nodes()),
+                       elapsed_offset + p.elapsed_seconds});
     io::write_json(checkpoint_path, io::checkpoint_to_json(m));
     fmt::print("{:>5} {:>6} {:>14.6e} {:>14} {:>10.3e} {:>12.3e} {:>8} {:>8.1f}s\n", m.iteration, m.evaluations, m.f,
-               optim::to_string(m.step), m.t, m.stationarity, p.center.contact.qp_iterations, p.elapsed_seconds);
+               optim::to_string(m.step), m.t, m.stationarity, p.center.contact.qp_iterations,
+               elapsed_offset + p.elapsed_seconds);
     std::fflush(stdout);
     if (m.iteration % every == 0) write_design_vtu(m.iteration, m.x);
     return CallbackResult::kContinue;

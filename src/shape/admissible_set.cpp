@@ -86,11 +86,13 @@ LinearConstraints make_admissible_set(const BezierShape& shape, const Admissible
             row(k) = -sign;
             rows.push_back(row);
             rhs.push_back(delta);
+            // Name the row as the difference it bounds: "alpha[6] - alpha[5] <= δ" (sign +)
+            // or "alpha[5] - alpha[6] <= δ" (sign −).
+            const int hi = sign > 0 ? k2 : k, lo = sign > 0 ? k : k2;
             c.inequality_names.push_back(
-                shape.dim() == 2
-                    ? fmt::format("slope {}alpha[{}] - alpha[{}]", sign > 0 ? "" : "-", k2, k)
-                    : fmt::format("slope x{} {}(alpha({},{}) - alpha({},{}))", dir + 1,
-                                  sign > 0 ? "" : "-", i2, j2, i, j));
+                shape.dim() == 2 ? fmt::format("slope alpha[{}] - alpha[{}]", hi, lo)
+                                 : fmt::format("slope x{} alpha({},{}) - alpha({},{})", dir + 1,
+                                               hi % m[0], hi / m[0], lo % m[0], lo / m[0]));
           }
         }
     }
