@@ -11,7 +11,7 @@ build="${FRICTOPT_BUILD_DIR:-$root/build}"
 out="${TMPDIR:-/tmp}/frictopt-bench"
 mkdir -p "$out"
 filter_fem='.*' filter_contact='.*'
-if [ "${1:-}" = quick ]; then filter_fem='n:18/'; filter_contact='cells:24'; fi
+if [ "${1:-}" = quick ]; then filter_fem='n:18/'; filter_contact='cells:24/'; fi
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 "$build/bench/fem/elasticity_benchmark" --benchmark_filter="$filter_fem" --benchmark_format=json > "$out/fem.json"
 "$build/bench/study/contact_benchmark" --benchmark_filter="$filter_contact" --benchmark_format=json > "$out/contact.json"

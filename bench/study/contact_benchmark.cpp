@@ -3,7 +3,7 @@
 // unknowns (625, 1681 and 2601 contact nodes), against the floor of one sparse Cholesky
 // factorization + solve of the same stiffness matrix (issue 3 item 8, issue 4 item 7).
 //   build/bench/study/contact_benchmark                 (all sizes; the largest takes minutes)
-//   build/bench/study/contact_benchmark --benchmark_filter=cells:24
+//   build/bench/study/contact_benchmark --benchmark_filter=cells:24/
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
@@ -24,12 +24,12 @@ double peak_rss_megabytes() {
 
 // The punch of cases3d/punch with an n × n × n/2 grid: a plate presses the top down and
 // sideways, a dish-shaped 4 × 4 Bézier bottom, isotropic 16-gon friction μ = 0.3.
-frictopt::study::BodyDefinition punch(int n) {
+frictopt::study::BodyDefinition punch(int n, int layers) {
   using namespace frictopt;
   study::BodyDefinition b;
   b.shape = shape::BezierShape::surface(1.0, 1.0, 4, 4);
   b.height = 0.5;
-  b.resolution = {{n, n, n / 2}, 1.5};
+  b.resolution = {{n, n, layers}, 1.5};
   b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
   b.dirichlet = {{mesh::Face::kTop, {}, Eigen::Vector3d(1e-4, 0.0, -1.2e-3)}};
   b.admissible.upper_bound = 5e-3;
@@ -46,7 +46,7 @@ frictopt::study::BodyDefinition punch(int n) {
 void BM_CoulombSolveAndSubgradient(benchmark::State& state) {
   using namespace frictopt;
   const int n = static_cast<int>(state.range(0));
-  const study::BodyDefinition definition = punch(n);
+  const study::BodyDefinition definition = punch(n, static_cast<int>(state.range(1)));
   double floor_s = 0, state_s = 0, subgradient_s = 0, factorization_s = 0;
   int unknowns = 0, contact_nodes = 0, fixed_point = 0, qp = 0, applies = 0;
   double kkt = 0;
@@ -94,12 +94,13 @@ void BM_CoulombSolveAndSubgradient(benchmark::State& state) {
   state.counters["peak_rss_MB"] = peak_rss_megabytes();
 }
 
-// cells 24, 40, 50: 3·25²·13 ≈ 20k, 3·41²·21 ≈ 106k, 3·51²·26 ≈ 203k unknowns.
+// (cells, layers) = (24, 12), (40, 20), (50, 26): 3·25²·12 = 22.5k, 3·41²·20 ≈ 101k and
+// 3·51²·26 ≈ 203k free unknowns (the top layer is prescribed) with 625, 1681, 2601 contact nodes.
 BENCHMARK(BM_CoulombSolveAndSubgradient)
-    ->ArgName("cells")
-    ->Arg(24)
-    ->Arg(40)
-    ->Arg(50)
+    ->ArgNames({"cells", "layers"})
+    ->Args({24, 12})
+    ->Args({40, 20})
+    ->Args({50, 26})
     ->Iterations(1)
     ->Unit(benchmark::kSecond)
     ->UseRealTime();
