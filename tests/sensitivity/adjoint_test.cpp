@@ -9,6 +9,7 @@
 #include <random>
 
 #include "common/finite_difference.hpp"
+#include "common/test_bodies.hpp"
 #include "frictopt/cost/cost_functional.hpp"
 #include "frictopt/sensitivity/friction_parameters.hpp"
 #include "frictopt/study/shape_oracle.hpp"
@@ -24,27 +25,8 @@ std::string fmt_vector(const Eigen::VectorXd& v) {
   return out + "]";
 }
 
-// The thesis' 2D body (spec 05 §2.1, A-BC) on a coarse mesh, with the solver tolerances the
-// finite differences need (the state error divided by the FD step must stay far below 1e-5).
 study::BodyDefinition thesis_body_2d(const contact::FrictionLaw& law, int n1 = 20, int nv = 8) {
-  study::BodyDefinition b;
-  b.shape = shape::BezierShape::curve(2.0, 15);
-  b.height = 1.0;
-  b.resolution = {{n1, 0, nv}, 1.0};
-  b.material = {1e9, 0.3, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{mesh::Face::kLeft, {}, {}}};
-  b.tractions = {{mesh::Face::kTop, Eigen::Vector2d(-8e7, -5e7)}};
-  b.admissible.upper_bound = 0.75;
-  b.admissible.height = 1.0;
-  b.initial_design = Eigen::VectorXd::Constant(15, 0.05);
-  study::ContactDefinition c;
-  c.law = law;
-  c.coulomb.relative_tolerance = 1e-14;
-  c.coulomb.max_iterations = 200;
-  c.coulomb.tresca.relative_tolerance = 1e-14;
-  c.coulomb.tresca.max_iterations = 200000;
-  b.contact = c;
-  return b;
+  return frictopt::testing::thesis_body_2d(law, n1, nv);
 }
 
 // A 3D block pressed by a rigid plate on its top (prescribed displacement), dish-shaped bottom.

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/test_bodies.hpp"
+
 #include <cstdio>
 
 #include "frictopt/core/error.hpp"
@@ -20,25 +22,7 @@ namespace {
 // volume equality Σα = 0.75 (C2 = 1.9 with a = 2, C4 = 1, d = 15: Σα = d(C4 − C2/a)), which the
 // initial design α = 0.05 satisfies.
 BodyDefinition thesis_body_2d(int n1, int nv) {
-  BodyDefinition b;
-  b.shape = shape::BezierShape::curve(2.0, 15);
-  b.height = 1.0;
-  b.resolution = {{n1, 0, nv}, 1.0};
-  b.material = {1e9, 0.3, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{mesh::Face::kLeft, {}, {}}};
-  b.tractions = {{mesh::Face::kTop, Eigen::Vector2d(-8e7, -5e7)}};
-  b.admissible.upper_bound = 0.75;
-  b.admissible.height = 1.0;
-  b.admissible.volume = 1.9;
-  b.initial_design = Eigen::VectorXd::Constant(15, 0.05);
-  ContactDefinition c;
-  c.law = contact::FrictionLaw::interval(0.25, 0.25);
-  c.coulomb.relative_tolerance = 1e-14;
-  c.coulomb.max_iterations = 200;
-  c.coulomb.tresca.relative_tolerance = 1e-14;
-  c.coulomb.tresca.max_iterations = 200000;
-  b.contact = c;
-  return b;
+  return frictopt::testing::thesis_body_2d(contact::FrictionLaw::interval(0.25, 0.25), n1, nv);
 }
 
 TEST(Certify, StrictPointHasOnePieceAndTheClosedFormDistance) {

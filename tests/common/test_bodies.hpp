@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+// Bodies shared by the sensitivity and study tests.
+#pragma once
+
+#include "frictopt/study/body_definition.hpp"
+
+namespace frictopt::testing {
+
+/// The thesis' 2D body (spec 05 §2.1, A-BC: left side clamped, top traction (−80, −50) MPa,
+/// E = 1 GPa, ν = 0.3, plane strain) on an n1 × nv mesh with the admissible set of the examples
+/// (C0 = 0.75, C2 = 1.9: Σα = 0.75, which the flat start α = 0.05 satisfies) and the solver
+/// tolerances finite differences need (state error / FD step far below 1e-5).
+inline study::BodyDefinition thesis_body_2d(const contact::FrictionLaw& law = contact::FrictionLaw::interval(0.25, 0.25),
+                                            int n1 = 20, int nv = 8) {
+  study::BodyDefinition b;
+  b.shape = shape::BezierShape::curve(2.0, 15);
+  b.height = 1.0;
+  b.resolution = {{n1, 0, nv}, 1.0};
+  b.material = {1e9, 0.3, fem::PlaneModel::kPlaneStrain};
+  b.dirichlet = {{mesh::Face::kLeft, {}, {}}};
+  b.tractions = {{mesh::Face::kTop, Eigen::Vector2d(-8e7, -5e7)}};
+  b.admissible.upper_bound = 0.75;
+  b.admissible.height = 1.0;
+  b.admissible.volume = 1.9;
+  b.initial_design = Eigen::VectorXd::Constant(15, 0.05);
+  study::ContactDefinition c;
+  c.law = law;
+  c.coulomb.relative_tolerance = 1e-14;
+  c.coulomb.max_iterations = 200;
+  c.coulomb.tresca.relative_tolerance = 1e-14;
+  c.coulomb.tresca.max_iterations = 200000;
+  b.contact = c;
+  return b;
+}
+
+}  // namespace frictopt::testing
