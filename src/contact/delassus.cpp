@@ -3,24 +3,10 @@
 
 #include <algorithm>
 
+#include "frictopt/contact/dense_blas.hpp"
 #include "frictopt/core/error.hpp"
 
-// Dense triangular solves with many right-hand sides go to the system BLAS (OpenBLAS via
-// Debian's alternatives): Eigen built for -march=x86-64-v2 has no AVX kernels, OpenBLAS picks
-// them at run time, a 3–10× difference on the m ≈ 10⁴ blocks of large 3D contact sets.
-extern "C" void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m,
-                       const int* n, const double* alpha, const double* a, const int* lda, double* b, const int* ldb);
-
 namespace frictopt::contact {
-namespace {
-// B ← L⁻¹ B (lower-triangular L, column-major B).
-void lower_solve_in_place(const Eigen::MatrixXd& L, Eigen::MatrixXd& B) {
-  const int m = static_cast<int>(L.rows()), n = static_cast<int>(B.cols());
-  if (m == 0 || n == 0) return;
-  const double one = 1.0;
-  dtrsm_("L", "L", "N", "N", &m, &n, &one, L.data(), &m, B.data(), &m);
-}
-}  // namespace
 
 void DenseDelassus::apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const {
   y.noalias() = matrix_ * x;
@@ -49,7 +35,7 @@ void SchurDelassus::apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref
 Eigen::VectorXd SchurDelassus::diagonal() const {
   if (diagonal_.size() == 0) {
     Eigen::MatrixXd X = Eigen::MatrixXd::Identity(L_.rows(), L_.cols());
-    lower_solve_in_place(L_, X);
+    blas::lower_solve_in_place(L_, X);
     diagonal_ = X.colwise().squaredNorm().transpose();
   }
   return diagonal_;
@@ -63,14 +49,14 @@ Eigen::MatrixXd SchurDelassus::block(const std::vector<Eigen::Index>& rows, cons
   all.erase(std::unique(all.begin(), all.end()), all.end());
   Eigen::MatrixXd X = Eigen::MatrixXd::Zero(L_.rows(), static_cast<Eigen::Index>(all.size()));
   for (std::size_t j = 0; j < all.size(); ++j) X(all[j], static_cast<Eigen::Index>(j)) = 1.0;
-  lower_solve_in_place(L_, X);
+  blas::lower_solve_in_place(L_, X);
   const auto position = [&](Eigen::Index k) {
     return static_cast<Eigen::Index>(std::lower_bound(all.begin(), all.end(), k) - all.begin());
   };
   Eigen::MatrixXd R(X.rows(), static_cast<Eigen::Index>(rows.size())), C(X.rows(), static_cast<Eigen::Index>(cols.size()));
   for (std::size_t i = 0; i < rows.size(); ++i) R.col(static_cast<Eigen::Index>(i)) = signs_(rows[i]) * X.col(position(rows[i]));
   for (std::size_t j = 0; j < cols.size(); ++j) C.col(static_cast<Eigen::Index>(j)) = signs_(cols[j]) * X.col(position(cols[j]));
-  return R.transpose() * C;
+  return blas::transpose_times(R, C);
 }
 
 Eigen::MatrixXd SchurDelassus::dense() const {

@@ -8,6 +8,7 @@
 
 #include "frictopt/core/error.hpp"
 #include "friction_geometry.hpp"
+#include "frictopt/contact/dense_blas.hpp"
 #include "frictopt/sensitivity/parameter_sensitivity.hpp"
 
 namespace frictopt::sensitivity {
@@ -200,12 +201,11 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   const Eigen::VectorXd rhs = -gz - boundary_.times(Ainv_gu);
   const Eigen::MatrixXd St = dense_block(lin.S, red.active_rows, red.touched_z).transpose();  // T × A
   Eigen::MatrixXd K = dense_block(lin.Cz, red.active_rows, red.free_z).transpose();          // R × A
-  if (!red.touched_z.empty()) K.noalias() += delassus.block(red.free_z, red.touched_z) * St;
+  if (!red.touched_z.empty()) K += contact::blas::times(delassus.block(red.free_z, red.touched_z), St);
   Eigen::VectorXd r(static_cast<Eigen::Index>(red.free_z.size()));
   for (std::size_t i = 0; i < red.free_z.size(); ++i) r(static_cast<Eigen::Index>(i)) = rhs(red.free_z[i]);
-  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(K);
-  result.summary.reciprocal_condition = K.size() ? lu.rcond() : 1.0;
-  const Eigen::VectorXd psi_active = K.size() ? Eigen::VectorXd(lu.solve(r)) : Eigen::VectorXd();
+  Eigen::VectorXd psi_active;
+  (void)contact::blas::lu_solve(K, r, psi_active, result.summary.reciprocal_condition);
   result.summary.relative_residual = K.size() ? (K * psi_active - r).norm() / std::max(r.norm(), 1e-300) : 0.0;
   result.summary.piece_residual = lin.relative_residual;
   // ψ on the identity rows is not needed: their rows of S are empty, they carry no gap term
@@ -262,13 +262,15 @@ AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
   const Eigen::VectorXd rhs = -rg + lin.S * boundary_.times(Ainv_ra);
   const Eigen::MatrixXd S_at = dense_block(lin.S, red.active_rows, red.touched_z);
   Eigen::MatrixXd K = dense_block(lin.Cz, red.active_rows, red.free_z);
-  if (!red.touched_z.empty()) K.noalias() += S_at * delassus.block(red.touched_z, red.free_z);
+  if (!red.touched_z.empty()) K += contact::blas::times(S_at, delassus.block(red.touched_z, red.free_z));
   Eigen::VectorXd r(static_cast<Eigen::Index>(red.active_rows.size()));
   for (std::size_t i = 0; i < red.active_rows.size(); ++i) r(static_cast<Eigen::Index>(i)) = rhs(red.active_rows[i]);
   StateDerivative out;
   out.contact = Eigen::VectorXd::Zero(boundary_.num_unknowns());
   if (K.size()) {
-    const Eigen::VectorXd dz = Eigen::PartialPivLU<Eigen::MatrixXd>(K).solve(r);
+    Eigen::VectorXd dz;
+    double rcond = 0.0;
+    (void)contact::blas::lu_solve(K, r, dz, rcond);
     for (std::size_t i = 0; i < red.free_z.size(); ++i) out.contact(red.free_z[i]) = dz(static_cast<Eigen::Index>(i));
   }
   Eigen::VectorXd w = -ra;

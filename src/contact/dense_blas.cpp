@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/contact/dense_blas.hpp"
+
+#include <vector>
+
+extern "C" {
+void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
+            const double* alpha, const double* a, const int* lda, double* b, const int* ldb);
+void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
+            const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
+            const int* ldc);
+void dgetrf_(const int* m, const int* n, double* a, const int* lda, int* ipiv, int* info);
+void dgetrs_(const char* trans, const int* n, const int* nrhs, const double* a, const int* lda, const int* ipiv,
+             double* b, const int* ldb, int* info);
+void dgecon_(const char* norm, const int* n, const double* a, const int* lda, const double* anorm, double* rcond,
+             double* work, int* iwork, int* info);
+}
+
+namespace frictopt::contact::blas {
+
+void lower_solve_in_place(const Eigen::MatrixXd& L, Eigen::MatrixXd& B) {
+  const int m = static_cast<int>(L.rows()), n = static_cast<int>(B.cols());
+  if (m == 0 || n == 0) return;
+  const double one = 1.0;
+  dtrsm_("L", "L", "N", "N", &m, &n, &one, L.data(), &m, B.data(), &m);
+}
+
+namespace {
+Eigen::MatrixXd gemm(const char* ta, const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, int rows, int inner) {
+  const int cols = static_cast<int>(B.cols());
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(rows, cols);
+  if (rows == 0 || cols == 0 || inner == 0) return C;
+  const double one = 1.0, zero = 0.0;
+  const int lda = static_cast<int>(A.rows()), ldb = static_cast<int>(B.rows());
+  dgemm_(ta, "N", &rows, &cols, &inner, &one, A.data(), &lda, B.data(), &ldb, &zero, C.data(), &rows);
+  return C;
+}
+}  // namespace
+
+Eigen::MatrixXd transpose_times(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
+  return gemm("T", A, B, static_cast<int>(A.cols()), static_cast<int>(A.rows()));
+}
+
+Eigen::MatrixXd times(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
+  return gemm("N", A, B, static_cast<int>(A.rows()), static_cast<int>(A.cols()));
+}
+
+bool lu_solve(Eigen::MatrixXd K, const Eigen::VectorXd& r, Eigen::VectorXd& x, double& reciprocal_condition) {
+  const int n = static_cast<int>(K.rows());
+  x = r;
+  if (n == 0) {
+    reciprocal_condition = 1.0;
+    return true;
+  }
+  const double anorm = K.cwiseAbs().colwise().sum().maxCoeff();
+  std::vector<int> ipiv(static_cast<std::size_t>(n));
+  int info = 0;
+  dgetrf_(&n, &n, K.data(), &n, ipiv.data(), &info);
+  if (info > 0) {
+    reciprocal_condition = 0.0;
+    return false;
+  }
+  std::vector<double> work(static_cast<std::size_t>(4 * n));
+  std::vector<int> iwork(static_cast<std::size_t>(n));
+  dgecon_("1", &n, K.data(), &n, &anorm, &reciprocal_condition, work.data(), iwork.data(), &info);
+  const int one = 1;
+  dgetrs_("N", &n, &one, K.data(), &n, ipiv.data(), x.data(), &n, &info);
+  return true;
+}
+
+}  // namespace frictopt::contact::blas
