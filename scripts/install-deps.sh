@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
-  libeigen3-dev libsuitesparse-dev libopenblas0-pthread libceres-dev libvtk9-dev
+  libeigen3-dev libsuitesparse-dev libblas-dev liblapack-dev libopenblas0-pthread libceres-dev libvtk9-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev
   libfclib-dev libhdf5-dev
