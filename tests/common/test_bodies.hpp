@@ -6,6 +6,18 @@
 
 namespace frictopt::testing {
 
+/// A contact definition with the solver tolerances finite differences need (state error / FD
+/// step far below 1e-5).
+inline study::ContactDefinition tight_contact(const contact::FrictionLaw& law) {
+  study::ContactDefinition c;
+  c.law = law;
+  c.coulomb.relative_tolerance = 1e-14;
+  c.coulomb.max_iterations = 200;
+  c.coulomb.tresca.relative_tolerance = 1e-14;
+  c.coulomb.tresca.max_iterations = 200000;
+  return c;
+}
+
 /// The thesis' 2D body (spec 05 §2.1, A-BC: left side clamped, top traction (−80, −50) MPa,
 /// E = 1 GPa, ν = 0.3, plane strain) on an n1 × nv mesh with the admissible set of the examples
 /// (C0 = 0.75, C2 = 1.9: Σα = 0.75, which the flat start α = 0.05 satisfies) and the solver
@@ -23,13 +35,7 @@ inline study::BodyDefinition thesis_body_2d(const contact::FrictionLaw& law = co
   b.admissible.height = 1.0;
   b.admissible.volume = 1.9;
   b.initial_design = Eigen::VectorXd::Constant(15, 0.05);
-  study::ContactDefinition c;
-  c.law = law;
-  c.coulomb.relative_tolerance = 1e-14;
-  c.coulomb.max_iterations = 200;
-  c.coulomb.tresca.relative_tolerance = 1e-14;
-  c.coulomb.tresca.max_iterations = 200000;
-  b.contact = c;
+  b.contact = tight_contact(law);
   return b;
 }
 

@@ -41,13 +41,7 @@ study::BodyDefinition block_3d(const contact::FrictionLaw& law, Eigen::Vector2d 
   b.admissible.height = 0.5;
   b.initial_design.resize(9);
   b.initial_design << 1.4e-3, 1.0e-3, 1.5e-3, 0.9e-3, 0.4e-3, 1.1e-3, 1.6e-3, 1.2e-3, 1.7e-3;
-  study::ContactDefinition c;
-  c.law = law;
-  c.coulomb.relative_tolerance = 1e-14;
-  c.coulomb.max_iterations = 200;
-  c.coulomb.tresca.relative_tolerance = 1e-14;
-  c.coulomb.tresca.max_iterations = 200000;
-  b.contact = c;
+  b.contact = frictopt::testing::tight_contact(law);
   return b;
 }
 
