@@ -13,33 +13,19 @@
 #include <string>
 #include <vector>
 
+#include "common/cli_runner.hpp"
 #include "frictopt/io/json.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exit_code;
-  std::string output;
-};
+using frictopt::testing::read_text;
+using frictopt::testing::RunResult;
 
-RunResult run(const std::string& arguments) {
-  const fs::path log = fs::temp_directory_path() / "frictopt_studies_smoke.log";
-  const std::string command = std::string(FRICTOPT_BINARY) + " " + arguments + " > " + log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+/// The log file is per test and process (common/cli_runner.hpp): the three tests here run in
+/// parallel under ctest -j, and one shared log once interleaved their outputs.
+RunResult run(const std::string& arguments) { return frictopt::testing::run_frictopt(arguments); }
 
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream out(path);
