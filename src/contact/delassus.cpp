@@ -8,15 +8,23 @@
 
 namespace frictopt::contact {
 
+DenseDelassus::DenseDelassus(std::shared_ptr<const Eigen::MatrixXd> matrix) : matrix_(std::move(matrix)) {
+  FRICTOPT_ASSERT(matrix_ && matrix_->rows() == matrix_->cols(), "DenseDelassus: a square matrix");
+}
+
 void DenseDelassus::apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const {
-  y.noalias() = matrix_ * x;
+  if (x.innerStride() == 1 && y.innerStride() == 1) {
+    blas::symmetric_times(*matrix_, x, y);
+  } else {
+    y.noalias() = *matrix_ * x;
+  }
 }
 
 Eigen::MatrixXd DenseDelassus::block(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& cols) const {
   Eigen::MatrixXd out(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
   for (std::size_t j = 0; j < cols.size(); ++j)
     for (std::size_t i = 0; i < rows.size(); ++i)
-      out(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = matrix_(rows[i], cols[j]);
+      out(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = (*matrix_)(rows[i], cols[j]);
   return out;
 }
 
@@ -27,8 +35,7 @@ SchurDelassus::SchurDelassus(Eigen::MatrixXd schur_factor, int dim) : L_(std::mo
 
 void SchurDelassus::apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const {
   Eigen::VectorXd v = signs_.cwiseProduct(x);
-  L_.triangularView<Eigen::Lower>().solveInPlace(v);
-  L_.triangularView<Eigen::Lower>().transpose().solveInPlace(v);
+  blas::cholesky_solve_in_place(L_, v);
   y = signs_.cwiseProduct(v);
 }
 
@@ -60,9 +67,10 @@ Eigen::MatrixXd SchurDelassus::block(const std::vector<Eigen::Index>& rows, cons
 }
 
 Eigen::MatrixXd SchurDelassus::dense() const {
-  std::vector<Eigen::Index> all(static_cast<std::size_t>(L_.rows()));
-  for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<Eigen::Index>(k);
-  return block(all, all);
+  Eigen::MatrixXd M = blas::inverse_from_cholesky(L_);
+  M.array().colwise() *= signs_.array();
+  M.array().rowwise() *= signs_.transpose().array();
+  return M;
 }
 
 FactorizedDelassus::FactorizedDelassus(const fem::SparseCholesky& cholesky, const ContactBoundary& boundary)

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/contact/dense_blas.hpp"
 
+#include <string>
 #include <vector>
+
+#include "frictopt/core/error.hpp"
 
 extern "C" {
 void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag, const int* m, const int* n,
@@ -9,6 +12,11 @@ void dtrsm_(const char* side, const char* uplo, const char* transa, const char* 
 void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
             const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
             const int* ldc);
+void dtrsv_(const char* uplo, const char* trans, const char* diag, const int* n, const double* a, const int* lda,
+            double* x, const int* incx);
+void dpotri_(const char* uplo, const int* n, double* a, const int* lda, int* info);
+void dsymv_(const char* uplo, const int* n, const double* alpha, const double* a, const int* lda, const double* x,
+            const int* incx, const double* beta, double* y, const int* incy);
 void dgetrf_(const int* m, const int* n, double* a, const int* lda, int* ipiv, int* info);
 void dgetrs_(const char* trans, const int* n, const int* nrhs, const double* a, const int* lda, const int* ipiv,
              double* b, const int* ldb, int* info);
@@ -23,6 +31,35 @@ void lower_solve_in_place(const Eigen::MatrixXd& L, Eigen::MatrixXd& B) {
   if (m == 0 || n == 0) return;
   const double one = 1.0;
   dtrsm_("L", "L", "N", "N", &m, &n, &one, L.data(), &m, B.data(), &m);
+}
+
+void cholesky_solve_in_place(const Eigen::MatrixXd& L, Eigen::Ref<Eigen::VectorXd> x) {
+  const int n = static_cast<int>(L.rows()), one = 1;
+  if (n == 0) return;
+  FRICTOPT_ASSERT(x.size() == n && x.innerStride() == 1, "cholesky_solve_in_place: contiguous x of the factor's size");
+  dtrsv_("L", "N", "N", &n, L.data(), &n, x.data(), &one);
+  dtrsv_("L", "T", "N", &n, L.data(), &n, x.data(), &one);
+}
+
+Eigen::MatrixXd inverse_from_cholesky(const Eigen::MatrixXd& L) {
+  const int n = static_cast<int>(L.rows());
+  Eigen::MatrixXd S = L;
+  if (n == 0) return S;
+  int info = 0;
+  dpotri_("L", &n, S.data(), &n, &info);
+  // info > 0 means a zero diagonal entry: impossible for the factor of a successful Cholesky.
+  FRICTOPT_ASSERT(info == 0, "inverse_from_cholesky: dpotri info = " + std::to_string(info));
+  S.triangularView<Eigen::StrictlyUpper>() = S.transpose();
+  return S;
+}
+
+void symmetric_times(const Eigen::MatrixXd& S, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) {
+  const int n = static_cast<int>(S.rows()), one = 1;
+  if (n == 0) return;
+  FRICTOPT_ASSERT(x.size() == n && y.size() == n && x.innerStride() == 1 && y.innerStride() == 1,
+                  "symmetric_times: contiguous vectors of the matrix's size");
+  const double alpha = 1.0, beta = 0.0;
+  dsymv_("L", &n, &alpha, S.data(), &n, x.data(), &one, &beta, y.data(), &one);
 }
 
 namespace {

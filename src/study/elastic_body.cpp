@@ -82,8 +82,10 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
     auto schur = std::make_shared<contact::SchurDelassus>(cholesky.trailing_factor(), dim);
     result.dense_delassus = boundary_->num_unknowns() <= cd.dense_delassus_max_unknowns;
     if (result.dense_delassus) {
+      // One copy of the dense M, shared by the QP operator and readers of delassus_matrix; the
+      // Schur factor is released at the end of this scope.
       result.delassus_matrix = std::make_shared<const Eigen::MatrixXd>(schur->dense());
-      result.delassus = std::make_shared<contact::DenseDelassus>(*result.delassus_matrix);
+      result.delassus = std::make_shared<contact::DenseDelassus>(result.delassus_matrix);
     } else {
       result.delassus = std::move(schur);
     }

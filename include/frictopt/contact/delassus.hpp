@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "frictopt/contact/contact_boundary.hpp"
@@ -21,19 +22,25 @@ class DelassusMatrix : public LinearOperator {
   virtual const char* kind() const = 0;
 };
 
-/// M stored densely (small contact sets).
+/// M stored densely. The matrix is shared (not copied) with whoever else needs the dense M, e.g.
+/// study::ContactResult::delassus_matrix: at m = 5,000 contact unknowns it is 200 MB.
 class DenseDelassus final : public DelassusMatrix {
  public:
-  explicit DenseDelassus(Eigen::MatrixXd matrix) : matrix_(std::move(matrix)) {}
-  Eigen::Index size() const override { return matrix_.rows(); }
+  explicit DenseDelassus(Eigen::MatrixXd matrix)
+      : DenseDelassus(std::make_shared<const Eigen::MatrixXd>(std::move(matrix))) {}
+  explicit DenseDelassus(std::shared_ptr<const Eigen::MatrixXd> matrix);
+  Eigen::Index size() const override { return matrix_->rows(); }
+  /// y = M x by dsymv (lower triangle; OpenBLAS, threaded): 2m² flops, 4× faster than the two
+  /// triangular solves of SchurDelassus at m = 5,043 (docs/benchmarks.md).
   void apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const override;
-  Eigen::VectorXd diagonal() const override { return matrix_.diagonal(); }
+  Eigen::VectorXd diagonal() const override { return matrix_->diagonal(); }
   Eigen::MatrixXd block(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& cols) const override;
   const char* kind() const override { return "dense"; }
-  const Eigen::MatrixXd& matrix() const { return matrix_; }
+  const Eigen::MatrixXd& matrix() const { return *matrix_; }
+  const std::shared_ptr<const Eigen::MatrixXd>& shared_matrix() const { return matrix_; }
 
  private:
-  Eigen::MatrixXd matrix_;
+  std::shared_ptr<const Eigen::MatrixXd> matrix_;
 };
 
 /// M = D S⁻¹ D from the Cholesky factor L of the contact Schur complement S = L Lᵀ (the
@@ -50,7 +57,7 @@ class SchurDelassus final : public DelassusMatrix {
   Eigen::VectorXd diagonal() const override;
   Eigen::MatrixXd block(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& cols) const override;
   const char* kind() const override { return "schur"; }
-  /// The dense M (m² memory, m³/3 flops).
+  /// The dense M = D (L Lᵀ)⁻¹ D by LAPACK dpotri (m² memory, 2m³/3 flops: 2.7 s at m = 5,043).
   Eigen::MatrixXd dense() const;
 
  private:

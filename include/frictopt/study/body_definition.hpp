@@ -25,10 +25,14 @@ struct ContactDefinition {
   contact::FrictionLaw law = contact::FrictionLaw::disc(0.0);
   contact::CoulombSolver::Options coulomb;
   /// Largest number of contact unknowns m = dim·p for which M = G A⁻¹ Gᵀ is formed densely
-  /// (m³/3 flops from the Schur factor, then m² per product); above it M is applied through
-  /// the Schur factor L (two triangular solves, 2m² per product, no m³ work). The contact
-  /// DOFs are always ordered last in the factorization so that L comes with it.
-  int dense_delassus_max_unknowns = 1500;
+  /// from the Schur factor L (LAPACK dpotri, 2m³/3 flops, 8m² bytes: 2.7 s and 203 MB at
+  /// m = 5,043); a product is then one dsymv. Above it M is applied through L (two triangular
+  /// solves per product, no m³ work). Measured at m = 5,043 (docs/benchmarks.md): dsymv 2.4 ms
+  /// vs 7.6 ms for the triangular solves, so dpotri pays for itself after ≈ 520 products — a
+  /// Coulomb solve takes 500–1,100 — and the sensitivity's blocks of M become free. 12,000
+  /// bounds the dense M at 1.15 GB. The contact DOFs are always ordered last in the
+  /// factorization so that L comes with it.
+  int dense_delassus_max_unknowns = 12000;
 };
 
 /// The cost functional of a study (spec 05 §2.4; cost module).
