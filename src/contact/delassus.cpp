@@ -13,11 +13,7 @@ DenseDelassus::DenseDelassus(std::shared_ptr<const Eigen::MatrixXd> matrix) : ma
 }
 
 void DenseDelassus::apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const {
-  if (x.innerStride() == 1 && y.innerStride() == 1) {
-    blas::symmetric_times(*matrix_, x, y);
-  } else {
-    y.noalias() = *matrix_ * x;
-  }
+  blas::symmetric_times(*matrix_, x, y);  // Ref<VectorXd> is contiguous (inner stride 1)
 }
 
 Eigen::MatrixXd DenseDelassus::block(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& cols) const {

@@ -36,7 +36,7 @@ void lower_solve_in_place(const Eigen::MatrixXd& L, Eigen::MatrixXd& B) {
 void cholesky_solve_in_place(const Eigen::MatrixXd& L, Eigen::Ref<Eigen::VectorXd> x) {
   const int n = static_cast<int>(L.rows()), one = 1;
   if (n == 0) return;
-  FRICTOPT_ASSERT(x.size() == n && x.innerStride() == 1, "cholesky_solve_in_place: contiguous x of the factor's size");
+  FRICTOPT_ASSERT(x.size() == n, "cholesky_solve_in_place: x of the factor's size");
   dtrsv_("L", "N", "N", &n, L.data(), &n, x.data(), &one);
   dtrsv_("L", "T", "N", &n, L.data(), &n, x.data(), &one);
 }
@@ -56,8 +56,7 @@ Eigen::MatrixXd inverse_from_cholesky(const Eigen::MatrixXd& L) {
 void symmetric_times(const Eigen::MatrixXd& S, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) {
   const int n = static_cast<int>(S.rows()), one = 1;
   if (n == 0) return;
-  FRICTOPT_ASSERT(x.size() == n && y.size() == n && x.innerStride() == 1 && y.innerStride() == 1,
-                  "symmetric_times: contiguous vectors of the matrix's size");
+  FRICTOPT_ASSERT(x.size() == n && y.size() == n, "symmetric_times: vectors of the matrix's size");
   const double alpha = 1.0, beta = 0.0;
   dsymv_("L", &n, &alpha, S.data(), &n, x.data(), &one, &beta, y.data(), &one);
 }
