@@ -46,7 +46,7 @@ int run_certify(const std::filesystem::path& run_dir, int cap) {
   if (!definition.contact) throw InvalidInput(case_path.string() + ": certify needs a [contact] table");
   study::ElasticBody body(definition);
   const Eigen::VectorXd alpha = io::read_design_file(design_path, definition.shape.num_controls());
-  study::ShapeOracle oracle(body, study::make_cost(io::make_cost_definition(description), body));
+  study::ShapeOracle oracle(body, io::make_cost_definition(description));
   study::CertifyOptions options;
   options.cap = cap;
   const study::Certificate c = study::certify(oracle, alpha, options);

@@ -48,7 +48,7 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
   study::ElasticBody body(definition);
   const Eigen::VectorXd alpha = design_path.empty() ? definition.initial_design
                                                     : io::read_design_file(design_path, definition.shape.num_controls());
-  study::ShapeOracle oracle(body, study::make_cost(io::make_cost_definition(description), body));
+  study::ShapeOracle oracle(body, io::make_cost_definition(description));
   const study::Evaluation e = oracle.evaluate_design(alpha);
   fmt::print("{}: cost {}, Θ = {:.10e}\n", case_path.string(), oracle.cost().name(), e.value);
   fmt::print("{}\n{}\n", e.contact.brief_report(), e.adjoint.brief_report());

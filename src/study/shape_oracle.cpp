@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "frictopt/contact/delassus.hpp"
 #include "frictopt/core/error.hpp"
@@ -19,7 +20,8 @@ std::vector<double> key_of(const Eigen::VectorXd& alpha) { return {alpha.data(),
 constexpr std::size_t kCacheSize = 64;
 }  // namespace
 
-std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition, ElasticBody& body) {
+std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition, ElasticBody& body,
+                                                const BodyState* initial_state) {
   using Kind = CostDefinition::Kind;
   switch (definition.kind) {
     case Kind::kTargetPressure: {
@@ -27,7 +29,9 @@ std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition
       const Eigen::VectorXd& areas = body.contact_boundary()->tributary_areas();
       double pressure = definition.target_pressure;
       if (std::isnan(pressure)) {
-        const BodyState s = body.solve(body.definition().initial_design, "initial design");
+        std::optional<BodyState> solved;
+        if (!initial_state) solved = body.solve(body.definition().initial_design, "initial design");
+        const BodyState& s = initial_state ? *initial_state : *solved;
         if (s.summary.status != Status::kConverged)
           throw InvalidInput("cost target_pressure = initial_mean: the state at the initial design did not solve: " +
                              s.summary.message);
@@ -50,12 +54,34 @@ ShapeOracle::ShapeOracle(ElasticBody& body, std::unique_ptr<cost::CostFunctional
   gap_matrix_ = body_.definition().shape.gap_matrix(body_.contact_boundary()->plane_coordinates());
 }
 
+ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : ShapeOracle(body, nullptr) {
+  const bool needs_initial_state =
+      definition.kind == CostDefinition::Kind::kTargetPressure && std::isnan(definition.target_pressure);
+  if (needs_initial_state) solve_state(body_.definition().initial_design);
+  cost_ = make_cost(definition, body_, needs_initial_state ? state_.get() : nullptr);
+}
+
 void ShapeOracle::solve_state(const Eigen::VectorXd& alpha) {
   if (state_ && state_alpha_.size() == alpha.size() && state_alpha_ == alpha) return;
-  state_ = body_.solve(alpha, "design");
+  if (state_ && state_->contact) {
+    // The previous state stays readable for output; its Delassus operator (up to m² doubles)
+    // is released — the sensitivity needs it only for the last design, with its factorization.
+    state_->contact->delassus.reset();
+    state_->contact->delassus_matrix.reset();
+  }
+  state_ = std::make_shared<BodyState>(body_.solve(alpha, "design"));
   state_alpha_ = alpha;
   delassus_ = state_->contact ? state_->contact->delassus : nullptr;
+  recent_.push_front(state_);
+  if (recent_.size() > kRecentStates) recent_.pop_back();
   ++state_solves_;
+}
+
+const BodyState& ShapeOracle::state(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
+  for (const auto& s : recent_)
+    if (s->alpha.size() == alpha.size() && s->alpha == alpha) return *s;
+  solve_state(alpha);
+  return *state_;
 }
 
 const contact::DelassusMatrix& ShapeOracle::delassus() {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -20,8 +21,11 @@
 namespace frictopt::study {
 
 /// Builds the cost of `definition` for `body`; a target-pressure cost with the "initial mean"
-/// target solves the state at the body's initial design once.
-std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition, ElasticBody& body);
+/// target needs the state at the body's initial design: `initial_state` when given, else it is
+/// solved here (ShapeOracle's constructor from a CostDefinition passes its own, so that state
+/// is not solved twice).
+std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition, ElasticBody& body,
+                                                const BodyState* initial_state = nullptr);
 
 /// One evaluation of the oracle at a design.
 struct Evaluation {
@@ -45,6 +49,9 @@ class ShapeOracle final : public optim::Oracle {
  public:
   /// Throws InvalidInput when the body has no contact definition.
   ShapeOracle(ElasticBody& body, std::unique_ptr<cost::CostFunctional> cost);
+  /// The cost of `definition` (make_cost); a state it needs at the initial design stays cached,
+  /// so the optimizer's first evaluation does not solve it again.
+  ShapeOracle(ElasticBody& body, const CostDefinition& definition);
 
   /// Solves the state at α (throws InvalidInput for an inverting design), evaluates the cost
   /// and, if requested, the default piece's subgradient. Cached: the same α returns the same
@@ -67,6 +74,10 @@ class ShapeOracle final : public optim::Oracle {
   const cost::CostFunctional& cost() const { return *cost_; }
   /// The state of the last solved design.
   const BodyState& last_state() const { return *state_; }
+  /// The state at α for output (VTK, reports): one of the last kRecentStates solved states when
+  /// α is among them — without its Delassus operator unless it is the last — else solved now.
+  const BodyState& state(const Eigen::Ref<const Eigen::VectorXd>& alpha);
+  static constexpr std::size_t kRecentStates = 8;
   int num_state_solves() const { return state_solves_; }
 
  private:
@@ -77,8 +88,9 @@ class ShapeOracle final : public optim::Oracle {
   ElasticBody& body_;
   std::unique_ptr<cost::CostFunctional> cost_;
   Eigen::MatrixXd gap_matrix_;  // B̃ at the contact nodes
-  std::optional<BodyState> state_;
+  std::shared_ptr<BodyState> state_;  // the last solved design: the factorization is its
   Eigen::VectorXd state_alpha_;
+  std::deque<std::shared_ptr<BodyState>> recent_;  // newest first, state_ included
   std::shared_ptr<const contact::DelassusMatrix> delassus_;
   std::map<std::vector<double>, Evaluation> cache_;
   int state_solves_ = 0;
