@@ -130,6 +130,48 @@ class TotalSlip final : public CostFunctional {
   double delta_;
 };
 
+class TractionUniformity final : public CostFunctional {
+ public:
+  explicit TractionUniformity(Eigen::VectorXd target) : target_(std::move(target)) {
+    if (target_.size() > 2 || !target_.allFinite())
+      throw InvalidInput(fmt::format("cost traction_uniformity: target has {} entries (finite: {}); expected 1 (2D) or "
+                                     "2 (3D) finite components, or none for the mean traction",
+                                     target_.size(), target_.allFinite()));
+  }
+  std::string name() const override { return "traction_uniformity"; }
+  sensitivity::CostPartials evaluate(const CostInput& in) const override {
+    sensitivity::CostPartials out = zero_partials(in);
+    const int dim = in.contact.dim, nt = dim - 1;
+    const Eigen::Index p = in.contact.num_nodes();
+    if (target_.size() && target_.size() != nt)
+      throw InvalidInput(fmt::format("cost traction_uniformity: target has {} components; expected {} for a {}D body",
+                                     target_.size(), nt, dim));
+    // τ_i = −q_i: the tangential nodal force on the body; t_i = τ_i / a_i.
+    const auto tau = [&](Eigen::Index i, int c) { return -in.contact.z(dim * i + c); };
+    Eigen::VectorXd mean = Eigen::VectorXd::Zero(nt);
+    if (target_.size()) {
+      mean = target_;
+    } else {
+      for (Eigen::Index i = 0; i < p; ++i)
+        for (int c = 0; c < nt; ++c) mean(c) += tau(i, c);
+      mean /= in.tributary_areas.sum();
+    }
+    out.value = 0.0;
+    for (Eigen::Index i = 0; i < p; ++i) {
+      const double a = in.tributary_areas(i);
+      for (int c = 0; c < nt; ++c) {
+        const double deviation = tau(i, c) / a - mean(c);
+        out.value += a * deviation * deviation;
+        out.d_contact(dim * i + c) = -2.0 * deviation;  // ∂J/∂q = −∂J/∂τ
+      }
+    }
+    return out;
+  }
+
+ private:
+  Eigen::VectorXd target_;
+};
+
 }  // namespace
 
 std::unique_ptr<CostFunctional> make_target_normal_force(Eigen::VectorXd target) {
@@ -141,5 +183,8 @@ std::unique_ptr<CostFunctional> make_normal_force_power(double exponent) {
 std::unique_ptr<CostFunctional> make_compliance() { return std::make_unique<Compliance>(); }
 std::unique_ptr<CostFunctional> make_pressure_norm(double exponent) { return std::make_unique<PressureNorm>(exponent); }
 std::unique_ptr<CostFunctional> make_total_slip(double smoothing) { return std::make_unique<TotalSlip>(smoothing); }
+std::unique_ptr<CostFunctional> make_traction_uniformity(Eigen::VectorXd target) {
+  return std::make_unique<TractionUniformity>(std::move(target));
+}
 
 }  // namespace frictopt::cost

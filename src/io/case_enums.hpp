@@ -34,6 +34,7 @@ inline constexpr auto kFrictionKindTable = make_enum_table<FrictionKind>(
 inline constexpr auto kCostKindTable = make_enum_table<CostKind>(
     std::pair{CostKind::kTargetPressure, "target_pressure"},
     std::pair{CostKind::kNormalForcePower, "normal_force_power"}, std::pair{CostKind::kCompliance, "compliance"},
-    std::pair{CostKind::kPressureNorm, "pressure_norm"}, std::pair{CostKind::kTotalSlip, "total_slip"});
+    std::pair{CostKind::kPressureNorm, "pressure_norm"}, std::pair{CostKind::kTotalSlip, "total_slip"},
+    std::pair{CostKind::kTractionUniformity, "traction_uniformity"});
 
 }  // namespace frictopt::io::detail

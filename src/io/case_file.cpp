@@ -365,7 +365,8 @@ CostSpec read_cost(const TableReader& r) {
   try {
     c.kind = parse_cost_kind(kind);
   } catch (const InvalidInput&) {
-    r.fail_value("kind", "one of target_pressure, normal_force_power, compliance, pressure_norm, total_slip");
+    r.fail_value("kind", "one of target_pressure, normal_force_power, compliance, pressure_norm, total_slip, "
+                         "traction_uniformity");
   }
   if (c.kind == CostKind::kTargetPressure) {
     const toml::node* target = r.node("target");
@@ -378,8 +379,19 @@ CostSpec read_cost(const TableReader& r) {
       c.target_pressure = r.optional_number("target");
       if (!(*c.target_pressure >= 0)) r.fail_value("target", "target >= 0");
     }
+  } else if (c.kind == CostKind::kTractionUniformity) {
+    // Optional: "mean" (the default) or the target traction [Pa]; its length (dim − 1) is
+    // checked against the geometry in parse_case, which knows dim.
+    if (const toml::node* target = r.node("target"); target != nullptr) {
+      if (target->is_string()) {
+        if (target->value<std::string>().value_or("") != "mean")
+          r.fail_value("target", "\"mean\" or a list of dim − 1 tangential tractions [Pa]");
+      } else {
+        c.target_traction = r.number_list("target", "the target tangential traction [Pa]");
+      }
+    }
   } else if (r.has("target")) {
-    r.fail_value("target", "no target for this kind (only target_pressure has one)");
+    r.fail_value("target", "no target for this kind (only target_pressure and traction_uniformity have one)");
   }
   if ((c.exponent = r.optional_number("exponent"))) {
     if (c.kind != CostKind::kNormalForcePower && c.kind != CostKind::kPressureNorm)
@@ -608,6 +620,11 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     if (!c.contact)
       throw InvalidInput(fmt::format("{}: [cost] needs a [contact] table: every cost reads the contact state", origin));
     c.cost = read_cost(TableReader(*cost, "cost", origin, {"kind", "target", "exponent", "smoothing"}));
+    const std::size_t tangential = static_cast<std::size_t>(c.geometry.dim - 1);
+    if (!c.cost->target_traction.empty() && c.cost->target_traction.size() != tangential)
+      throw InvalidInput(fmt::format("{}: cost.target has {} components; expected {} (the tangential traction [Pa] of "
+                                     "a {}D body) or \"mean\"",
+                                     origin, c.cost->target_traction.size(), tangential, c.geometry.dim));
   }
   if (const toml::table* optimization = top.optional_table("optimization"))
     c.optimization = read_optimization(TableReader(

@@ -96,7 +96,7 @@ study::BodyDefinition make_body_definition(const CaseDescription& c) {
 study::CostDefinition make_cost_definition(const CaseDescription& c) {
   if (!c.cost)
     throw InvalidInput(fmt::format("{}: no [cost] table; expected one with kind = target_pressure, "
-                                   "normal_force_power, compliance, pressure_norm or total_slip",
+                                   "normal_force_power, compliance, pressure_norm, total_slip or traction_uniformity",
                                    c.origin));
   using Kind = study::CostDefinition::Kind;
   study::CostDefinition d;
@@ -106,6 +106,11 @@ study::CostDefinition make_cost_definition(const CaseDescription& c) {
     case CostKind::kCompliance: d.kind = Kind::kCompliance; break;
     case CostKind::kPressureNorm: d.kind = Kind::kPressureNorm; d.exponent = 8.0; break;
     case CostKind::kTotalSlip: d.kind = Kind::kTotalSlip; break;
+    case CostKind::kTractionUniformity:
+      d.kind = Kind::kTractionUniformity;
+      d.target_traction = Eigen::Map<const Eigen::VectorXd>(c.cost->target_traction.data(),
+                                                            static_cast<Eigen::Index>(c.cost->target_traction.size()));
+      break;
   }
   if (c.cost->target_pressure) d.target_pressure = *c.cost->target_pressure;
   if (c.cost->exponent) d.exponent = *c.cost->exponent;

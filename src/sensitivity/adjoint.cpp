@@ -161,19 +161,22 @@ Reduction reduce(const PieceLinearization& lin) {
   return r;
 }
 
-// Dense rows × cols block of a sparse matrix.
-Eigen::MatrixXd dense_block(const Eigen::SparseMatrix<double>& A, const std::vector<Eigen::Index>& rows,
-                            const std::vector<Eigen::Index>& cols) {
+// The rows × cols block of a sparse matrix, kept sparse: S has at most two entries per row,
+// so products with the dense Delassus block cost |R|·nnz, not the |R|·|T|·|A| of a dense GEMM.
+Eigen::SparseMatrix<double> sparse_block(const Eigen::SparseMatrix<double>& A, const std::vector<Eigen::Index>& rows,
+                                         const std::vector<Eigen::Index>& cols) {
   std::vector<Eigen::Index> col_position(static_cast<std::size_t>(A.cols()), -1);
   for (std::size_t j = 0; j < cols.size(); ++j) col_position[static_cast<std::size_t>(cols[j])] = static_cast<Eigen::Index>(j);
   std::vector<Eigen::Index> row_position(static_cast<std::size_t>(A.rows()), -1);
   for (std::size_t i = 0; i < rows.size(); ++i) row_position[static_cast<std::size_t>(rows[i])] = static_cast<Eigen::Index>(i);
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
+  std::vector<Eigen::Triplet<double>> entries;
   for (Eigen::Index c = 0; c < A.outerSize(); ++c)
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
       const Eigen::Index i = row_position[static_cast<std::size_t>(it.row())], j = col_position[static_cast<std::size_t>(c)];
-      if (i >= 0 && j >= 0) out(i, j) = it.value();
+      if (i >= 0 && j >= 0) entries.emplace_back(i, j, it.value());
     }
+  Eigen::SparseMatrix<double> out(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
+  out.setFromTriplets(entries.begin(), entries.end());
   return out;
 }
 
@@ -199,9 +202,9 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   // Contact-sized system (M Sᵀ + C_zᵀ) ψ_z = −g_z − G A⁻¹ g_u, reduced to rows R, columns A.
   const Eigen::VectorXd Ainv_gu = cholesky.solve(gu);
   const Eigen::VectorXd rhs = -gz - boundary_.times(Ainv_gu);
-  const Eigen::MatrixXd St = dense_block(lin.S, red.active_rows, red.touched_z).transpose();  // T × A
-  Eigen::MatrixXd K = dense_block(lin.Cz, red.active_rows, red.free_z).transpose();          // R × A
-  if (!red.touched_z.empty()) K += contact::blas::times(delassus.block(red.free_z, red.touched_z), St);
+  const Eigen::SparseMatrix<double> St = sparse_block(lin.S, red.active_rows, red.touched_z).transpose();  // T × A
+  Eigen::MatrixXd K = Eigen::MatrixXd(sparse_block(lin.Cz, red.active_rows, red.free_z).transpose());   // R × A
+  if (!red.touched_z.empty()) K += delassus.block(red.free_z, red.touched_z) * St;
   Eigen::VectorXd r(static_cast<Eigen::Index>(red.free_z.size()));
   for (std::size_t i = 0; i < red.free_z.size(); ++i) r(static_cast<Eigen::Index>(i)) = rhs(red.free_z[i]);
   Eigen::VectorXd psi_active;
@@ -260,9 +263,9 @@ AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
   // (S M + C_z) δz = −r_g + S G A⁻¹ r_α; identity rows give δz = 0 on their index (their
   // right-hand side is zero), the rest is the A × R block.
   const Eigen::VectorXd rhs = -rg + lin.S * boundary_.times(Ainv_ra);
-  const Eigen::MatrixXd S_at = dense_block(lin.S, red.active_rows, red.touched_z);
-  Eigen::MatrixXd K = dense_block(lin.Cz, red.active_rows, red.free_z);
-  if (!red.touched_z.empty()) K += contact::blas::times(S_at, delassus.block(red.touched_z, red.free_z));
+  const Eigen::SparseMatrix<double> S_at = sparse_block(lin.S, red.active_rows, red.touched_z);
+  Eigen::MatrixXd K = Eigen::MatrixXd(sparse_block(lin.Cz, red.active_rows, red.free_z));
+  if (!red.touched_z.empty()) K += S_at * delassus.block(red.touched_z, red.free_z);
   Eigen::VectorXd r(static_cast<Eigen::Index>(red.active_rows.size()));
   for (std::size_t i = 0; i < red.active_rows.size(); ++i) r(static_cast<Eigen::Index>(i)) = rhs(red.active_rows[i]);
   StateDerivative out;

@@ -31,8 +31,11 @@ optim::BundleTrust::Summary optimize(ShapeOracle& oracle, optim::BundleTrust::Op
   const auto start = std::chrono::steady_clock::now();
   if (on_progress) {
     options.on_iteration = [&](const optim::BundleTrust::IterationSummary& s) {
-      // x_k was evaluated by the method (cached): this costs no state solve.
-      const Evaluation& center = oracle.evaluate_design(s.x, true);
+      // x_k was evaluated by the method (cached), except a centre read from a checkpoint that
+      // this process has not evaluated: it is reported empty rather than solved again.
+      static const Evaluation kNotEvaluated;
+      const Evaluation* cached = oracle.find_evaluation(s.x);
+      const Evaluation& center = cached ? *cached : kNotEvaluated;
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return on_progress({s, center, elapsed, oracle.num_state_solves()});
     };

@@ -15,9 +15,9 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
-std::vector<double> key_of(const Eigen::VectorXd& alpha) { return {alpha.data(), alpha.data() + alpha.size()}; }
+std::vector<double> key_of(const Eigen::Ref<const Eigen::VectorXd>& alpha) { return {alpha.data(), alpha.data() + alpha.size()}; }
 // Bounded memory: the bundle method revisits only the last few designs.
-constexpr std::size_t kCacheSize = 64;
+constexpr std::size_t kCacheSize = 512;
 }  // namespace
 
 std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition, ElasticBody& body,
@@ -43,6 +43,7 @@ std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition
     case Kind::kCompliance: return cost::make_compliance();
     case Kind::kPressureNorm: return cost::make_pressure_norm(definition.exponent);
     case Kind::kTotalSlip: return cost::make_total_slip(definition.smoothing);
+    case Kind::kTractionUniformity: return cost::make_traction_uniformity(definition.target_traction);
   }
   return nullptr;
 }
@@ -134,6 +135,11 @@ const Evaluation& ShapeOracle::evaluate_design(const Eigen::Ref<const Eigen::Vec
     }
   }
   return cache_[key_of(alpha)] = e;
+}
+
+const Evaluation* ShapeOracle::find_evaluation(const Eigen::Ref<const Eigen::VectorXd>& alpha) const {
+  const auto it = cache_.find(key_of(alpha));
+  return it == cache_.end() ? nullptr : &it->second;
 }
 
 optim::OracleResult ShapeOracle::evaluate(const Eigen::Ref<const Eigen::VectorXd>& x) {

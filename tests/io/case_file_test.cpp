@@ -284,6 +284,24 @@ TEST(ParseCase, CostAndOptimizationTablesAreValidated) {
   expect_invalid(std::string(kValid2d) + "\n[study]\n", {"[study] is reserved"});
 }
 
+TEST(ParseCase, TractionUniformityTakesTheMeanOrATargetOfDimMinusOneComponents) {
+  const CaseDescription mean =
+      parse_case(std::string(kValid3d) + "\n[cost]\nkind = \"traction_uniformity\"\n", "case.toml");
+  ASSERT_TRUE(mean.cost.has_value());
+  EXPECT_EQ(mean.cost->kind, CostKind::kTractionUniformity);
+  EXPECT_TRUE(mean.cost->target_traction.empty());
+  const CaseDescription target = parse_case(
+      std::string(kValid3d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = [2e4, -1e4]\n", "case.toml");
+  EXPECT_EQ(target.cost->target_traction, (std::vector<double>{2e4, -1e4}));
+  EXPECT_TRUE(parse_case(std::string(kValid2d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = \"mean\"\n",
+                         "case.toml")
+                  .cost->target_traction.empty());
+  expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = [1, 2]\n",
+                 {"cost.target has 2 components; expected 1"});
+  expect_invalid(std::string(kValid3d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = \"median\"\n",
+                 {"cost.target", "\"mean\""});
+}
+
 TEST(ParseCase, UnknownKeyInNestedTablesIsNamedWithItsPath) {
   expect_invalid(replaced(kValid2d, "mu = 0.3", "mu = 0.3\nmuu = 0.1"), {"contact.friction.muu"});
   expect_invalid(replaced(kValid2d, "max_iterations = 40", "max_iter = 40"),

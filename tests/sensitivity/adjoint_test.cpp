@@ -45,7 +45,7 @@ study::BodyDefinition block_3d(const contact::FrictionLaw& law, Eigen::Vector2d 
   return b;
 }
 
-enum class CostKind { kTargetForce, kCompliance, kForcePower, kPressureNorm, kTotalSlip };
+enum class CostKind { kTargetForce, kCompliance, kForcePower, kPressureNorm, kTotalSlip, kTractionUniformity };
 
 std::unique_ptr<cost::CostFunctional> make_cost(CostKind kind, study::ElasticBody& body) {
   switch (kind) {
@@ -59,6 +59,7 @@ std::unique_ptr<cost::CostFunctional> make_cost(CostKind kind, study::ElasticBod
     case CostKind::kForcePower: return cost::make_normal_force_power(4.0);
     case CostKind::kPressureNorm: return cost::make_pressure_norm(6.0);
     case CostKind::kTotalSlip: return cost::make_total_slip(1e-6);
+    case CostKind::kTractionUniformity: return cost::make_traction_uniformity();
   }
   return nullptr;
 }
@@ -117,6 +118,10 @@ std::vector<GradientCase> gradient_cases() {
       {"Disc3D_Exact_Compliance", [] { return block_3d(contact::FrictionLaw::disc(0.3)); }, CostKind::kCompliance, {}},
       {"Ellipse3D_Exact_TotalSlip", [] { return block_3d(contact::FrictionLaw::ellipse(0.2, 0.4)); },
        CostKind::kTotalSlip, {}},
+      {"Aniso3D_Polygon4_TractionUniformity",
+       [] { return block_3d(contact::FrictionLaw::polygon({0.2, 0.45, 0.2, 0.45})); }, CostKind::kTractionUniformity, {}},
+      {"Aniso2D_TractionUniformity", [] { return thesis_body_2d(contact::FrictionLaw::interval(0.15, 0.35)); },
+       CostKind::kTractionUniformity, {}},
   };
 }
 

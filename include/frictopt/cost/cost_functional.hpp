@@ -52,4 +52,13 @@ std::unique_ptr<CostFunctional> make_pressure_norm(double exponent = 8.0);
 /// contact nodes (δ > 0 smooths |·| at 0).
 std::unique_ptr<CostFunctional> make_total_slip(double smoothing);
 
+/// Tangential-traction uniformity J = Σ_i a_i ‖t_i − t̄‖² [N²/m²] over all contact nodes, with
+/// t_i = τ_i / a_i the tangential traction on the body (τ_i = −q_i the nodal tangential contact
+/// force, a_i the tributary area) and t̄ either `target` (dim − 1 components [Pa]) or, when
+/// `target` is empty, the area-weighted mean Σ_i τ_i / Σ_i a_i of the current state — then J is
+/// the area-weighted variance of the traction (separated nodes count with t_i = 0, so that the
+/// cost stays continuous when nodes lift off). In both cases ∂J/∂τ_k = 2(t_k − t̄): the mean's
+/// own derivative drops out because Σ_i a_i (t_i − t̄) = 0.
+std::unique_ptr<CostFunctional> make_traction_uniformity(Eigen::VectorXd target = {});
+
 }  // namespace frictopt::cost

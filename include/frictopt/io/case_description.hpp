@@ -160,9 +160,11 @@ enum class CostKind {
   kNormalForcePower,  ///< Σ λ_i^p (thesis ex. 5.2.2 with p = 4)
   kCompliance,        ///< −uᵀAu + lᵀu (thesis ex. 5.2.3)
   kPressureNorm,      ///< (Σ a_i p_i^p)^{1/p}: smooth peak-pressure surrogate
-  kTotalSlip          ///< Σ √(|u_t|² + δ²) − δ
+  kTotalSlip,         ///< Σ √(|u_t|² + δ²) − δ
+  kTractionUniformity ///< Σ a_i ‖t_i − t̄‖²: tangential traction about a target or its mean
 };
-/// "target_pressure", "normal_force_power", "compliance", "pressure_norm", "total_slip".
+/// "target_pressure", "normal_force_power", "compliance", "pressure_norm", "total_slip",
+/// "traction_uniformity".
 std::string_view to_string(CostKind kind);
 CostKind parse_cost_kind(std::string_view text);
 
@@ -174,6 +176,9 @@ struct CostSpec {
   bool target_initial_mean = false;
   std::optional<double> exponent;   ///< kNormalForcePower (default 4), kPressureNorm (default 8); >= 2
   std::optional<double> smoothing;  ///< kTotalSlip: δ > 0 [m] (default 1e-6)
+  /// kTractionUniformity: target tangential traction [Pa], dim − 1 components; absent or
+  /// target = "mean": the current area-weighted mean traction.
+  std::vector<double> target_traction;
 };
 
 /// [optimization]: bundle trust options a case may override (absent: the method's defaults).

@@ -37,13 +37,16 @@ struct ContactDefinition {
 
 /// The cost functional of a study (spec 05 §2.4; cost module).
 struct CostDefinition {
-  enum class Kind { kTargetPressure, kNormalForcePower, kCompliance, kPressureNorm, kTotalSlip };
+  enum class Kind { kTargetPressure, kNormalForcePower, kCompliance, kPressureNorm, kTotalSlip, kTractionUniformity };
   Kind kind = Kind::kCompliance;
   /// kTargetPressure: uniform target pressure p̄ [Pa], λ̄_i = p̄·a_i; NaN: the initial total
   /// normal force spread as a uniform pressure (spec 05 §2.3's reading of the thesis' target).
   double target_pressure = std::numeric_limits<double>::quiet_NaN();
   double exponent = 4.0;    ///< kNormalForcePower (thesis: 4), kPressureNorm
   double smoothing = 1e-6;  ///< kTotalSlip [m]
+  /// kTractionUniformity: the target tangential traction t̄ [Pa] (dim − 1 components); empty:
+  /// the area-weighted mean traction of the current state (J is then its variance).
+  Eigen::VectorXd target_traction;
 };
 
 struct BodyDefinition {

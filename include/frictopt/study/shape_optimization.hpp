@@ -20,7 +20,9 @@ optim::LinearConstraints to_optim_constraints(const shape::LinearConstraints& up
 /// What a progress line and a history row need after each outer iteration.
 struct OptimizationProgress {
   const optim::BundleTrust::IterationSummary& method;  ///< the optimizer's state (checkpointable)
-  const Evaluation& center;                            ///< the oracle's evaluation at x_k
+  /// The oracle's evaluation at x_k; empty (ok == false, zero counters) when x_k comes from a
+  /// checkpoint and was not evaluated in this process (a resumed run does not re-solve it).
+  const Evaluation& center;
   double elapsed_seconds = 0.0;
   int state_solves = 0;                                ///< state problems solved so far
 };

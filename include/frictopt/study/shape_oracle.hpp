@@ -57,6 +57,8 @@ class ShapeOracle final : public optim::Oracle {
   /// and, if requested, the default piece's subgradient. Cached: the same α returns the same
   /// Evaluation without solving again.
   const Evaluation& evaluate_design(const Eigen::Ref<const Eigen::VectorXd>& alpha, bool with_subgradient = true);
+  /// The cached evaluation at α, or nullptr (never solves).
+  const Evaluation* find_evaluation(const Eigen::Ref<const Eigen::VectorXd>& alpha) const;
   /// optim::Oracle: a failed or inverting evaluation reports "could not evaluate here".
   [[nodiscard]] optim::OracleResult evaluate(const Eigen::Ref<const Eigen::VectorXd>& x) override;
 
