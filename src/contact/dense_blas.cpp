@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/contact/dense_blas.hpp"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ void dtrsv_(const char* uplo, const char* trans, const char* diag, const int* n,
 void dpotri_(const char* uplo, const int* n, double* a, const int* lda, int* info);
 void dsymv_(const char* uplo, const int* n, const double* alpha, const double* a, const int* lda, const double* x,
             const int* incx, const double* beta, double* y, const int* incy);
+void dgesdd_(const char* jobz, const int* m, const int* n, double* a, const int* lda, double* s, double* u,
+             const int* ldu, double* vt, const int* ldvt, double* work, const int* lwork, int* iwork, int* info);
 void dgetrf_(const int* m, const int* n, double* a, const int* lda, int* ipiv, int* info);
 void dgetrs_(const char* trans, const int* n, const int* nrhs, const double* a, const int* lda, const int* ipiv,
              double* b, const int* ldb, int* info);
@@ -79,6 +82,22 @@ Eigen::MatrixXd transpose_times(const Eigen::MatrixXd& A, const Eigen::MatrixXd&
 
 Eigen::MatrixXd times(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
   return gemm("N", A, B, static_cast<int>(A.rows()), static_cast<int>(A.cols()));
+}
+
+Eigen::VectorXd singular_values(Eigen::MatrixXd A) {
+  const int m = static_cast<int>(A.rows()), n = static_cast<int>(A.cols()), k = std::min(m, n);
+  Eigen::VectorXd s(k);
+  if (k == 0) return s;
+  int info = 0, lwork = -1, one = 1;
+  double query = 0.0, unused = 0.0;
+  std::vector<int> iwork(static_cast<std::size_t>(8 * k));
+  dgesdd_("N", &m, &n, A.data(), &m, s.data(), &unused, &one, &unused, &one, &query, &lwork, iwork.data(), &info);
+  lwork = static_cast<int>(query);
+  std::vector<double> work(static_cast<std::size_t>(std::max(lwork, 1)));
+  dgesdd_("N", &m, &n, A.data(), &m, s.data(), &unused, &one, &unused, &one, work.data(), &lwork, iwork.data(), &info);
+  // info > 0: the bidiagonal QR did not converge (never seen for finite input); info < 0: a bug.
+  FRICTOPT_ASSERT(info == 0, "singular_values: dgesdd info = " + std::to_string(info));
+  return s;
 }
 
 bool lu_solve(Eigen::MatrixXd K, const Eigen::VectorXd& r, Eigen::VectorXd& x, double& reciprocal_condition) {

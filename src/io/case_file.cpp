@@ -380,12 +380,14 @@ CostSpec read_cost(const TableReader& r) {
       if (!(*c.target_pressure >= 0)) r.fail_value("target", "target >= 0");
     }
   } else if (c.kind == CostKind::kTractionUniformity) {
-    // Optional: "mean" (the default) or the target traction [Pa]; its length (dim − 1) is
-    // checked against the geometry in parse_case, which knows dim.
+    // Optional: "mean" (the default), "initial_mean" or the target traction [Pa]; its length
+    // (dim − 1) is checked against the geometry in parse_case, which knows dim.
     if (const toml::node* target = r.node("target"); target != nullptr) {
       if (target->is_string()) {
-        if (target->value<std::string>().value_or("") != "mean")
-          r.fail_value("target", "\"mean\" or a list of dim − 1 tangential tractions [Pa]");
+        const std::string word = target->value<std::string>().value_or("");
+        if (word != "mean" && word != "initial_mean")
+          r.fail_value("target", "\"mean\", \"initial_mean\" or a list of dim − 1 tangential tractions [Pa]");
+        c.target_traction_initial_mean = word == "initial_mean";
       } else {
         c.target_traction = r.number_list("target", "the target tangential traction [Pa]");
       }

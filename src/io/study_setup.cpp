@@ -110,6 +110,7 @@ study::CostDefinition make_cost_definition(const CaseDescription& c) {
       d.kind = Kind::kTractionUniformity;
       d.target_traction = Eigen::Map<const Eigen::VectorXd>(c.cost->target_traction.data(),
                                                             static_cast<Eigen::Index>(c.cost->target_traction.size()));
+      d.target_traction_initial_mean = c.cost->target_traction_initial_mean;
       break;
   }
   if (c.cost->target_pressure) d.target_pressure = *c.cost->target_pressure;

@@ -43,7 +43,21 @@ std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition
     case Kind::kCompliance: return cost::make_compliance();
     case Kind::kPressureNorm: return cost::make_pressure_norm(definition.exponent);
     case Kind::kTotalSlip: return cost::make_total_slip(definition.smoothing);
-    case Kind::kTractionUniformity: return cost::make_traction_uniformity(definition.target_traction);
+    case Kind::kTractionUniformity: {
+      if (!definition.target_traction_initial_mean) return cost::make_traction_uniformity(definition.target_traction);
+      std::optional<BodyState> solved;
+      if (!initial_state) solved = body.solve(body.definition().initial_design, "initial design");
+      const BodyState& s = initial_state ? *initial_state : *solved;
+      if (s.summary.status != Status::kConverged)
+        throw InvalidInput("cost traction_uniformity with target = initial_mean: the state at the initial design did "
+                           "not solve: " + s.summary.message);
+      const contact::ContactState& cs = s.contact->state;
+      const int nt = cs.dim - 1;
+      Eigen::VectorXd mean = Eigen::VectorXd::Zero(nt);
+      for (Eigen::Index i = 0; i < cs.num_nodes(); ++i)
+        for (int c = 0; c < nt; ++c) mean(c) -= cs.z(cs.dim * i + c);  // τ_i = −q_i
+      return cost::make_traction_uniformity(mean / body.contact_boundary()->tributary_areas().sum());
+    }
   }
   return nullptr;
 }
@@ -57,7 +71,8 @@ ShapeOracle::ShapeOracle(ElasticBody& body, std::unique_ptr<cost::CostFunctional
 
 ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : ShapeOracle(body, nullptr) {
   const bool needs_initial_state =
-      definition.kind == CostDefinition::Kind::kTargetPressure && std::isnan(definition.target_pressure);
+      (definition.kind == CostDefinition::Kind::kTargetPressure && std::isnan(definition.target_pressure)) ||
+      (definition.kind == CostDefinition::Kind::kTractionUniformity && definition.target_traction_initial_mean);
   if (needs_initial_state) solve_state(body_.definition().initial_design);
   cost_ = make_cost(definition, body_, needs_initial_state ? state_.get() : nullptr);
 }

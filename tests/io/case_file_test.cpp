@@ -299,7 +299,10 @@ TEST(ParseCase, TractionUniformityTakesTheMeanOrATargetOfDimMinusOneComponents) 
   expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = [1, 2]\n",
                  {"cost.target has 2 components; expected 1"});
   expect_invalid(std::string(kValid3d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = \"median\"\n",
-                 {"cost.target", "\"mean\""});
+                 {"cost.target", "\"mean\"", "\"initial_mean\""});
+  EXPECT_TRUE(parse_case(std::string(kValid3d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = \"initial_mean\"\n",
+                         "case.toml")
+                  .cost->target_traction_initial_mean);
 }
 
 TEST(ParseCase, UnknownKeyInNestedTablesIsNamedWithItsPath) {

@@ -179,6 +179,8 @@ struct CostSpec {
   /// kTractionUniformity: target tangential traction [Pa], dim − 1 components; absent or
   /// target = "mean": the current area-weighted mean traction.
   std::vector<double> target_traction;
+  /// kTractionUniformity with target = "initial_mean": t̄ = the mean traction at α⁰, fixed.
+  bool target_traction_initial_mean = false;
 };
 
 /// [optimization]: bundle trust options a case may override (absent: the method's defaults).

@@ -47,6 +47,9 @@ struct CostDefinition {
   /// kTractionUniformity: the target tangential traction t̄ [Pa] (dim − 1 components); empty:
   /// the area-weighted mean traction of the current state (J is then its variance).
   Eigen::VectorXd target_traction;
+  /// kTractionUniformity: t̄ = the area-weighted mean traction at the initial design (fixed),
+  /// so that J penalizes both an uneven traction and a smaller transmitted shear.
+  bool target_traction_initial_mean = false;
 };
 
 struct BodyDefinition {
