@@ -20,7 +20,7 @@ repeat=3
 repeat3d=1
 out="${TMPDIR:-/tmp}/frictopt-studies"
 cases2d="cases2d/ex521-target-pressure cases2d/ex522-force-power cases2d/ex523-compliance"
-cases3d="cases3d/punch-anisotropic cases3d/punch-target-pressure cases3d/punch-elliptic cases3d/punch-compliance"
+cases3d="cases3d/punch-anisotropic cases3d/punch-target-pressure cases3d/punch-elliptic cases3d/punch-compliance cases3d/punch-traction-uniformity"
 custom=""
 large=0
 while [[ $# -gt 0 ]]; do
