@@ -168,6 +168,10 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
   json["cost"] = oracle.cost().name();
   json["status"] = std::string(to_string(summary.status));
   json["message"] = summary.message;
+  // status "max_iterations" covers both limits (core::Status); this names the one that stopped.
+  json["stopped_by"] = summary.status == Status::kMaxIterations
+                           ? std::string(summary.evaluation_limit ? "max_evaluations" : "max_iterations")
+                           : std::string(to_string(summary.status));
   json["initial_cost"] = initial_value;
   json["final_cost"] = final.value;
   json["alpha"] = summary.x;

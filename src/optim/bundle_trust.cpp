@@ -275,6 +275,7 @@ void Run::run(BundleTrust::IterationSummary& st) {
       }
       if (s_.evaluations >= o_.max_evaluations) {
         st.t = t;
+        s_.evaluation_limit = true;
         finish(st, Status::kMaxIterations, "evaluation limit reached (max_evaluations)");
         return;
       }

@@ -109,6 +109,7 @@ TEST(StudiesSmoke, ShortOptimizeRunWritesOutputsResumesAndRefusesAnExistingRun) 
   EXPECT_EQ(rows_first, 1 + 3);  // header + one row per iteration
   const auto summary = frictopt::io::parse_json(read_text(out / "summary.json"));
   EXPECT_EQ(summary.at("iterations").as_number(), 3);
+  EXPECT_EQ(summary.at("stopped_by").as_string(), "max_iterations");
   EXPECT_LE(summary.at("final_cost").as_number(), summary.at("initial_cost").as_number());
 
   // An existing run is refused without --resume or --force (exit code 2, invalid input).

@@ -208,11 +208,13 @@ TEST(BundleTrust, StopsAtTheEvaluationAndIterationLimits) {
   auto oracle = weighted_l1(Eigen::Vector2d(1.0, 1.0), Eigen::Vector2d(0.3, 0.7));
   const auto s = fo::BundleTrust(o).minimize(oracle, Eigen::Vector2d(5.0, 5.0));
   EXPECT_EQ(s.status, Status::kMaxIterations);
+  EXPECT_TRUE(s.evaluation_limit) << s.message;
   EXPECT_LE(s.evaluations, 7);
   o.max_evaluations = 100000;
   o.max_iterations = 4;
   const auto s2 = fo::BundleTrust(o).minimize(oracle, Eigen::Vector2d(5.0, 5.0));
   EXPECT_EQ(s2.status, Status::kMaxIterations);
+  EXPECT_FALSE(s2.evaluation_limit) << s2.message;
   EXPECT_EQ(s2.iterations, 4);
 }
 

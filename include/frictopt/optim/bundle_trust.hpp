@@ -120,6 +120,8 @@ class BundleTrust {
   struct Summary {
     Status status = Status::kNotRun;
     std::string message = "minimize() has not been called";
+    /// With status kMaxIterations: which limit stopped the run (Status has one value for both).
+    bool evaluation_limit = false;  ///< true: max_evaluations, false: max_iterations
     Eigen::VectorXd x;              ///< final stability center (feasible)
     double f = kNaN;                ///< f(x) (unscaled)
     int iterations = 0;             ///< outer iterations (serious + null steps)
