@@ -183,12 +183,11 @@ class Engine {
           if (mprgp) {
             analyze(z, g, part, &phi, nullptr);
             z -= alpha_bar_ * phi;
+            project(z, part);
+            recompute_gradient(z, c, g);
           } else {
-            trial = z - alpha_bar_ * g;
-            copy_part(trial, z, part);
+            projected_gradient_step(z, g, c, part, trial);
           }
-          project(z, part);
-          recompute_gradient(z, c, g);
           fresh = true;
           analyze(z, g, part, &d, nullptr);
           ++summary_.expansion_steps;
@@ -205,16 +204,23 @@ class Engine {
           g -= alpha * md;
           fresh = false;
         } else {
-          trial = z - alpha_bar_ * g;
-          copy_part(trial, z, part);
-          project(z, part);
-          recompute_gradient(z, c, g);
+          projected_gradient_step(z, g, c, part, trial);
           fresh = true;
         }
         analyze(z, g, part, &d, nullptr);
         ++summary_.proportioning_steps;
       }
     }
+  }
+
+  /// z ← P(z − ᾱ g) on `part` (the rest of z unchanged), g ← Mz + c: the MPGP step of fixed
+  /// length used by both the expansion and the proportioning step. `trial` is scratch space.
+  void projected_gradient_step(Eigen::VectorXd& z, Eigen::VectorXd& g, const Eigen::VectorXd& c, Part part,
+                               Eigen::VectorXd& trial) {
+    trial = z - alpha_bar_ * g;
+    copy_part(trial, z, part);
+    project(z, part);
+    recompute_gradient(z, c, g);
   }
 
   double reduced_gradient_norm(const Eigen::VectorXd& z, const Eigen::VectorXd& g,
