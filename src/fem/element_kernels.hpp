@@ -136,14 +136,23 @@ struct FacetKernel {
   }
   static constexpr int kPoints = Dim == 2 ? 2 : 4;
 
+  /// Gauss point q's shape functions, their parameter derivatives and weight (the loops below).
+  struct Point {
+    Eigen::Matrix<double, kNodes, 1> N;
+    Eigen::Matrix<double, kNodes, Dim - 1> dN;
+    double w = 0.0;
+  };
+  static Point point(int q) {
+    Point p;
+    shape(q, p.N, p.dN, p.w);
+    return p;
+  }
+
   /// Nodal forces ∫ N_a t dS (kNodes × Dim) for a constant traction t.
   static Coordinates load(const Coordinates& Xf, const Eigen::Matrix<double, Dim, 1>& t) {
     Coordinates f = Coordinates::Zero();
     for (int q = 0; q < kPoints; ++q) {
-      Eigen::Matrix<double, kNodes, 1> N;
-      Eigen::Matrix<double, kNodes, Dim - 1> dN;
-      double w;
-      shape(q, N, dN, w);
+      const auto [N, dN, w] = point(q);
       f += (w * area_density(Xf, dN)) * N * t.transpose();
     }
     return f;
@@ -155,10 +164,7 @@ struct FacetKernel {
                                               const Coordinates& pf) {
     Coordinates g = Coordinates::Zero();
     for (int q = 0; q < kPoints; ++q) {
-      Eigen::Matrix<double, kNodes, 1> N;
-      Eigen::Matrix<double, kNodes, Dim - 1> dN;
-      double w;
-      shape(q, N, dN, w);
+      const auto [N, dN, w] = point(q);
       const double pt = (N.transpose() * pf * t)(0);
       if constexpr (Dim == 2) {
         const Eigen::Vector2d x1 = Xf.transpose() * dN.col(0);
@@ -178,10 +184,7 @@ struct FacetKernel {
   static Coordinates load_derivative(const Coordinates& Xf, const Eigen::Matrix<double, Dim, 1>& t, const Coordinates& dXf) {
     Coordinates f = Coordinates::Zero();
     for (int q = 0; q < kPoints; ++q) {
-      Eigen::Matrix<double, kNodes, 1> N;
-      Eigen::Matrix<double, kNodes, Dim - 1> dN;
-      double w;
-      shape(q, N, dN, w);
+      const auto [N, dN, w] = point(q);
       double d_density;
       if constexpr (Dim == 2) {
         const Eigen::Vector2d x1 = Xf.transpose() * dN.col(0), dx1 = dXf.transpose() * dN.col(0);
