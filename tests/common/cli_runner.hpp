@@ -10,8 +10,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
+
+#include "common/temporary_directory.hpp"
 
 namespace frictopt::testing {
 
@@ -19,13 +20,6 @@ struct RunResult {
   int exit_code = -1;
   std::string output;  ///< stdout and stderr together
 };
-
-inline std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 /// Runs `frictopt <arguments>`; the log file is unique per test and process, so tests may run
 /// in parallel (ctest -j).

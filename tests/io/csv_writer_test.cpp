@@ -11,6 +11,7 @@
 #include <limits>
 #include <sstream>
 
+#include "common/temporary_directory.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::io {
@@ -18,25 +19,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using frictopt::testing::read_text;
 
-class CsvFiles : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           (std::string("frictopt_csv_") +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+class CsvFiles : public frictopt::testing::TemporaryDirectoryTest {};
 
 TEST_F(CsvFiles, EachRowIsOnDiskBeforeTheWriterCloses) {
   const fs::path file = dir_ / "history.csv";

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/temporary_directory.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::io {
@@ -17,25 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using frictopt::testing::read_text;
 
-class PvdFiles : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           (std::string("frictopt_pvd_") +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+class PvdFiles : public frictopt::testing::TemporaryDirectoryTest {};
 
 TEST_F(PvdFiles, CollectionListsEveryDatasetWithItsTime) {
   const std::vector<PvdEntry> entries = {

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 
+#include "common/temporary_directory.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/vtu_reader.hpp"
 
@@ -18,18 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class VtuFiles : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           (std::string("frictopt_vtu_") +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+class VtuFiles : public frictopt::testing::TemporaryDirectoryTest {};
 
 // Two unit hexahedra side by side along x1: 3×2×2 = 12 points, VTK node order.
 VtuGrid two_hexahedra() {
