@@ -54,12 +54,11 @@ try:
     from matplotlib.lines import Line2D
     from matplotlib.ticker import MaxNLocator
     from PIL import Image
+    from frictopt_vtu import STATUS_COLOURS, STATUS_NAMES, VtuError, read_grid
 except ImportError as error:  # the usual cause: a pyenv/venv python3 on PATH
     sys.exit(f"render_run: {error}; run it with /usr/bin/python3 (Debian's python3-vtk9, "
              "matplotlib, numpy)")
 
-STATUS_NAMES = {0: "separated", 1: "stick", 2: "slip"}
-STATUS_COLOURS = {0: "#d0d0d0", 1: "#2171b5", 2: "#e6550d"}
 STRESS_CMAP = "viridis"
 PRESSURE_CMAP = "magma_r"
 DPI = 100
@@ -70,7 +69,7 @@ INITIAL_COLOUR = "#4d4d4d"
 FINAL_COLOUR = "#cb181d"
 
 
-class RunError(Exception):
+class RunError(VtuError):
     """A run directory that cannot be pictured; the message says why."""
 
 
@@ -120,19 +119,6 @@ class Design:
         if self.cost is not None:
             parts.append(f"Θ = {self.cost:.{digits}g}")
         return ", ".join(parts)
-
-
-def read_grid(path):
-    if not os.path.isfile(path):
-        raise RunError(f"{path}: missing")
-    vtk.vtkObject.GlobalWarningDisplayOff()  # a broken file gets our message, not VTK's dump
-    reader = vtk.vtkXMLUnstructuredGridReader()
-    reader.SetFileName(path)
-    reader.Update()
-    grid = reader.GetOutput()
-    if grid is None or grid.GetNumberOfPoints() == 0:
-        raise RunError(f"{path}: no points (not a .vtu written by frictopt?)")
-    return grid
 
 
 def is_planar(points):
@@ -890,7 +876,7 @@ def main():
     args = parser.parse_args()
     try:
         written = render(args.run_dir, cut=not args.no_cut)
-    except RunError as error:
+    except VtuError as error:  # RunError or an unreadable .vtu
         sys.exit(f"render_run: {error}")
     for path in written:
         print(f"render_run: wrote {path} ({os.path.getsize(path) // 1024} kB)")

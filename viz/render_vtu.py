@@ -31,24 +31,13 @@ try:
     import numpy as np
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
+    from frictopt_vtu import STATUS_COLOURS, STATUS_NAMES, read_grid
 except ImportError as error:  # the usual cause: a pyenv/venv python3 on PATH
     sys.exit(f"render_vtu: {error}; run it with /usr/bin/python3 (Debian's python3-vtk9)")
 
 # Largest warp as a fraction of the body size: large enough to see the deformation, small
 # enough that the body keeps its shape.
 WARP_FRACTION = 0.10
-STATUS_NAMES = {0: "separated", 1: "stick", 2: "slip"}
-STATUS_COLOURS = {0: "#bdbdbd", 1: "#2171b5", 2: "#e6550d"}
-
-
-def read_grid(path):
-    reader = vtk.vtkXMLUnstructuredGridReader()
-    reader.SetFileName(path)
-    reader.Update()
-    grid = reader.GetOutput()
-    if grid is None or grid.GetNumberOfPoints() == 0:
-        raise RuntimeError(f"{path}: no points (not a .vtu written by frictopt?)")
-    return grid
 
 
 def find_array(grid, name):
