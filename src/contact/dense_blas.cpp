@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/contact/dense_blas.hpp"
 
+#include <Eigen/SVD>
+
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -85,6 +87,7 @@ Eigen::MatrixXd times(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
 }
 
 Eigen::VectorXd singular_values(Eigen::MatrixXd A) {
+  const Eigen::MatrixXd original = A;  // for the fallback below
   const int m = static_cast<int>(A.rows()), n = static_cast<int>(A.cols()), k = std::min(m, n);
   Eigen::VectorXd s(k);
   if (k == 0) return s;
@@ -95,8 +98,10 @@ Eigen::VectorXd singular_values(Eigen::MatrixXd A) {
   lwork = static_cast<int>(query);
   std::vector<double> work(static_cast<std::size_t>(std::max(lwork, 1)));
   dgesdd_("N", &m, &n, A.data(), &m, s.data(), &unused, &one, &unused, &one, work.data(), &lwork, iwork.data(), &info);
-  // info > 0: the bidiagonal QR did not converge (never seen for finite input); info < 0: a bug.
-  FRICTOPT_ASSERT(info == 0, "singular_values: dgesdd info = " + std::to_string(info));
+  FRICTOPT_ASSERT(info >= 0, "singular_values: dgesdd argument " + std::to_string(-info) + " invalid");
+  // info > 0: dgesdd's bidiagonal iteration did not converge (rare); Eigen's slower but robust
+  // divide-and-conquer SVD answers instead of a wrong rank.
+  if (info > 0) return Eigen::BDCSVD<Eigen::MatrixXd>(original).singularValues();
   return s;
 }
 

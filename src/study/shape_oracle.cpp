@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <string>
 
 #include "frictopt/contact/delassus.hpp"
 #include "frictopt/core/error.hpp"
@@ -23,18 +24,23 @@ constexpr std::size_t kCacheSize = 512;
 std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition, ElasticBody& body,
                                                 const BodyState* initial_state) {
   using Kind = CostDefinition::Kind;
+  // The state at α⁰ for "initial_mean" targets: the caller's, or solved here.
+  std::optional<BodyState> solved;
+  const auto initial = [&](const char* what) -> const BodyState& {
+    if (!initial_state) solved = body.solve(body.definition().initial_design, "initial design");
+    const BodyState& s = initial_state ? *initial_state : *solved;
+    if (s.summary.status != Status::kConverged)
+      throw InvalidInput(std::string("cost ") + what + " = initial_mean: the state at the initial design did not solve: " +
+                         s.summary.message);
+    return s;
+  };
   switch (definition.kind) {
     case Kind::kTargetPressure: {
       if (!body.contact_boundary()) throw InvalidInput("cost target_pressure needs a body in contact");
       const Eigen::VectorXd& areas = body.contact_boundary()->tributary_areas();
       double pressure = definition.target_pressure;
       if (std::isnan(pressure)) {
-        std::optional<BodyState> solved;
-        if (!initial_state) solved = body.solve(body.definition().initial_design, "initial design");
-        const BodyState& s = initial_state ? *initial_state : *solved;
-        if (s.summary.status != Status::kConverged)
-          throw InvalidInput("cost target_pressure = initial_mean: the state at the initial design did not solve: " +
-                             s.summary.message);
+        const BodyState& s = initial("target_pressure");
         pressure = s.contact->state.normal_forces().sum() / areas.sum();
       }
       return cost::make_target_normal_force(pressure * areas);
@@ -45,13 +51,8 @@ std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition
     case Kind::kTotalSlip: return cost::make_total_slip(definition.smoothing);
     case Kind::kTractionUniformity: {
       if (!definition.target_traction_initial_mean) return cost::make_traction_uniformity(definition.target_traction);
-      std::optional<BodyState> solved;
-      if (!initial_state) solved = body.solve(body.definition().initial_design, "initial design");
-      const BodyState& s = initial_state ? *initial_state : *solved;
-      if (s.summary.status != Status::kConverged)
-        throw InvalidInput("cost traction_uniformity with target = initial_mean: the state at the initial design did "
-                           "not solve: " + s.summary.message);
-      const contact::ContactState& cs = s.contact->state;
+      if (!body.contact_boundary()) throw InvalidInput("cost traction_uniformity needs a body in contact");
+      const contact::ContactState& cs = initial("traction_uniformity target").contact->state;
       const int nt = cs.dim - 1;
       Eigen::VectorXd mean = Eigen::VectorXd::Zero(nt);
       for (Eigen::Index i = 0; i < cs.num_nodes(); ++i)

@@ -90,7 +90,7 @@ class ShapeOracle final : public optim::Oracle {
   ElasticBody& body_;
   std::unique_ptr<cost::CostFunctional> cost_;
   Eigen::MatrixXd gap_matrix_;  // B̃ at the contact nodes
-  std::shared_ptr<BodyState> state_;  // the last solved design: the factorization is its
+  std::shared_ptr<BodyState> state_;  // the last solved design (the body's factorization is of it)
   Eigen::VectorXd state_alpha_;
   std::deque<std::shared_ptr<BodyState>> recent_;  // newest first, state_ included
   std::shared_ptr<const contact::DelassusMatrix> delassus_;
