@@ -82,9 +82,6 @@ Eigen::MatrixXd transpose_times(const Eigen::MatrixXd& A, const Eigen::MatrixXd&
   return gemm("T", A, B, static_cast<int>(A.cols()), static_cast<int>(A.rows()));
 }
 
-Eigen::MatrixXd times(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
-  return gemm("N", A, B, static_cast<int>(A.rows()), static_cast<int>(A.cols()));
-}
 
 Eigen::VectorXd singular_values(Eigen::MatrixXd A) {
   const Eigen::MatrixXd original = A;  // for the fallback below

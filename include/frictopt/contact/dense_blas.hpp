@@ -20,8 +20,6 @@ Eigen::MatrixXd inverse_from_cholesky(const Eigen::MatrixXd& L);
 void symmetric_times(const Eigen::MatrixXd& S, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y);
 /// Aᵀ B (dgemm).
 Eigen::MatrixXd transpose_times(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
-/// A B (dgemm).
-Eigen::MatrixXd times(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
 /// The singular values of A, descending (dgesdd without vectors: threaded BLAS-3 bidiagonalization;
 /// at 5,000² about 10× faster than Eigen's BDCSVD built for x86-64-v2). Used by the certificate's
 /// (MF1′) rank test.
