@@ -186,8 +186,9 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
   json["objective_scale"] = summary.objective_scale;  // |Θ(α⁰)|: history.csv's columns are relative to it
   json["stationarity_relative"] = summary.stationarity / summary.objective_scale;
   json["cost_kind"] = std::string(io::to_string(description.cost->kind));
-  json["state_solves"] = oracle.num_state_solves();
-  json["time_seconds"] = summary.time_seconds;
+  json["state_solves"] = solves_offset + oracle.num_state_solves();  // over all resumes, as history.csv
+  json["time_seconds"] = summary.time_seconds;                      // this process's optimizer
+  json["elapsed_seconds"] = elapsed_offset + summary.time_seconds;   // over all resumes
   json["final_index_sets"] = final.index_sets.summary();
   json["final_contact"] = final.contact.brief_report();
   io::write_json(out_dir / "summary.json", json);

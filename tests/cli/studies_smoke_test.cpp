@@ -124,7 +124,11 @@ TEST(StudiesSmoke, ShortOptimizeRunWritesOutputsResumesAndRefusesAnExistingRun) 
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("resuming at iteration 3"), std::string::npos) << resumed.output;
   EXPECT_EQ(count_lines(out / "history.csv"), rows_first + 2);
-  EXPECT_EQ(frictopt::io::parse_json(read_text(out / "summary.json")).at("iterations").as_number(), 5);
+  const auto resumed_summary = frictopt::io::parse_json(read_text(out / "summary.json"));
+  EXPECT_EQ(resumed_summary.at("iterations").as_number(), 5);
+  // Counters continue over the resume (history.csv's and summary.json's alike).
+  EXPECT_GT(resumed_summary.at("state_solves").as_number(), summary.at("state_solves").as_number());
+  EXPECT_GE(resumed_summary.at("elapsed_seconds").as_number(), summary.at("elapsed_seconds").as_number());
 
   // --force replaces the run.
   const RunResult forced = run("optimize " + case_path.string() + " -o " + out.string() + " --force");
