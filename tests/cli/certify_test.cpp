@@ -23,8 +23,7 @@ RunResult run(const std::string& arguments) { return frictopt::testing::run_fric
 
 
 TEST(CliCertify, WritesCertificateJsonForAFreshRun) {
-  const fs::path dir = fs::temp_directory_path() / "frictopt_cli_certify_run";
-  fs::remove_all(dir);
+  const fs::path dir = frictopt::testing::fresh_directory("cli_certify_run");
   const RunResult optimize = run("optimize " FRICTOPT_SOURCE_DIR "/cases2d/thesis-body/case.toml -o " + dir.string());
   ASSERT_EQ(optimize.exit_code, 0) << optimize.output;
   const RunResult r = run("certify " + dir.string());
@@ -46,8 +45,7 @@ TEST(CliCertify, WritesCertificateJsonForAFreshRun) {
 }
 
 TEST(CliCertify, MissingFinalDesignIsAnInputErrorNamingTheFile) {
-  const fs::path dir = fs::temp_directory_path() / "frictopt_cli_certify_missing";
-  fs::remove_all(dir);
+  const fs::path dir = frictopt::testing::fresh_directory("cli_certify_missing");
   fs::create_directories(dir);
   fs::copy_file(FRICTOPT_SOURCE_DIR "/cases2d/thesis-body/case.toml", dir / "case.toml");
   const RunResult r = run("certify " + dir.string());

@@ -33,8 +33,7 @@ void write_text(const fs::path& path, const std::string& text) {
 }
 
 fs::path fresh_directory(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("frictopt_studies_" + name);
-  fs::remove_all(dir);
+  const fs::path dir = frictopt::testing::fresh_directory("studies_" + name);
   fs::create_directories(dir);
   return dir;
 }

@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include "common/temporary_directory.hpp"
 
@@ -35,10 +37,25 @@ inline RunResult run_frictopt(const std::string& arguments) {
   return result;
 }
 
-/// An empty directory under the temporary directory, removed first if it exists.
+/// The directories fresh_directory() made in this process: removed at exit when every test of
+/// the process passed (a failing test leaves its outputs for inspection).
+struct FreshDirectories {
+  std::vector<std::filesystem::path> paths;
+  ~FreshDirectories() {
+    if (!::testing::UnitTest::GetInstance()->Passed()) return;
+    std::error_code ignored;
+    for (const auto& p : paths) std::filesystem::remove_all(p, ignored);
+  }
+};
+
+/// An empty directory under the temporary directory, removed first if it exists; the process id
+/// in its name keeps two test runs on one machine (a local run and CI) apart.
 inline std::filesystem::path fresh_directory(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("frictopt_" + name);
+  static FreshDirectories made;
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("frictopt_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
+  made.paths.push_back(dir);
   return dir;
 }
 

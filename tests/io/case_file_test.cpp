@@ -5,6 +5,7 @@
 #include "frictopt/io/case_file.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -452,7 +453,8 @@ TEST(ParseCase, FrictionLawsAreValidated) {
 }
 
 TEST(LoadCase, ReadsAFileAndUsesItsPathInMessages) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "frictopt_io_test";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("frictopt_io_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::filesystem::path file = dir / "plate.toml";
   {

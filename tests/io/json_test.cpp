@@ -3,6 +3,7 @@
 #include "frictopt/io/json.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -58,7 +59,8 @@ TEST(JsonValue, WrongTypeAccessAndBadTextAreInvalidInput) {
 }
 
 TEST(WriteJson, WritesAFileEndingInANewline) {
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / "frictopt_json.json";
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("frictopt_json_" + std::to_string(::getpid()) + ".json");
   write_json(file, sample_summary());
   std::ifstream in(file);
   std::ostringstream text;
