@@ -83,8 +83,8 @@ Eigen::MatrixXd transpose_times(const Eigen::MatrixXd& A, const Eigen::MatrixXd&
 }
 
 
-Eigen::VectorXd singular_values(Eigen::MatrixXd A) {
-  const Eigen::MatrixXd original = A;  // for the fallback below
+Eigen::VectorXd singular_values(const Eigen::MatrixXd& original) {
+  Eigen::MatrixXd A = original;  // dgesdd overwrites its input; the original serves the fallback
   const int m = static_cast<int>(A.rows()), n = static_cast<int>(A.cols()), k = std::min(m, n);
   Eigen::VectorXd s(k);
   if (k == 0) return s;

@@ -208,7 +208,9 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   Eigen::VectorXd r(static_cast<Eigen::Index>(red.free_z.size()));
   for (std::size_t i = 0; i < red.free_z.size(); ++i) r(static_cast<Eigen::Index>(i)) = rhs(red.free_z[i]);
   Eigen::VectorXd psi_active;
-  (void)contact::blas::lu_solve(K, r, psi_active, result.summary.reciprocal_condition);
+  // An exactly singular K (lu_solve false) has rcond 0 and fails the kSingular test below.
+  if (!contact::blas::lu_solve(K, r, psi_active, result.summary.reciprocal_condition))
+    result.summary.reciprocal_condition = 0.0;
   result.summary.relative_residual = K.size() ? (K * psi_active - r).norm() / std::max(r.norm(), 1e-300) : 0.0;
   result.summary.piece_residual = lin.relative_residual;
   // ψ on the identity rows is not needed: their rows of S are empty, they carry no gap term
@@ -231,8 +233,7 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   // ∂Θ/∂p = (∂ contact rows/∂p)ᵀ ψ_z: the costs do not depend on μ, the equilibrium rows neither.
   result.friction_gradient = friction_parameter_rows(piece, law_, state).transpose() * result.psi_z;
 
-  const double kSingular = 1e-14;  // below this rcond the piece's Jacobian is numerically singular
-  if (!(result.summary.reciprocal_condition > kSingular)) {
+  if (!(result.summary.reciprocal_condition > kSingularReciprocalCondition)) {
     result.summary.status = Status::kNumericalFailure;
     result.summary.message = "the piece's Jacobian is singular (is the friction coefficient too large for V4.4.1?)";
   } else {
@@ -272,10 +273,10 @@ AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
   out.contact = Eigen::VectorXd::Zero(boundary_.num_unknowns());
   if (K.size()) {
     Eigen::VectorXd dz;
-    double rcond = 0.0;
-    (void)contact::blas::lu_solve(K, r, dz, rcond);
+    if (!contact::blas::lu_solve(K, r, dz, out.reciprocal_condition)) out.reciprocal_condition = 0.0;
     for (std::size_t i = 0; i < red.free_z.size(); ++i) out.contact(red.free_z[i]) = dz(static_cast<Eigen::Index>(i));
   }
+  out.status = out.reciprocal_condition > kSingularReciprocalCondition ? Status::kConverged : Status::kNumericalFailure;
   Eigen::VectorXd w = -ra;
   boundary_.add_transpose_times(out.contact, w);
   const Eigen::VectorXd du = cholesky.solve(w);

@@ -180,8 +180,10 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
 
   // M = G A⁻¹ Gᵀ and N = G A⁻¹ r_α (columns k: r_α e_k = ∂(A u − l)/∂α_k at the state), both
   // with the existing factorization (d + dim·p solves).
-  const Eigen::MatrixXd M = state.contact->delassus_matrix ? *state.contact->delassus_matrix
-                                                           : contact::dense_delassus(fem.factorization(), boundary);
+  // The state's dense M when it has one (no copy); else m solves with the factorization.
+  Eigen::MatrixXd solved_M;
+  if (!state.contact->delassus_matrix) solved_M = contact::dense_delassus(fem.factorization(), boundary);
+  const Eigen::MatrixXd& M = state.contact->delassus_matrix ? *state.contact->delassus_matrix : solved_M;
   const Eigen::MatrixXd B = body.definition().shape.gap_matrix(boundary.plane_coordinates());
   Eigen::MatrixXd N(m, d);
   for (Eigen::Index k = 0; k < d; ++k) {
@@ -238,13 +240,16 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   out.spec_rows = static_cast<Eigen::Index>(spec_rows.size());
   if (out.spec_rows == out.rows) {
     out.spec_rank = out.rank;
+  } else if (out.full_row_rank) {
+    // A subset of the rows of a matrix of full row rank has full row rank at the same relative
+    // threshold (interlacing: its σ_min is not smaller, its σ_max not larger): no second SVD.
+    out.spec_rank = static_cast<int>(out.spec_rows);
   } else {
     const Eigen::MatrixXd Hs = H(spec_rows, Eigen::all);
     const Eigen::VectorXd ss = contact::blas::singular_values(Hs);
     out.spec_rank = ss.size() ? static_cast<int>((ss.array() > options.rank_tolerance * ss(0)).count()) : 0;
   }
   out.spec_full_row_rank = out.spec_rank == out.spec_rows;
-  out.matrix = std::move(H);
   return out;
 }
 
@@ -382,7 +387,7 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
                                    alpha.size(), d));
   Certificate c;
   c.alpha = alpha;
-  const Evaluation& e = oracle.evaluate_design(alpha, true);
+  const Evaluation& e = oracle.evaluate_design(alpha, false);  // ξ of every piece follows below
   c.value = e.value;
   if (!e.ok) {
     c.status = Status::kNumericalFailure;
@@ -392,22 +397,22 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   // pieces() re-solves if the cache answered without touching the state: from here on the
   // oracle's last state (and the body's factorization) is the one at α.
   const sensitivity::PieceEnumeration enumeration = oracle.pieces(alpha, options.cap);
-  const contact::FrictionLaw& law = body.definition().contact->law;
-  c.index_sets = sensitivity::classify(oracle.last_state().contact->state, law);
+  c.index_sets = e.index_sets;  // classified at this state by evaluate_design
   c.cardinality = enumeration.cardinality;
   c.sampled = enumeration.sampled;
-  const std::vector<Eigen::VectorXd> xi = oracle.subgradients(alpha, enumeration.pieces);
-  c.subgradients.resize(d, static_cast<Eigen::Index>(xi.size()));
+  const auto results = oracle.subgradients(alpha, enumeration.pieces);
+  c.subgradients.resize(d, static_cast<Eigen::Index>(results.size()));
   const sensitivity::Piece default_piece = sensitivity::default_piece(c.index_sets);
-  for (std::size_t i = 0; i < xi.size(); ++i) {
-    c.subgradients.col(static_cast<Eigen::Index>(i)) = xi[i];
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    // A singular piece gives a finite but meaningless ξ_i: it must not enter conv{ξ_i}.
+    if (results[i].summary.status != Status::kConverged || !results[i].subgradient.allFinite()) {
+      c.status = Status::kNumericalFailure;
+      c.message = fmt::format("piece {} ({}): {}", i, enumeration.pieces[i].summary(), results[i].summary.brief_report());
+      return c;
+    }
+    c.subgradients.col(static_cast<Eigen::Index>(i)) = results[i].subgradient;
     c.piece_summaries.push_back(enumeration.pieces[i].summary());
     if (enumeration.pieces[i].nodes == default_piece.nodes) c.default_piece_column = static_cast<int>(i);
-  }
-  if (!c.subgradients.allFinite()) {
-    c.status = Status::kNumericalFailure;
-    c.message = "a piece's adjoint system is singular (non-finite xi_i)";
-    return c;
   }
   c.scale = c.subgradients.colwise().norm().maxCoeff();
 

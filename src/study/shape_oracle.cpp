@@ -169,18 +169,16 @@ optim::OracleResult ShapeOracle::evaluate(const Eigen::Ref<const Eigen::VectorXd
   }
 }
 
-std::vector<Eigen::VectorXd> ShapeOracle::subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
+std::vector<sensitivity::AdjointSensitivity::Result> ShapeOracle::subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                                        const std::vector<sensitivity::Piece>& pieces) {
   solve_state(alpha);
   const sensitivity::CostPartials j = partials();
   const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
                                                 body_.definition().contact->law);
-  std::vector<Eigen::VectorXd> out;
+  std::vector<sensitivity::AdjointSensitivity::Result> out;
   for (const sensitivity::Piece& piece : pieces)
-    out.push_back(adjoint
-                      .subgradient(piece, delassus(), state_->positions, state_->displacement,
-                                   state_->contact->state, j)
-                      .subgradient);
+    out.push_back(
+        adjoint.subgradient(piece, delassus(), state_->positions, state_->displacement, state_->contact->state, j));
   return out;
 }
 

@@ -167,7 +167,9 @@ TEST(PieceJacobian, ColumnsMatchCentralDifferencesOfTheStateAtStrictPoints) {
     std::mt19937_64 rng{kSeed};
     for (int trial = 0; trial < 3; ++trial) {
       const Eigen::VectorXd h = frictopt::testing::random_direction(rng, alpha.size());
-      const Eigen::VectorXd forward = flatten_derivative(oracle, oracle.state_derivative(alpha, h));
+      const AdjointSensitivity::StateDerivative derivative = oracle.state_derivative(alpha, h);
+      ASSERT_EQ(derivative.status, Status::kConverged) << "rcond " << derivative.reciprocal_condition;
+      const Eigen::VectorXd forward = flatten_derivative(oracle, derivative);
       const double eps = 1e-4 * alpha.cwiseAbs().maxCoeff();
       const Eigen::VectorXd fd =
           (contact_state_vector(oracle, alpha + eps * h) - contact_state_vector(oracle, alpha - eps * h)) / (2 * eps);
@@ -229,7 +231,11 @@ TEST(Subgradient, OneSidedDerivativeAtWeakContactMatchesAnEnumeratedPiece) {
     EXPECT_EQ(e.index_sets.count(NormalSet::kWeakContact), p) << e.index_sets.summary();
     const PieceEnumeration pieces = oracle.pieces(alpha, 4096);
     ASSERT_FALSE(pieces.sampled) << "|L| = " << pieces.cardinality;
-    const std::vector<Eigen::VectorXd> xi = oracle.subgradients(alpha, pieces.pieces);
+    std::vector<Eigen::VectorXd> xi;
+    for (const auto& result : oracle.subgradients(alpha, pieces.pieces)) {
+      ASSERT_EQ(result.summary.status, Status::kConverged) << result.summary.brief_report();
+      xi.push_back(result.subgradient);
+    }
     std::printf("dim %d: %s, |L| = %.0f\n", dim, e.index_sets.summary().c_str(), pieces.cardinality);
     std::mt19937_64 rng{kSeed};
     const double theta0 = e.value;

@@ -23,7 +23,7 @@ Eigen::MatrixXd transpose_times(const Eigen::MatrixXd& A, const Eigen::MatrixXd&
 /// The singular values of A, descending (dgesdd without vectors: threaded BLAS-3 bidiagonalization;
 /// at 5,000² about 10× faster than Eigen's BDCSVD built for x86-64-v2). Used by the certificate's
 /// (MF1′) rank test.
-Eigen::VectorXd singular_values(Eigen::MatrixXd A);
+Eigen::VectorXd singular_values(const Eigen::MatrixXd& A);
 /// x = K⁻¹ r by LU with partial pivoting (dgetrf/dgetrs); returns false if K is exactly
 /// singular. `reciprocal_condition` gets LAPACK's 1-norm estimate (dgecon).
 bool lu_solve(Eigen::MatrixXd K, const Eigen::VectorXd& r, Eigen::VectorXd& x, double& reciprocal_condition);

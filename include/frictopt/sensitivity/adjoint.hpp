@@ -18,6 +18,10 @@
 
 namespace frictopt::sensitivity {
 
+/// Below this reciprocal condition (LAPACK's 1-norm estimate) a piece's contact matrix
+/// S M + C_z counts as singular: its adjoint or forward solve is reported as a failure.
+inline constexpr double kSingularReciprocalCondition = 1e-14;
+
 /// Partial derivatives of a cost J(α, u, z) at a state (what the cost module returns).
 struct CostPartials {
   double value = kNaN;
@@ -86,6 +90,8 @@ class AdjointSensitivity {
   struct StateDerivative {
     Eigen::VectorXd displacement;  ///< δu over all DOFs (zero at prescribed ones)
     Eigen::VectorXd contact;       ///< δz = (δq, δλ) per node
+    double reciprocal_condition = 1.0;  ///< of the piece's reduced contact matrix (1 when it is empty)
+    Status status = Status::kConverged;  ///< kNumericalFailure when that matrix is singular
   };
   [[nodiscard]] StateDerivative state_derivative(const Piece& piece, const contact::DelassusMatrix& delassus,
                                                  const Eigen::Ref<const Eigen::MatrixXd>& X,

@@ -52,7 +52,6 @@ struct Mf1Report {
   Eigen::Index spec_rows = 0;
   int spec_rank = 0;
   bool spec_full_row_rank = false;
-  Eigen::MatrixXd matrix;       ///< the scaled matrix (rows × cols), for inspection and tests
 };
 
 /// The extreme-point test of spec 06 §6.3 (needs the full 𝕃, not a sample).

@@ -62,9 +62,10 @@ class ShapeOracle final : public optim::Oracle {
   /// optim::Oracle: a failed or inverting evaluation reports "could not evaluate here".
   [[nodiscard]] optim::OracleResult evaluate(const Eigen::Ref<const Eigen::VectorXd>& x) override;
 
-  /// ξ_i for the given pieces at α (the state is re-solved if α is not the cached design).
-  std::vector<Eigen::VectorXd> subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
-                                            const std::vector<sensitivity::Piece>& pieces);
+  /// The adjoint results (ξ_i and each solve's status: a singular piece is kNumericalFailure) for
+  /// the given pieces at α (the state is re-solved if α is not the cached design).
+  std::vector<sensitivity::AdjointSensitivity::Result> subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                                                                    const std::vector<sensitivity::Piece>& pieces);
   /// R_i h: the derivative of the state of `piece` at α along h (default piece when null).
   sensitivity::AdjointSensitivity::StateDerivative state_derivative(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                                                     const Eigen::Ref<const Eigen::VectorXd>& h,
