@@ -448,10 +448,11 @@ IdentificationSpec read_identification(const TableReader& r, const CaseDescripti
   if (spec.measurements.is_relative() && origin_path.has_parent_path())
     spec.measurements = origin_path.parent_path() / spec.measurements;
   if (const auto loss = r.optional_string("loss")) {
-    if (*loss == "none") spec.loss = LossKind::kNone;
-    else if (*loss == "huber") spec.loss = LossKind::kHuber;
-    else if (*loss == "cauchy") spec.loss = LossKind::kCauchy;
-    else r.fail_value("loss", "one of none, huber, cauchy");
+    try {
+      spec.loss = study::parse_robust_loss(*loss);
+    } catch (const InvalidInput&) {
+      r.fail_value("loss", "one of none, huber, cauchy");
+    }
   }
   if (const auto scale = r.optional_number("loss_scale")) {
     if (!(*scale > 0)) r.fail_value("loss_scale", "loss_scale > 0 (in standard deviations)");

@@ -163,9 +163,7 @@ study::Identification::Options make_identification_options(const CaseDescription
       o.parameters.push_back(s);
     }
   }
-  o.loss = spec.loss == LossKind::kHuber ? study::RobustLoss::kHuber
-           : spec.loss == LossKind::kCauchy ? study::RobustLoss::kCauchy
-                                            : study::RobustLoss::kNone;
+  o.loss = spec.loss;
   o.loss_scale = spec.loss_scale;
   if (spec.max_iterations) o.max_iterations = *spec.max_iterations;
   return o;

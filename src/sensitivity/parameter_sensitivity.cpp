@@ -80,7 +80,8 @@ Eigen::MatrixXd friction_parameter_rows(const Piece& piece, const contact::Frict
 
 ContactStateDerivative contact_state_derivative(const PieceLinearization& piece, const Eigen::MatrixXd& delassus,
                                                 const Eigen::Ref<const Eigen::MatrixXd>& contact_rows,
-                                                const Eigen::Ref<const Eigen::MatrixXd>& equilibrium_image) {
+                                                const Eigen::Ref<const Eigen::MatrixXd>& equilibrium_image,
+                                                double delassus_scale) {
   const Eigen::Index m = delassus.rows();
   const Eigen::Index k = std::max(contact_rows.cols(), equilibrium_image.cols());
   if (contact_rows.size() && contact_rows.rows() != m)
@@ -97,15 +98,14 @@ ContactStateDerivative contact_state_derivative(const PieceLinearization& piece,
     Q = equilibrium_image;
     rhs += piece.S * Q;
   }
-  const Eigen::MatrixXd K = Eigen::MatrixXd(piece.S) * delassus + Eigen::MatrixXd(piece.Cz);
+  // S has at most two entries per row: a sparse × dense product, not an m³ dense one.
+  const Eigen::MatrixXd K = delassus_scale * (piece.S * delassus) + Eigen::MatrixXd(piece.Cz);
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(K);
   ContactStateDerivative out;
   out.reciprocal_condition = lu.rcond();
   out.forces = lu.solve(rhs);
-  out.gradient = delassus * out.forces - Q;
-  // The adjoint's threshold (adjoint.cpp): below it the piece's Jacobian is numerically singular.
-  constexpr double kSingular = 1e-14;
-  if (!(out.reciprocal_condition > kSingular)) {
+  out.gradient = delassus_scale * (delassus * out.forces) - Q;
+  if (!(out.reciprocal_condition > kSingularReciprocalCondition)) {
     out.status = Status::kNumericalFailure;
     out.message = fmt::format("the piece's contact matrix S M + C_z is singular (rcond {:.1e})", out.reciprocal_condition);
   } else {

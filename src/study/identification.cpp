@@ -17,6 +17,7 @@
 
 #include "frictopt/contact/delassus.hpp"
 #include "frictopt/contact/linear_operator.hpp"
+#include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/sensitivity/adjoint.hpp"
 #include "frictopt/sensitivity/friction_parameters.hpp"
@@ -28,32 +29,24 @@
 namespace frictopt::study {
 namespace {
 
-struct QuantitySpelling {
-  MeasuredQuantity quantity;
-  std::string_view name;
-};
-constexpr std::array<QuantitySpelling, 11> kQuantities{{
-    {MeasuredQuantity::kNormalForce, "normal_force"},
-    {MeasuredQuantity::kPressure, "pressure"},
-    {MeasuredQuantity::kTangentialForceX1, "tangential_force_x1"},
-    {MeasuredQuantity::kTangentialForceX2, "tangential_force_x2"},
-    {MeasuredQuantity::kTractionX1, "traction_x1"},
-    {MeasuredQuantity::kTractionX2, "traction_x2"},
-    {MeasuredQuantity::kSlipX1, "slip_x1"},
-    {MeasuredQuantity::kSlipX2, "slip_x2"},
-    {MeasuredQuantity::kTotalNormalForce, "total_normal_force"},
-    {MeasuredQuantity::kTotalTangentialForceX1, "total_tangential_force_x1"},
-    {MeasuredQuantity::kTotalTangentialForceX2, "total_tangential_force_x2"},
-}};
+// One table per enum (core/enum_table.hpp): the spellings of measurement files, case files and
+// reports.
+constexpr auto kQuantities = frictopt::detail::make_enum_table<MeasuredQuantity>(
+    std::pair{MeasuredQuantity::kNormalForce, "normal_force"}, std::pair{MeasuredQuantity::kPressure, "pressure"},
+    std::pair{MeasuredQuantity::kTangentialForceX1, "tangential_force_x1"},
+    std::pair{MeasuredQuantity::kTangentialForceX2, "tangential_force_x2"},
+    std::pair{MeasuredQuantity::kTractionX1, "traction_x1"}, std::pair{MeasuredQuantity::kTractionX2, "traction_x2"},
+    std::pair{MeasuredQuantity::kSlipX1, "slip_x1"}, std::pair{MeasuredQuantity::kSlipX2, "slip_x2"},
+    std::pair{MeasuredQuantity::kTotalNormalForce, "total_normal_force"},
+    std::pair{MeasuredQuantity::kTotalTangentialForceX1, "total_tangential_force_x1"},
+    std::pair{MeasuredQuantity::kTotalTangentialForceX2, "total_tangential_force_x2"});
 
-constexpr std::array<std::pair<RobustLoss, std::string_view>, 3> kLosses{
-    {{RobustLoss::kNone, "none"}, {RobustLoss::kHuber, "huber"}, {RobustLoss::kCauchy, "cauchy"}}};
+constexpr auto kLosses = frictopt::detail::make_enum_table<RobustLoss>(
+    std::pair{RobustLoss::kNone, "none"}, std::pair{RobustLoss::kHuber, "huber"}, std::pair{RobustLoss::kCauchy, "cauchy"});
 
-constexpr std::array<std::pair<Identifiability, std::string_view>, 4> kIdentifiability{
-    {{Identifiability::kDetermined, "determined"},
-     {Identifiability::kAtBound, "at_bound"},
-     {Identifiability::kNotDetermined, "not_determined"},
-     {Identifiability::kCorrelated, "correlated"}}};
+constexpr auto kIdentifiability = frictopt::detail::make_enum_table<Identifiability>(
+    std::pair{Identifiability::kDetermined, "determined"}, std::pair{Identifiability::kAtBound, "at_bound"},
+    std::pair{Identifiability::kNotDetermined, "not_determined"}, std::pair{Identifiability::kCorrelated, "correlated"});
 
 // Tangential component (0 or 1) of a quantity, or −1 for normal quantities.
 int tangential_component(MeasuredQuantity q) {
@@ -99,19 +92,11 @@ double gauge(const contact::FrictionLaw& law, const Eigen::Vector2d& x) {
 
 }  // namespace
 
-std::string_view to_string(MeasuredQuantity quantity) {
-  for (const auto& q : kQuantities)
-    if (q.quantity == quantity) return q.name;
-  return "unknown";
-}
+std::string_view to_string(MeasuredQuantity quantity) { return kQuantities.name(quantity); }
 
 MeasuredQuantity parse_measured_quantity(std::string_view text) {
-  std::string list;
-  for (const auto& q : kQuantities) {
-    if (q.name == text) return q.quantity;
-    list += (list.empty() ? "" : ", ") + std::string(q.name);
-  }
-  throw InvalidInput(fmt::format("quantity = \"{}\"; expected one of {}", text, list));
+  if (const auto q = kQuantities.find(text)) return *q;
+  throw InvalidInput(fmt::format("quantity = \"{}\"; expected one of {}", text, kQuantities.spellings()));
 }
 
 bool is_total(MeasuredQuantity q) {
@@ -119,23 +104,14 @@ bool is_total(MeasuredQuantity q) {
          q == MeasuredQuantity::kTotalTangentialForceX2;
 }
 
-std::string_view to_string(RobustLoss loss) {
-  for (const auto& [l, name] : kLosses)
-    if (l == loss) return name;
-  return "unknown";
-}
+std::string_view to_string(RobustLoss loss) { return kLosses.name(loss); }
 
 RobustLoss parse_robust_loss(std::string_view text) {
-  for (const auto& [l, name] : kLosses)
-    if (name == text) return l;
-  throw InvalidInput(fmt::format("loss = \"{}\"; expected one of none, huber, cauchy", text));
+  if (const auto l = kLosses.find(text)) return *l;
+  throw InvalidInput(fmt::format("loss = \"{}\"; expected one of {}", text, kLosses.spellings()));
 }
 
-std::string_view to_string(Identifiability identifiability) {
-  for (const auto& [i, name] : kIdentifiability)
-    if (i == identifiability) return name;
-  return "unknown";
-}
+std::string_view to_string(Identifiability identifiability) { return kIdentifiability.name(identifiability); }
 
 void Identification::Options::validate() const {
   const auto fail = [](std::string_view field, const std::string& value, std::string_view expected) {
@@ -196,7 +172,8 @@ struct Identification::Impl {
   Eigen::VectorXd initial, scale;
   int dim = 3;
   Eigen::Index num_nodes = 0;
-  Eigen::MatrixXd M0;
+  std::shared_ptr<const Eigen::MatrixXd> M0;       // M at E₀, dense (shared with the state solve)
+  std::unique_ptr<contact::DenseDelassus> M0_op;   // products with M0 (dsymv)
   Eigen::VectorXd c_traction, c_dirichlet, gap_vector;  // gap_vector = (0, g) per node
   contact::CoulombSolver::Options coulomb;
   std::optional<contact::ContactState> warm_start;
@@ -204,7 +181,6 @@ struct Identification::Impl {
   // Cache of the last trial point (Ceres evaluates every residual block at the same point).
   Eigen::VectorXd cached_parameters;
   std::optional<Prediction> cached;
-  contact::ContactState cached_state;
   int state_solves = 0, jacobian_evaluations = 0;
 
   void setup_parameters();
@@ -251,6 +227,21 @@ void Identification::Impl::setup_parameters() {
     // Ceres works on p/scale, O(1) for coefficients and moduli alike.
     scale(k) = initial(k) != 0.0 ? std::abs(initial(k)) : std::max({std::abs(spec.lower), std::abs(spec.upper), 1e-300});
   }
+  // Ceres evaluates on the bounds: the law must exist there (a polygon or an elliptic n-gon has
+  // no single zero coefficient, unlike the isotropic μ = 0 of a frictionless law).
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const ParameterSpec& spec = options.parameters[static_cast<std::size_t>(k)];
+    if (friction_index[static_cast<std::size_t>(k)] < 0) continue;
+    Eigen::VectorXd at_bound = initial;
+    at_bound(k) = spec.lower;
+    try {
+      (void)law_for(at_bound);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("identification parameter \"{}\": lower bound {} gives no valid friction law ({}); "
+                                     "expected a lower bound > 0 for this law",
+                                     spec.name, spec.lower, e.what()));
+    }
+  }
 }
 
 void Identification::Impl::setup_contact() {
@@ -264,8 +255,9 @@ void Identification::Impl::setup_contact() {
   const fem::LinearElasticity& fem = body->elasticity();
   dim = boundary.dim();
   num_nodes = boundary.num_nodes();
-  M0 = s.contact->delassus_matrix ? *s.contact->delassus_matrix
-                                  : contact::dense_delassus(fem.factorization(), boundary);
+  FRICTOPT_ASSERT(s.contact->delassus_matrix != nullptr, "dense_delassus_max_unknowns is unlimited here");
+  M0 = s.contact->delassus_matrix;
+  M0_op = std::make_unique<contact::DenseDelassus>(M0);
   const Eigen::VectorXd l_traction = fem.dofs().restrict(fem.traction_load(s.positions));
   const Eigen::VectorXd l_lift = fem.load() - l_traction;
   c_traction = boundary.times(fem.factorization().solve(l_traction));
@@ -379,7 +371,7 @@ const Identification::Prediction& Identification::Impl::predict(const Eigen::Vec
     return out;
   }
   const double rho = young_for(p) / young0;
-  const contact::DenseOperator M(M0 / rho);
+  const contact::ScaledOperator M(*M0_op, 1.0 / rho);  // M(E) = M(E₀) E₀/E, no copy
   const Eigen::VectorXd c = c_traction / rho + c_dirichlet + gap_vector;
   contact::ContactState state = warm_start ? *warm_start : contact::ContactState(dim, num_nodes);
   const contact::CoulombSolver solver(M, law, coulomb);
@@ -390,7 +382,6 @@ const Identification::Prediction& Identification::Impl::predict(const Eigen::Vec
     return out;
   }
   warm_start = state;
-  cached_state = state;
   out.values = Lz * state.z + Lg * state.gradient;
   out.index_sets = sensitivity::classify(state, law).summary();
   for (Eigen::Index i = 0; i < num_nodes; ++i) out.num_slipping_nodes += state.is_slip(i) ? 1 : 0;
@@ -402,19 +393,19 @@ const Identification::Prediction& Identification::Impl::predict(const Eigen::Vec
 void Identification::Impl::add_jacobian(const Eigen::VectorXd& p, Prediction& out) {
   const contact::FrictionLaw law = law_for(p);
   const double young = young_for(p);
-  const Eigen::MatrixXd M = M0 * (young0 / young);
-  const contact::ContactState& state = cached_state;
+  const double m_scale = young0 / young;  // M(E) = m_scale · M0
+  const contact::ContactState& state = *warm_start;  // the state of the cached prediction
   const sensitivity::Piece piece = sensitivity::default_piece(sensitivity::classify(state, law));
   const sensitivity::PieceLinearization lin = sensitivity::linearize_piece(piece, law, state);
   const Eigen::MatrixXd rows = sensitivity::friction_parameter_rows(piece, law, state);
-  const Eigen::Index n = p.size(), m = M.rows();
+  const Eigen::Index n = p.size(), m = M0->rows();
   Eigen::MatrixXd Rz = Eigen::MatrixXd::Zero(m, n), Q = Eigen::MatrixXd::Zero(m, n);
   for (Eigen::Index k = 0; k < n; ++k) {
     const int index = friction_index[static_cast<std::size_t>(k)];
     if (index >= 0) Rz.col(k) = rows.col(index);
     else Q.col(k) = (state.gradient - gap_vector - c_dirichlet) / young;  // G A⁻¹ (A u − l_lift)/E
   }
-  const sensitivity::ContactStateDerivative d = sensitivity::contact_state_derivative(lin, M, Rz, Q);
+  const sensitivity::ContactStateDerivative d = sensitivity::contact_state_derivative(lin, *M0, Rz, Q, m_scale);
   ++jacobian_evaluations;
   if (d.status != Status::kConverged) {
     out.ok = false;
@@ -440,6 +431,8 @@ Identification::Identification(BodyDefinition definition, std::vector<Measuremen
   s.options = std::move(options);
   s.measurements = std::move(measurements);
   s.setup_parameters();
+  // The Jacobians need the dense M: let the state solve form it whatever the contact size.
+  s.definition.contact->dense_delassus_max_unknowns = std::numeric_limits<int>::max();
   s.body = std::make_unique<ElasticBody>(s.definition);
   s.setup_contact();
   s.resolve_measurements();
@@ -606,10 +599,11 @@ Identification::Summary Identification::run() {
         // Every node sticks (or separates): any coefficient above the one that puts the most
         // loaded friction force on the boundary of λW gives the same state.
         const contact::FrictionLaw law = s.law_for(p);
+        const contact::ContactState& state = *s.warm_start;  // the final prediction's state
         double g = 0.0;
         for (Eigen::Index i = 0; i < s.num_nodes; ++i) {
-          const double lambda = s.cached_state.lambda(i);
-          if (lambda > 0) g = std::max(g, gauge(law, s.cached_state.q(i) / lambda));
+          const double lambda = state.lambda(i);
+          if (lambda > 0) g = std::max(g, gauge(law, state.q(i) / lambda));
         }
         e.note = s.friction_values0.size() == 1
                      ? fmt::format("only a lower bound: {} >= {:.6g} (every contact node sticks, so any larger "

@@ -617,6 +617,11 @@ TEST(Identification, RejectsUnknownNodesLocationsBoundsAndSigmaNamingTheItem) {
   bad.parameters[2].upper = 0.5;
   EXPECT_NE(with(m, bad).find("parameters[2] (mu_vertices[2]) = lower 0.9 > upper 0.5"), std::string::npos)
       << with(m, bad);
+  // A polygon has no single zero coefficient, and Ceres evaluates on the bounds.
+  bad = o;
+  bad.parameters[1].lower = 0.0;
+  EXPECT_NE(with(m, bad).find("\"mu_vertices[1]\": lower bound 0 gives no valid friction law"), std::string::npos)
+      << with(m, bad);
   bad = o;
   bad.parameters[0].name = "mu";
   EXPECT_NE(with(m, bad).find("\"mu\" is not a parameter of the law polygon"), std::string::npos) << with(m, bad);

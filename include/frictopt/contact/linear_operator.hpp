@@ -38,4 +38,21 @@ class DenseOperator final : public LinearOperator {
   Eigen::MatrixXd matrix_;
 };
 
+/// factor · base, without copying base (e.g. the Delassus matrix at another Young's modulus:
+/// M(E) = (E₀/E) M(E₀)). Lifetime: `base` must outlive this operator.
+class ScaledOperator final : public LinearOperator {
+ public:
+  ScaledOperator(const LinearOperator& base, double factor) : base_(base), factor_(factor) {}
+  Eigen::Index size() const override { return base_.size(); }
+  void apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const override {
+    base_.apply(x, y);
+    y *= factor_;
+  }
+  Eigen::VectorXd diagonal() const override { return factor_ * base_.diagonal(); }
+
+ private:
+  const LinearOperator& base_;
+  double factor_;
+};
+
 }  // namespace frictopt::contact

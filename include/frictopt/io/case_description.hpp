@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "frictopt/study/identification.hpp"
+
 namespace frictopt::io {
 
 /// A face of the body's bounding box that can carry a load or a Dirichlet condition.
@@ -199,8 +201,6 @@ struct OutputSpec {
   std::string name;  ///< base name of output files; default the case file stem
 };
 
-/// [identification] (issue 7): robust loss on each normalized residual.
-enum class LossKind { kNone, kHuber, kCauchy };
 
 /// One [identification.parameters.<name>] table: a parameter (group) to identify. `name` is
 /// "young" or a coefficient of the case's friction kind: "mu" (isotropic, disc_exact),
@@ -218,7 +218,7 @@ struct IdentificationSpec {
   /// The measurement CSV; a relative path is resolved against the case file's directory.
   std::filesystem::path measurements;
   std::vector<IdentifiedParameterSpec> parameters;  ///< at least one, in the file's order
-  LossKind loss = LossKind::kNone;
+  study::RobustLoss loss = study::RobustLoss::kNone;  ///< robust loss on each normalized residual
   double loss_scale = 1.0;            ///< > 0, in standard deviations
   std::optional<int> max_iterations;  ///< >= 1
 };

@@ -46,11 +46,13 @@ struct ContactStateDerivative {
 ///   (S M + C_z) δz = −R_z + S Q,    G δu = M δz − Q,    Q = G A⁻¹ r_u,
 /// one column per direction. `contact_rows` (R_z) and `equilibrium_image` (Q) are dim·p × k;
 /// either may be empty (zero). For Young's modulus (A and the Dirichlet lifting scale with E)
-/// r_u = (A u − l_lift)/E, so Q = (G u_f − G A⁻¹ l_lift)/E, no extra solve. `delassus` is the
-/// dense M = G A⁻¹ Gᵀ. A singular S M + C_z (rcond <= 1e-14) gives kNumericalFailure.
+/// r_u = (A u − l_lift)/E, so Q = (G u_f − G A⁻¹ l_lift)/E, no extra solve. The dense
+/// M = G A⁻¹ Gᵀ is `delassus_scale · delassus` (a changed E scales M without a copy). A singular
+/// S M + C_z (rcond <= kSingularReciprocalCondition) gives kNumericalFailure.
 [[nodiscard]] ContactStateDerivative contact_state_derivative(const PieceLinearization& piece,
                                                               const Eigen::MatrixXd& delassus,
                                                               const Eigen::Ref<const Eigen::MatrixXd>& contact_rows,
-                                                              const Eigen::Ref<const Eigen::MatrixXd>& equilibrium_image);
+                                                              const Eigen::Ref<const Eigen::MatrixXd>& equilibrium_image,
+                                                              double delassus_scale = 1.0);
 
 }  // namespace frictopt::sensitivity
