@@ -11,21 +11,12 @@
 #include <iostream>
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
-#include "frictopt/io/fclib_export.hpp"
-#include "frictopt/io/checkpoint.hpp"
 #include "frictopt/io/csv_writer.hpp"
-#include "frictopt/io/design_file.hpp"
-#include "frictopt/io/pvd_writer.hpp"
 #include "frictopt/io/json.hpp"
 #include "frictopt/io/measurements.hpp"
 #include "frictopt/study/identification.hpp"
-#include "frictopt/sensitivity/friction_parameters.hpp"
 #include "frictopt/study/certificate.hpp"
-#include "frictopt/study/shape_optimization.hpp"
-#include "frictopt/study/shape_oracle.hpp"
-#include "frictopt/io/state_output.hpp"
 #include "frictopt/io/study_setup.hpp"
-#include "frictopt/study/elastic_body.hpp"
 
 namespace frictopt::app {
 
@@ -132,8 +123,8 @@ int run_identify(const std::filesystem::path& case_path, const std::filesystem::
   summary["correlation"] = correlation;
   summary["singular_values"] = s.singular_values;
   io::write_json(out_dir / "summary.json", summary);
-  fmt::print("wrote {}, {}, {}\n", (out_dir / "fit.csv").string(), (out_dir / "summary.json").string(),
-             (out_dir / "ceres_report.txt").string());
+  fmt::print("wrote {}{}, {}\n", s.predictions.size() ? (out_dir / "fit.csv").string() + ", " : std::string(),
+             (out_dir / "summary.json").string(), (out_dir / "ceres_report.txt").string());
   return s.status == Status::kConverged ? kExitOk : kExitNumericalFailure;
 }
 
