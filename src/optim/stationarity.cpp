@@ -28,6 +28,25 @@ std::string StationarityCertificate::brief_report() const {
   return s.str();
 }
 
+std::vector<Eigen::Index> distinct_columns(const Eigen::Ref<const Eigen::MatrixXd>& Xi, double tolerance,
+                                           std::vector<Eigen::Index>& group) {
+  const double threshold = tolerance * Xi.cwiseAbs().maxCoeff();  // all-zero Xi: one group
+  std::vector<Eigen::Index> rep;
+  group.assign(static_cast<std::size_t>(Xi.cols()), -1);
+  for (Eigen::Index j = 0; j < Xi.cols(); ++j) {
+    for (std::size_t r = 0; r < rep.size(); ++r)
+      if ((Xi.col(j) - Xi.col(rep[r])).lpNorm<Eigen::Infinity>() <= threshold) {
+        group[static_cast<std::size_t>(j)] = static_cast<Eigen::Index>(r);
+        break;
+      }
+    if (group[static_cast<std::size_t>(j)] < 0) {
+      group[static_cast<std::size_t>(j)] = static_cast<Eigen::Index>(rep.size());
+      rep.push_back(j);
+    }
+  }
+  return rep;
+}
+
 StationarityCertificate stationarity_certificate(const Eigen::Ref<const Eigen::MatrixXd>& Xi,
                                                  const Eigen::Ref<const Eigen::VectorXd>& x,
                                                  const LinearConstraints& constraints,
@@ -48,23 +67,8 @@ StationarityCertificate stationarity_certificate(const Eigen::Ref<const Eigen::M
 
   StationarityCertificate out;
   // Deduplicate: many selections give identical ξ (spec 06 §6.2).
-  const double scale_inf = std::max(1.0, Xi.cwiseAbs().maxCoeff());
-  std::vector<Eigen::Index> rep;          // distinct columns
-  std::vector<Eigen::Index> group(static_cast<std::size_t>(Xi.cols()));
-  for (Eigen::Index j = 0; j < Xi.cols(); ++j) {
-    Eigen::Index found = -1;
-    for (std::size_t r = 0; r < rep.size(); ++r) {
-      if ((Xi.col(j) - Xi.col(rep[r])).lpNorm<Eigen::Infinity>() <= options.duplicate_tolerance * scale_inf) {
-        found = static_cast<Eigen::Index>(r);
-        break;
-      }
-    }
-    if (found < 0) {
-      found = static_cast<Eigen::Index>(rep.size());
-      rep.push_back(j);
-    }
-    group[static_cast<std::size_t>(j)] = found;
-  }
+  std::vector<Eigen::Index> group;
+  const std::vector<Eigen::Index> rep = distinct_columns(Xi, options.duplicate_tolerance, group);
   const auto m = static_cast<Eigen::Index>(rep.size());
   out.num_distinct_subgradients = static_cast<int>(m);
   out.subgradient_scale = Xi.colwise().norm().maxCoeff();

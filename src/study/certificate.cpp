@@ -61,25 +61,6 @@ optim::StationarityCertificate scaled_certificate(const Eigen::MatrixXd& Xi, con
   return c;
 }
 
-// Columns of Xi equal up to kDuplicateTolerance: representative column of each group.
-std::vector<Eigen::Index> distinct_columns(const Eigen::MatrixXd& Xi, std::vector<Eigen::Index>& group) {
-  const double scale = std::max(1.0, Xi.cwiseAbs().maxCoeff());
-  std::vector<Eigen::Index> rep;
-  group.assign(static_cast<std::size_t>(Xi.cols()), -1);
-  for (Eigen::Index j = 0; j < Xi.cols(); ++j) {
-    for (std::size_t r = 0; r < rep.size(); ++r)
-      if ((Xi.col(j) - Xi.col(rep[r])).lpNorm<Eigen::Infinity>() <= kDuplicateTolerance * scale) {
-        group[static_cast<std::size_t>(j)] = static_cast<Eigen::Index>(r);
-        break;
-      }
-    if (group[static_cast<std::size_t>(j)] < 0) {
-      group[static_cast<std::size_t>(j)] = static_cast<Eigen::Index>(rep.size());
-      rep.push_back(j);
-    }
-  }
-  return rep;
-}
-
 // One equation of the tight system at a node, in the node's local unknowns: s·(G u)_i + c·z_i +
 // gap·g_i = 0 (the form of sensitivity::linearize_piece; g_i = (B̃α)_i).
 struct LocalRow {
@@ -263,7 +244,7 @@ MordukhovichReport mordukhovich_report(const Certificate& c, const Eigen::Vector
     return out;
   }
   std::vector<Eigen::Index> group;
-  const std::vector<Eigen::Index> rep = distinct_columns(c.subgradients, group);
+  const std::vector<Eigen::Index> rep = optim::distinct_columns(c.subgradients, kDuplicateTolerance, group);
   if (static_cast<int>(rep.size()) > options.max_extreme_point_tests) {
     out.message = fmt::format("not computed: {} distinct xi_i > max_extreme_point_tests = {}", rep.size(),
                               options.max_extreme_point_tests);

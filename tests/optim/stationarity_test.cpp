@@ -26,6 +26,19 @@ double distance(const Eigen::MatrixXd& xi, double x, const fo::LinearConstraints
 }
 }  // namespace
 
+TEST(DistinctColumns, GroupsRelativeToTheLargestEntryInAnyUnits) {
+  // Columns 0 and 2 agree to 1e-14 relative, column 1 differs at O(1): two groups, whether the
+  // entries are O(1) or O(1e-20) (a floor of 1 in the scale would merge all three at 1e-20).
+  Eigen::MatrixXd Xi(2, 3);
+  Xi << 1.0, 0.5, 1.0 + 1e-14, -2.0, 3.0, -2.0;
+  for (const double units : {1.0, 1e-20, 1e20}) {
+    std::vector<Eigen::Index> group;
+    const std::vector<Eigen::Index> rep = fo::distinct_columns(units * Xi, 1e-12, group);
+    EXPECT_EQ(rep, (std::vector<Eigen::Index>{0, 1})) << "units " << units;
+    EXPECT_EQ(group, (std::vector<Eigen::Index>{0, 1, 0})) << "units " << units;
+  }
+}
+
 TEST(StationarityCertificate, Example241IsPseudostationaryButNotClarkeStationary) {
   // f(x) = x built from selections {x, −x}: only x is essentially active at 0.
   EXPECT_NEAR(distance(pieces({1.0}), 0.0), 1.0, kTol);        // Clarke: ∂f(0) = {1}

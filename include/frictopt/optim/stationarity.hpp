@@ -16,7 +16,7 @@ struct StationarityOptions {
   // A row of C x ≤ c is active at x when c_i − C_i x ≤ active_tolerance·max(1, |c_i|)
   // (user units; spec 06 §6.2 "decided with a tolerance"). >= 0.
   double active_tolerance = 1e-8;
-  // Subgradients closer than this (max norm, relative to max(1, max_i ‖ξ_i‖∞)) are merged
+  // Subgradients closer than this (max norm, relative to max_i ‖ξ_i‖∞) are merged
   // before the QP (spec 06 §6.2: "deduplicate the ξ_i first"). >= 0.
   double duplicate_tolerance = 1e-12;
   void validate() const;  // throws InvalidInput naming field, value, expectation
@@ -48,6 +48,12 @@ struct StationarityCertificate {
 /// constraints define N_Υ(x); `constraints` may be empty (unconstrained: N = {0}).
 /// Throws InvalidInput on inconsistent sizes, m = 0 or non-finite input. A point violating Υ by
 /// more than the active tolerance is an InvalidInput as well (N_Υ is only defined on Υ).
+/// The distinct columns of `Xi`: columns closer than tolerance·‖Xi‖_∞ (max-norm, relative to the
+/// largest entry, so the test means the same in any units) form one group. Returns the index of
+/// each group's first column; group[j] is column j's group.
+[[nodiscard]] std::vector<Eigen::Index> distinct_columns(const Eigen::Ref<const Eigen::MatrixXd>& Xi, double tolerance,
+                                                         std::vector<Eigen::Index>& group);
+
 [[nodiscard]] StationarityCertificate stationarity_certificate(
     const Eigen::Ref<const Eigen::MatrixXd>& subgradients, const Eigen::Ref<const Eigen::VectorXd>& x,
     const LinearConstraints& constraints = {}, const StationarityOptions& options = {});
