@@ -1,15 +1,21 @@
 // SPDX-License-Identifier: MIT
-// End-to-end checks of `frictopt certify RUN_DIR`: on a fresh optimize run it prints the
-// certificate and writes certificate.json; a run directory without final_design.json is an
-// input error (exit code 2) naming the file.
+// End-to-end checks of `frictopt certify RUN_DIR`: on a fresh (3-iteration) optimize run it
+// prints the certificate and writes certificate.json whose numbers are consistent with each
+// other and with the printed report; a run directory without final_design.json is an input
+// error (exit code 2) naming the file.
 #include <gtest/gtest.h>
 
 #include "common/cli_runner.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
+#include <string>
 
 #include "frictopt/io/json.hpp"
 
@@ -21,23 +27,56 @@ using frictopt::testing::RunResult;
 using frictopt::testing::read_text;
 RunResult run(const std::string& arguments) { return frictopt::testing::run_frictopt(arguments); }
 
+/// `x` printed as the report prints it (fmt's "{:.Ne}" and printf's "%.Ne" agree).
+std::string scientific(double x, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*e", digits, x);
+  return buf;
+}
 
 TEST(CliCertify, WritesCertificateJsonForAFreshRun) {
   const fs::path dir = frictopt::testing::fresh_directory("cli_certify_run");
-  const RunResult optimize = run("optimize " FRICTOPT_SOURCE_DIR "/cases2d/thesis-body/case.toml -o " + dir.string());
+  fs::create_directories(dir);
+  // certify accepts any run with a final design: a copy of the case capped at 3 iterations.
+  const fs::path case_path = dir / "case.toml";
+  std::ofstream(case_path) << read_text(FRICTOPT_SOURCE_DIR "/cases2d/thesis-body/case.toml")
+                           << "\n[optimization]\nmax_iterations = 3\n";
+  const RunResult optimize = run("optimize " + case_path.string() + " -o " + (dir / "run").string());
   ASSERT_EQ(optimize.exit_code, 0) << optimize.output;
-  const RunResult r = run("certify " + dir.string());
+  const fs::path run_dir = dir / "run";
+  const RunResult r = run("certify " + run_dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("Clarke distance"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(MF1')"), std::string::npos) << r.output;
-  ASSERT_TRUE(fs::exists(dir / "certificate.json"));
-  const auto json = frictopt::io::parse_json(read_text(dir / "certificate.json"));
+  ASSERT_TRUE(fs::exists(run_dir / "certificate.json"));
+  const auto json = frictopt::io::parse_json(read_text(run_dir / "certificate.json"));
   EXPECT_EQ(json.at("command").as_string(), "certify");
   EXPECT_EQ(json.at("status").as_string(), "converged");
   EXPECT_GE(json.at("cardinality_L").as_number(), 1.0);
-  EXPECT_GE(json.at("clarke").at("distance").as_number(), 0.0);
-  EXPECT_GE(json.at("clarke").at("relative_distance").as_number(), 0.0);
-  EXPECT_LE(json.at("clarke").at("relative_distance").as_number(), 1.0 + 1e-12);
+  // The scale is max_i |ξ_i| over the pieces written; the relative distance is distance/scale
+  // (doubles are written with max_digits10, so the quotient is reproduced exactly).
+  const double scale = json.at("scale_max_xi_norm").as_number();
+  double largest = 0.0;
+  for (const auto& piece : json.at("pieces").as_array()) {
+    double squares = 0.0;
+    for (const auto& x : piece.at("xi").as_array()) squares += x.as_number() * x.as_number();
+    largest = std::max(largest, std::sqrt(squares));
+  }
+  ASSERT_GT(scale, 0.0);
+  EXPECT_NEAR(largest, scale, 1e-13 * scale);
+  const auto& clarke = json.at("clarke");
+  const double distance = clarke.at("distance").as_number();
+  const double relative = clarke.at("relative_distance").as_number();
+  EXPECT_DOUBLE_EQ(relative, distance / scale);
+  EXPECT_LE(relative, 1.0 + 1e-12);
+  EXPECT_EQ(clarke.at("stationary").as_bool(), distance <= clarke.at("stationary_tolerance_relative").as_number() * scale);
+  // The printed report shows the same numbers to its printed precision.
+  std::smatch printed;
+  ASSERT_TRUE(std::regex_search(r.output, printed,
+                                std::regex(R"(Clarke distance [^\n]*= (\S+) \(relative (\S+)\))")))
+      << r.output;
+  EXPECT_EQ(printed[1].str(), scientific(distance, 6)) << r.output;
+  EXPECT_EQ(printed[2].str(), scientific(relative, 3)) << r.output;
+  EXPECT_NE(r.output.find("scale max_i |xi_i| = " + scientific(scale, 6)), std::string::npos) << r.output;
   EXPECT_TRUE(json.at("mf1").at("computed").as_bool());
   EXPECT_GE(json.at("mf1").at("rank").as_integer(), 1);
   EXPECT_EQ(json.at("pieces").as_array().size(),

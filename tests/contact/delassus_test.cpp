@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 // The three Delassus operators (dense, from the Schur factor, through the sparse factorization)
-// against the reference M = G A⁻¹ Gᵀ built column by column from CHOLMOD solves, on a small 3D
-// body whose contact DOFs are ordered last as in study::ElasticBody.
+// against a reference M = G A⁻¹ Gᵀ built independently of them: Eigen's SimplicialLDLT of the
+// reduced stiffness A (not CHOLMOD, which contact::dense_delassus and FactorizedDelassus share),
+// with G and Gᵀ applied column by column through ContactBoundary; on a small 3D body whose
+// contact DOFs are ordered last as in study::ElasticBody.
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseCholesky>
 #include <memory>
 #include <vector>
 
@@ -30,7 +33,18 @@ class DelassusOperators : public ::testing::Test {
     fem_.set_trailing_dofs(trailing);
     fem_.assemble(mesh_.positions(alpha));
     EXPECT_EQ(fem_.factorize(), Status::kConverged);
-    reference_ = dense_delassus(fem_.factorization(), boundary_);
+    // Reference: column j of M is G A⁻¹ Gᵀ e_j, with A⁻¹ from Eigen's own sparse LDLᵀ.
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(fem_.stiffness());
+    EXPECT_EQ(ldlt.info(), Eigen::Success);
+    EXPECT_EQ(fem_.stiffness().rows(), boundary_.num_free());
+    const Eigen::Index m = boundary_.num_unknowns();
+    reference_.resize(m, m);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      Eigen::VectorXd w = Eigen::VectorXd::Zero(boundary_.num_free());
+      boundary_.add_transpose_times(Eigen::VectorXd::Unit(m, j), w);
+      const Eigen::VectorXd v = ldlt.solve(w);
+      reference_.col(j) = boundary_.times(v);
+    }
   }
 
   mesh::StructuredMesh mesh_;

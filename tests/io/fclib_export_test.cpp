@@ -12,13 +12,16 @@
 #include <fstream>
 #include <limits>
 #include <memory>
-#include <sstream>
 #include <string>
 
 extern "C" {
 #include <fclib.h>
 }
 
+#include "common/temporary_directory.hpp"
+#ifdef FRICTOPT_BINARY
+#include "common/cli_runner.hpp"
+#endif
 #include "frictopt/contact/delassus.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
@@ -41,11 +44,12 @@ BodyDefinition definition_of(const std::string& file) {
   return frictopt::io::make_body_definition(frictopt::io::load_case(kData / file));
 }
 
-fs::path temp_file(const std::string& name) {
-  const fs::path path = fs::temp_directory_path() / ("frictopt_fclib_" + name);
-  fs::remove(path);
-  return path;
-}
+// Each test writes into its own directory (named after the test and the process id, removed
+// after the test), so parallel and repeated runs never share a file.
+class FclibTest : public frictopt::testing::TemporaryDirectoryTest {
+ protected:
+  fs::path temp_file(const std::string& name) const { return dir_ / name; }
+};
 
 // RAII owners of what fclib's readers allocate (fclib_delete_local leaves the struct itself).
 struct LocalDeleter {
@@ -81,7 +85,7 @@ Eigen::MatrixXd dense(const fclib_matrix& a) {
 Eigen::Map<const Eigen::VectorXd> vec(const double* x, Eigen::Index n) { return {x, n}; }
 
 // The isotropic 3D case with stick and slip nodes, solved once for all tests of the suite.
-class FclibExport3d : public ::testing::Test {
+class FclibExport3d : public FclibTest {
  protected:
   static void SetUpTestSuite() {
     body_ = new ElasticBody(definition_of("fclib3d.toml"));
@@ -235,6 +239,8 @@ TEST_F(FclibExport3d, RejectsAStateThatIsNotTheBodysLastSolve) {
   }
 }
 
+using FclibExport = FclibTest;
+
 std::string export_error(FrictionLaw law) {
   BodyDefinition def = definition_of("fclib3d.toml");
   def.contact->law = std::move(law);
@@ -248,7 +254,7 @@ std::string export_error(FrictionLaw law) {
   return "no exception";
 }
 
-TEST(FclibExport, RejectsAnisotropicLawsNamingTheKind) {
+TEST_F(FclibExport, RejectsAnisotropicLawsNamingTheKind) {
   const std::string polygon = export_error(FrictionLaw::polygon({0.3, 0.5, 0.3, 0.5}));
   EXPECT_NE(polygon.find("contact.friction.kind = polygon"), std::string::npos) << polygon;
   EXPECT_NE(polygon.find("isotropic Coulomb cones"), std::string::npos) << polygon;
@@ -259,7 +265,7 @@ TEST(FclibExport, RejectsAnisotropicLawsNamingTheKind) {
   EXPECT_NE(ellipse_gon.find("contact.friction.kind = ellipse "), std::string::npos) << ellipse_gon;
 }
 
-TEST(FclibExport, RegularPolygonIsExportedAsTheDiscWithTheSolutionAsAGuess) {
+TEST_F(FclibExport, RegularPolygonIsExportedAsTheDiscWithTheSolutionAsAGuess) {
   BodyDefinition def = definition_of("fclib3d.toml");
   def.contact->law = FrictionLaw::regular_polygon(0.3, 16);
   ElasticBody body(def);
@@ -278,14 +284,16 @@ TEST(FclibExport, RegularPolygonIsExportedAsTheDiscWithTheSolutionAsAGuess) {
   const SolutionPtr owner(guesses, SolutionDeleter{count});
   EXPECT_EQ((vec(guesses->r, problem.r.size()) - problem.r).lpNorm<Eigen::Infinity>(), 0.0);
   // The 16-gon solution is close to, not exactly, the disc solution: its natural-map residual
-  // in the disc problem is of the order of the polygon's deviation from the disc (1 − cos(π/16)
-  // ≈ 2%), far above round-off.
+  // in the disc problem is of the order of the polygon's deviation from the disc, at most
+  // 1 − cos(π/16) ≈ 1.9% (last measured 6.4e-3), and far above the solver's round-off and
+  // tolerances (~1e-10): bounded on both sides so an exact disc solve or a wrong map both fail.
   const double natural = frictopt::io::fclib_natural_map_residual(problem, problem.r);
   std::printf("16-gon solution in the disc problem: natural-map residual %.3e\n", natural);
-  EXPECT_LT(natural, 0.1);
+  EXPECT_GT(natural, 1e-5);
+  EXPECT_LT(natural, 2e-2);
 }
 
-TEST(FclibExport, Exports2dProblemsWithSpacedim2) {
+TEST_F(FclibExport, Exports2dProblemsWithSpacedim2) {
   ElasticBody body(definition_of("fclib2d.toml"));
   const BodyState state = body.solve(body.definition().initial_design);
   ASSERT_TRUE(state.contact && state.contact->summary.converged());
@@ -302,7 +310,7 @@ TEST(FclibExport, Exports2dProblemsWithSpacedim2) {
   EXPECT_LE(natural, 1e-8);
 }
 
-TEST(FclibExport, RejectsABodyWithoutFoundation) {
+TEST_F(FclibExport, RejectsABodyWithoutFoundation) {
   BodyDefinition def = definition_of("fclib3d.toml");
   def.contact.reset();
   ElasticBody body(def);
@@ -311,17 +319,13 @@ TEST(FclibExport, RejectsABodyWithoutFoundation) {
 }
 
 #ifdef FRICTOPT_BINARY
-TEST(FclibExportCli, WritesAFileFclibReads) {
+using FclibExportCli = FclibTest;
+
+TEST_F(FclibExportCli, WritesAFileFclibReads) {
   const fs::path out = temp_file("cli.hdf5");
-  const fs::path log = temp_file("cli.log");
-  const std::string command = std::string(FRICTOPT_BINARY) + " export-fclib " +
-                              (kData / "small3d_disc.toml").string() + " " + out.string() + " > " +
-                              log.string() + " 2>&1";
-  const int status = std::system(command.c_str());
-  std::ifstream in(log);
-  std::stringstream text;
-  text << in.rdbuf();
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << text.str();
+  const frictopt::testing::RunResult run =
+      frictopt::testing::run_frictopt("export-fclib " + (kData / "small3d_disc.toml").string() + " " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
   const LocalPtr local = read_local(out);
   ASSERT_NE(local, nullptr);
   EXPECT_EQ(local->spacedim, 3);
@@ -335,23 +339,17 @@ TEST(FclibExportCli, WritesAFileFclibReads) {
   // A polygon law is refused with the explanation and exit code 2 (invalid input).
   const fs::path polygon_case = temp_file("polygon.toml");
   {
-    std::ifstream base(kData / "small3d_disc.toml");
-    std::stringstream s;
-    s << base.rdbuf();
-    std::string toml = s.str();
+    std::string toml = frictopt::testing::read_text(kData / "small3d_disc.toml");
     const std::string disc = "kind = \"disc_exact\"\nmu = 0.3";
-    toml.replace(toml.find(disc), disc.size(),
-                 "kind = \"polygon\"\nmu_vertices = [0.3, 0.5, 0.3, 0.5]");
+    const std::size_t at = toml.find(disc);
+    ASSERT_NE(at, std::string::npos) << "small3d_disc.toml no longer holds '" << disc << "'";
+    toml.replace(at, disc.size(), "kind = \"polygon\"\nmu_vertices = [0.3, 0.5, 0.3, 0.5]");
     std::ofstream(polygon_case) << toml;
   }
-  const std::string bad = std::string(FRICTOPT_BINARY) + " export-fclib " + polygon_case.string() +
-                          " " + temp_file("polygon.hdf5").string() + " > " + log.string() + " 2>&1";
-  const int bad_status = std::system(bad.c_str());
-  std::ifstream bad_in(log);
-  std::stringstream bad_text;
-  bad_text << bad_in.rdbuf();
-  EXPECT_TRUE(WIFEXITED(bad_status) && WEXITSTATUS(bad_status) == 2) << bad_text.str();
-  EXPECT_NE(bad_text.str().find("isotropic Coulomb cones"), std::string::npos) << bad_text.str();
+  const frictopt::testing::RunResult bad = frictopt::testing::run_frictopt(
+      "export-fclib " + polygon_case.string() + " " + temp_file("polygon.hdf5").string());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("isotropic Coulomb cones"), std::string::npos) << bad.output;
 }
 #endif
 

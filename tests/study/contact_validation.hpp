@@ -195,8 +195,14 @@ inline Eigen::VectorXd linear_term(const ElasticBody& body, const BodyState& sta
 }
 
 /// Frictionless oracle: projected Gauss–Seidel on the dense normal block of M = G A⁻¹ Gᵀ,
-/// min ½λᵀM_νν λ + λᵀc_ν over λ >= 0, swept until the largest change is 1e-15 of max λ.
-inline Eigen::VectorXd frictionless_oracle(const ElasticBody& body, const BodyState& state) {
+/// min ½λᵀM_νν λ + λᵀc_ν over λ >= 0, swept until the largest change is 1e-15 of max λ or
+/// `max_sweeps` sweeps are spent. Callers must check `converged`: at the cap λ is not the oracle.
+struct OracleResult {
+  Eigen::VectorXd lambda;
+  int sweeps = 0;          ///< sweeps done (the last one met the stopping test when converged)
+  bool converged = false;  ///< the stopping test was met within max_sweeps
+};
+inline OracleResult frictionless_oracle(const ElasticBody& body, const BodyState& state, int max_sweeps = 1000000) {
   const contact::ContactBoundary& boundary = *body.contact_boundary();
   const Eigen::MatrixXd M = contact::dense_delassus(body.elasticity().factorization(), boundary);
   const Eigen::VectorXd c = linear_term(body, state);
@@ -208,17 +214,23 @@ inline Eigen::VectorXd frictionless_oracle(const ElasticBody& body, const BodySt
     cn(i) = c(dim * i + dim - 1);
     for (Eigen::Index j = 0; j < p; ++j) Mn(i, j) = M(dim * i + dim - 1, dim * j + dim - 1);
   }
-  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(p);
-  for (int sweep = 0; sweep < 1000000; ++sweep) {
+  OracleResult out;
+  out.lambda = Eigen::VectorXd::Zero(p);
+  Eigen::VectorXd& lambda = out.lambda;
+  while (out.sweeps < max_sweeps) {
+    ++out.sweeps;
     double change = 0;
     for (Eigen::Index i = 0; i < p; ++i) {
       const double updated = std::max(0.0, lambda(i) - (Mn.row(i).dot(lambda) + cn(i)) / Mn(i, i));
       change = std::max(change, std::abs(updated - lambda(i)));
       lambda(i) = updated;
     }
-    if (change <= 1e-15 * std::max(lambda.maxCoeff(), 1e-300)) break;
+    if (change <= 1e-15 * std::max(lambda.maxCoeff(), 1e-300)) {
+      out.converged = true;
+      break;
+    }
   }
-  return lambda;
+  return out;
 }
 
 /// The tangential parts q_i of z, stacked (p·(dim−1)).
