@@ -128,10 +128,14 @@ struct Synthetic {
   Eigen::VectorXd exact;
 };
 
-// Exact model values at the true law (the body's own law) for the templates.
-Synthetic synthesize(const BodyDefinition& truth_body, std::vector<Measurement> templates,
-                     const std::vector<ParameterSpec>& parameters, const Eigen::VectorXd& truth, double relative_sigma,
-                     std::uint64_t seed, bool noise) {
+// The templates with their σ and the exact model values at the true law (the body's own law):
+// one state solve, reused for every noise seed.
+struct ExactData {
+  std::vector<Measurement> templates;
+  Eigen::VectorXd values;
+};
+ExactData exact_data(const BodyDefinition& truth_body, std::vector<Measurement> templates,
+                     const std::vector<ParameterSpec>& parameters, const Eigen::VectorXd& truth, double relative_sigma) {
   Identification::Options o;
   o.parameters = parameters;
   Identification model(truth_body, templates, o);
@@ -140,7 +144,14 @@ Synthetic synthesize(const BodyDefinition& truth_body, std::vector<Measurement> 
   std::printf("truth: %s; %d slipping nodes; %s\n", p.index_sets.c_str(), p.num_slipping_nodes,
               p.contact.brief_report().c_str());
   set_sigmas(templates, p.values, relative_sigma);
-  return {synthetic_measurements(templates, p.values, seed, noise), p.values};
+  return {std::move(templates), p.values};
+}
+
+Synthetic synthesize(const BodyDefinition& truth_body, std::vector<Measurement> templates,
+                     const std::vector<ParameterSpec>& parameters, const Eigen::VectorXd& truth, double relative_sigma,
+                     std::uint64_t seed, bool noise) {
+  const ExactData d = exact_data(truth_body, std::move(templates), parameters, truth, relative_sigma);
+  return {synthetic_measurements(d.templates, d.values, seed, noise), d.values};
 }
 
 void print_estimates(const Identification::Summary& s, const Eigen::VectorXd& truth) {
@@ -429,12 +440,12 @@ TEST(Identification, RecoversWithinTheReportedStandardDeviationsFromNoisyData) {
   const Eigen::VectorXd truth = kTrueMu;
   int within_one = 0, total = 0;
   double worst = 0.0;
+  const ExactData exact = exact_data(block(kTrueLaw), sensor_templates(49, 1), polygon_parameters(kTrueMu), truth, 0.02);
   for (std::uint64_t seed = kSeed; seed < kSeed + 8; ++seed) {
-    const Synthetic data = synthesize(block(kTrueLaw), sensor_templates(49, 1), polygon_parameters(kTrueMu), truth,
-                                      0.02, seed, true);
     Identification::Options o;
     o.parameters = polygon_parameters(Eigen::Vector4d::Constant(0.3));
-    Identification id(block(contact::FrictionLaw::polygon({0.3, 0.3, 0.3, 0.3})), data.measurements, o);
+    Identification id(block(contact::FrictionLaw::polygon({0.3, 0.3, 0.3, 0.3})),
+                      synthetic_measurements(exact.templates, exact.values, seed, true), o);
     const Identification::Summary s = id.run();
     std::printf("seed %llu: ", static_cast<unsigned long long>(seed));
     print_estimates(s, truth);
