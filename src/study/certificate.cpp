@@ -166,14 +166,16 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   if (!state.contact->delassus_matrix) solved_M = contact::dense_delassus(fem.factorization(), boundary);
   const Eigen::MatrixXd& M = state.contact->delassus_matrix ? *state.contact->delassus_matrix : solved_M;
   const Eigen::MatrixXd B = body.definition().shape.gap_matrix(boundary.plane_coordinates());
-  Eigen::MatrixXd N(m, d);
+  Eigen::MatrixXd R_alpha(fem.dofs().num_free(), d);  // r_α e_k, one column per control point
   for (Eigen::Index k = 0; k < d; ++k) {
     const Eigen::VectorXd Vh = fem.mesh().design_jacobian().col(k);
     const Eigen::MatrixXd dX =
         Eigen::Map<const Eigen::MatrixXd>(Vh.data(), dim, fem.mesh().num_nodes()).transpose();
-    const Eigen::VectorXd ra = fem.dofs().restrict(fem.residual_derivative(state.positions, state.displacement, dX));
-    N.col(k) = boundary.times(fem.factorization().solve(ra));
+    R_alpha.col(k) = fem.dofs().restrict(fem.residual_derivative(state.positions, state.displacement, dX));
   }
+  const Eigen::MatrixXd Ainv_R = fem.factorization().solve_many(R_alpha);  // one blocked solve for all d
+  Eigen::MatrixXd N(m, d);
+  for (Eigen::Index k = 0; k < d; ++k) N.col(k) = boundary.times(Ainv_R.col(k));
 
   // H in the unknowns (α, z) after eliminating u = A(α)⁻¹(l(α) + Gᵀz) from the equilibrium rows:
   // row s·(Gu)_i + c·z_i + gap·(B̃α)_i has ∂/∂z = s·M_(i,:) + c·e_(z_i) and
@@ -366,6 +368,14 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   if (alpha.size() != d)
     throw InvalidInput(fmt::format("certify: the design has {} entries; expected {} (the shape's control points)",
                                    alpha.size(), d));
+  // N_Υ(α) exists on Υ only: refuse an outside design before any state solve or adjoint.
+  const shape::LinearConstraints& upsilon = body.admissible_set();
+  const optim::LinearConstraints constraints = to_optim_constraints(upsilon);
+  if (const double violation = constraints.max_violation(alpha);
+      violation > options.active_tolerance * std::max(1.0, alpha.lpNorm<Eigen::Infinity>()))
+    throw InvalidInput(fmt::format("certify: the design violates the admissible set by {:.3e}; expected a design in "
+                                   "Υ ({})",
+                                   violation, upsilon.describe_violation(alpha, 0.0)));
   Certificate c;
   c.alpha = alpha;
   const Evaluation& e = oracle.evaluate_design(alpha, false);  // ξ of every piece follows below
@@ -397,8 +407,6 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   }
   c.scale = c.subgradients.colwise().norm().maxCoeff();
 
-  const shape::LinearConstraints& upsilon = body.admissible_set();
-  const optim::LinearConstraints constraints = to_optim_constraints(upsilon);
   const optim::StationarityOptions qp{options.active_tolerance};
   c.clarke = scaled_certificate(c.subgradients, alpha, constraints, qp, c.scale);
   c.default_piece = scaled_certificate(c.subgradients.col(c.default_piece_column), alpha, constraints, qp, c.scale);

@@ -138,8 +138,15 @@ TEST(Certify, RejectsBadInput) {
   CertifyOptions bad;
   bad.cap = 0;
   EXPECT_THROW((void)certify(oracle, body.definition().initial_design, bad), InvalidInput);
-  // Outside Υ (volume equality violated): N_Υ is undefined there.
-  EXPECT_THROW((void)certify(oracle, Eigen::VectorXd::Constant(15, 0.1)), InvalidInput);
+  // Outside Υ (volume equality violated): N_Υ is undefined there; refused before any state solve.
+  const int solves = oracle.num_state_solves();
+  try {
+    (void)certify(oracle, Eigen::VectorXd::Constant(15, 0.1));
+    ADD_FAILURE() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("violates the admissible set"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(oracle.num_state_solves(), solves);
 }
 
 }  // namespace
