@@ -9,11 +9,19 @@
 #include <functional>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace frictopt::testing {
 
 inline constexpr std::uint64_t kSeed = 20261121;
+
+/// "[a, b, c]" for the printed comparisons of the derivative tests.
+inline std::string format_vector(const Eigen::VectorXd& v) {
+  std::string out = "[";
+  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + std::to_string(v(i));
+  return out + "]";
+}
 
 /// Central-difference step for a point x: cbrt(eps)·max(1, ‖x‖∞).
 inline double central_step(const Eigen::VectorXd& x) {

@@ -19,11 +19,7 @@ namespace {
 
 using frictopt::testing::kSeed;
 
-std::string fmt_vector(const Eigen::VectorXd& v) {
-  std::string out = "[";
-  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + std::to_string(v(i));
-  return out + "]";
-}
+using frictopt::testing::format_vector;
 
 study::BodyDefinition thesis_body_2d(const contact::FrictionLaw& law, int n1 = 20, int nv = 8) {
   return frictopt::testing::thesis_body_2d(law, n1, nv);
@@ -296,7 +292,7 @@ TEST_P(FrictionGradient, MatchesCentralDifferencesInTheCoefficients) {
   const Eigen::VectorXd fd = frictopt::testing::central_gradient(theta, c.parameters, 1e-5);
   const double error = (e.friction_gradient - fd).norm() / fd.norm();
   std::printf("%s: ∂Θ/∂μ adjoint %s vs FD %s: relative error %.2e\n", c.name.c_str(),
-              fmt_vector(e.friction_gradient).c_str(), fmt_vector(fd).c_str(), error);
+              format_vector(e.friction_gradient).c_str(), format_vector(fd).c_str(), error);
   EXPECT_LE(error, 1e-5);
 }
 

@@ -27,11 +27,7 @@ namespace {
 
 using frictopt::testing::kSeed;
 
-std::string fmt_vector(const Eigen::VectorXd& v) {
-  std::string out = "[";
-  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + std::to_string(v(i));
-  return out + "]";
-}
+using frictopt::testing::format_vector;
 
 // A 3D block pressed down by a rigid plate (prescribed top displacement) on a dish-shaped
 // bottom: the Poisson expansion under the plate makes the rim slide outwards in every
@@ -238,7 +234,7 @@ class PredictionCost final : public ceres::CostFunction {
     Eigen::VectorXd p(n);
     for (Eigen::Index k = 0; k < n; ++k) p(k) = parameters[k][0];
     const Identification::Prediction pr = model_.predict(p, jacobians != nullptr);
-    if (!pr.ok) std::printf("predict failed at %s: %s\n", fmt_vector(p).c_str(), pr.message.c_str());
+    if (!pr.ok) std::printf("predict failed at %s: %s\n", format_vector(p).c_str(), pr.message.c_str());
     if (!pr.ok) return false;
     // Normalize each value by its sensor σ so all rows weigh alike in the checker's relative test.
     for (Eigen::Index r = 0; r < pr.values.size(); ++r) {
