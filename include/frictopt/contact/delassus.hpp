@@ -30,8 +30,9 @@ class DenseDelassus final : public DelassusMatrix {
       : DenseDelassus(std::make_shared<const Eigen::MatrixXd>(std::move(matrix))) {}
   explicit DenseDelassus(std::shared_ptr<const Eigen::MatrixXd> matrix);
   Eigen::Index size() const override { return matrix_->rows(); }
-  /// y = M x by dsymv (lower triangle; OpenBLAS, threaded): 2m² flops, 4× faster than the two
-  /// triangular solves of SchurDelassus at m = 5,043 (docs/benchmarks.md).
+  /// y = M x: from m = 2,000 by dsymv (lower triangle; OpenBLAS, threaded), 3.4× faster than the
+  /// two triangular solves of SchurDelassus at m = 5,043 (docs/benchmarks.md); below, Eigen's
+  /// single-threaded product (small products do not pay for threads on a shared machine).
   void apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const override;
   Eigen::VectorXd diagonal() const override { return matrix_->diagonal(); }
   Eigen::MatrixXd block(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& cols) const override;
