@@ -17,7 +17,6 @@
 #include "frictopt/study/certificate.hpp"
 #include "frictopt/study/shape_optimization.hpp"
 #include "frictopt/study/shape_oracle.hpp"
-#include "frictopt/io/study_setup.hpp"
 #include "frictopt/study/elastic_body.hpp"
 
 namespace frictopt::app {
@@ -35,11 +34,11 @@ int run_certify(const std::filesystem::path& run_dir, int cap) {
       throw InvalidInput(fmt::format("{}: missing; expected a run directory written by `frictopt optimize`",
                                      file.string()));
   const io::CaseDescription description = io::load_case(case_path);
-  const study::BodyDefinition definition = io::make_body_definition(description);
+  const study::BodyDefinition definition = description.body;
   if (!definition.contact) throw InvalidInput(case_path.string() + ": certify needs a [contact] table");
   study::ElasticBody body(definition);
   const Eigen::VectorXd alpha = io::read_design_file(design_path, definition.shape.num_controls());
-  study::ShapeOracle oracle(body, io::make_cost_definition(description));
+  study::ShapeOracle oracle(body, description.required_cost());
   study::CertifyOptions options;
   options.cap = cap;
   const study::Certificate c = study::certify(oracle, alpha, options);

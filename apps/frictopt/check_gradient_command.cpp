@@ -16,7 +16,6 @@
 #include "frictopt/sensitivity/friction_parameters.hpp"
 #include "frictopt/study/certificate.hpp"
 #include "frictopt/study/shape_oracle.hpp"
-#include "frictopt/io/study_setup.hpp"
 #include "frictopt/study/elastic_body.hpp"
 
 namespace frictopt::app {
@@ -28,7 +27,7 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
                        double relative_step) {
   using namespace frictopt;
   const io::CaseDescription description = io::load_case(case_path);
-  study::BodyDefinition definition = io::make_body_definition(description);
+  study::BodyDefinition definition = description.body;
   if (!definition.contact) throw InvalidInput(case_path.string() + ": check-gradient needs a [contact] table");
   // Finite differences need a state far more accurate than the step: tighten the solvers
   // unless the case asks for even tighter tolerances.
@@ -40,7 +39,7 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
   study::ElasticBody body(definition);
   const Eigen::VectorXd alpha = design_path.empty() ? definition.initial_design
                                                     : io::read_design_file(design_path, definition.shape.num_controls());
-  study::ShapeOracle oracle(body, io::make_cost_definition(description));
+  study::ShapeOracle oracle(body, description.required_cost());
   const study::Evaluation e = oracle.evaluate_design(alpha);
   fmt::print("{}: cost {}, Θ = {:.10e}\n", case_path.string(), oracle.cost().name(), e.value);
   fmt::print("{}\n{}\n", e.contact.brief_report(), e.adjoint.brief_report());

@@ -14,7 +14,6 @@
 #include "frictopt/io/fclib_export.hpp"
 #include "frictopt/io/json.hpp"
 #include "frictopt/study/shape_oracle.hpp"
-#include "frictopt/io/study_setup.hpp"
 #include "frictopt/study/elastic_body.hpp"
 
 namespace frictopt::app {
@@ -25,7 +24,7 @@ int run_export_fclib(const std::filesystem::path& case_path, const std::filesyst
                      bool normalize_units, bool include_solution) {
   using namespace frictopt;
   const io::CaseDescription description = io::load_case(case_path);
-  study::ElasticBody body(io::make_body_definition(description));
+  study::ElasticBody body(description.body);
   if (!body.contact_boundary())
     throw InvalidInput(fmt::format("{}: the case has no [contact]; there is no contact problem to export",
                                    case_path.string()));

@@ -16,7 +16,6 @@
 #include "frictopt/io/measurements.hpp"
 #include "frictopt/study/identification.hpp"
 #include "frictopt/study/certificate.hpp"
-#include "frictopt/io/study_setup.hpp"
 
 namespace frictopt::app {
 
@@ -31,9 +30,9 @@ int run_identify(const std::filesystem::path& case_path, const std::filesystem::
   const io::CaseDescription description = io::load_case(case_path);
   if (!description.identification)
     throw InvalidInput(case_path.string() + ": identify needs an [identification] table (docs/identification.md)");
-  const std::vector<study::Measurement> measurements = io::read_measurements(description.identification->measurements);
-  study::Identification identification(io::make_body_definition(description), measurements,
-                                       io::make_identification_options(description));
+  const io::IdentificationSetup& setup = *description.identification;
+  const std::vector<study::Measurement> measurements = io::read_measurements(setup.measurements);
+  study::Identification identification(description.body, measurements, setup.options);
   const auto& names = identification.parameter_names();
   std::filesystem::create_directories(out_dir);
   if (generate) {

@@ -21,7 +21,6 @@
 #include "frictopt/study/shape_optimization.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 #include "frictopt/io/state_output.hpp"
-#include "frictopt/io/study_setup.hpp"
 #include "frictopt/study/elastic_body.hpp"
 
 namespace frictopt::app {
@@ -49,21 +48,15 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
   const fs::path case_path = resume ? case_copy : case_argument;
 
   const io::CaseDescription description = io::load_case(case_path);
-  study::BodyDefinition definition = io::make_body_definition(description);
+  const study::BodyDefinition& definition = description.body;
   if (!definition.contact) throw InvalidInput(case_path.string() + ": optimize needs a [contact] table");
   study::ElasticBody body(definition);
   const std::string violation = body.admissible_set().describe_violation(definition.initial_design, 1e-9);
   if (!violation.empty())
     throw InvalidInput(fmt::format("{}: the initial design is outside the admissible set: {}", case_path.string(), violation));
-  study::ShapeOracle oracle(body, io::make_cost_definition(description));
+  study::ShapeOracle oracle(body, description.required_cost());
 
-  optim::BundleTrust::Options options = study::default_study_options(body);
-  const auto& o = description.optimization;
-  if (o.max_iterations) options.max_iterations = *o.max_iterations;
-  if (o.max_evaluations) options.max_evaluations = *o.max_evaluations;
-  if (o.epsilon) options.epsilon = *o.epsilon;
-  if (o.max_step_length) options.max_step_length = *o.max_step_length;
-  if (o.bundle_size) options.max_bundle_size = *o.bundle_size;
+  optim::BundleTrust::Options options = description.optimization;
 
   const std::string name = definition.name;
   const int every = description.output.every;
@@ -180,7 +173,7 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
   json["aggregate_error"] = summary.aggregate_error;
   json["objective_scale"] = summary.objective_scale;  // |Θ(α⁰)|: history.csv's columns are relative to it
   json["stationarity_relative"] = summary.stationarity / summary.objective_scale;
-  json["cost_kind"] = std::string(io::to_string(description.cost->kind));
+  json["cost_kind"] = std::string(cost::to_string(description.cost->kind));
   json["state_solves"] = solves_offset + oracle.num_state_solves();  // over all resumes, as history.csv
   json["time_seconds"] = summary.time_seconds;                      // this process's optimizer
   json["elapsed_seconds"] = elapsed_offset + summary.time_seconds;   // over all resumes

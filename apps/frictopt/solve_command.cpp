@@ -13,7 +13,6 @@
 #include "frictopt/io/json.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 #include "frictopt/io/state_output.hpp"
-#include "frictopt/io/study_setup.hpp"
 #include "frictopt/study/elastic_body.hpp"
 
 namespace frictopt::app {
@@ -21,7 +20,7 @@ namespace frictopt::app {
 int run_solve(const std::filesystem::path& case_path, const std::filesystem::path& out_dir) {
   using namespace frictopt;
   const io::CaseDescription description = io::load_case(case_path);
-  study::ElasticBody body(io::make_body_definition(description));
+  study::ElasticBody body(description.body);
   const auto& mesh = body.mesh();
   fmt::print("{}: {}D body, {} nodes, {} elements, {} unknowns, {} design variables\n", case_path.string(),
              mesh.dim(), mesh.num_nodes(), mesh.num_elements(), body.elasticity().dofs().num_free(),

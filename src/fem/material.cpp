@@ -9,16 +9,6 @@
 
 namespace frictopt::fem {
 
-std::string_view to_string(PlaneModel model) {
-  return model == PlaneModel::kPlaneStrain ? "plane_strain" : "plane_stress";
-}
-
-PlaneModel parse_plane_model(std::string_view name) {
-  if (name == "plane_strain") return PlaneModel::kPlaneStrain;
-  if (name == "plane_stress") return PlaneModel::kPlaneStress;
-  throw InvalidInput(fmt::format("material.model = '{}'; expected plane_strain or plane_stress", name));
-}
-
 void IsotropicMaterial::validate() const {
   if (!(young > 0)) throw InvalidInput(fmt::format("material.young = {}; expected > 0", young));
   if (!(poisson >= 0 && poisson < 0.5))

@@ -9,14 +9,18 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <utility>
 
-#include "case_enums.hpp"
+#include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/mesh/face.hpp"
+#include "frictopt/study/shape_optimization.hpp"
 #include "toml_reader.hpp"
 
 namespace frictopt::io {
@@ -44,17 +48,38 @@ std::string faces_for(int dim) {
   return dim == 2 ? "left, right, top" : "left, right, front, back, top";
 }
 
+// The shape of the friction set as a case file spells it ([contact.friction].kind). It is the
+// syntax of the table, not a second friction-law type: read_friction turns it into a
+// contact::FrictionLaw at once, and read_identification needs it for the parameter names
+// (2D "isotropic" is the interval law, "none" names no coefficient).
+enum class FrictionKind { kNone, kIsotropic, kPolygon, kEllipse, kEllipseExact, kDiscExact };
+constexpr auto kFrictionKindNames = frictopt::detail::make_enum_table<FrictionKind>(
+    std::pair{FrictionKind::kNone, "none"}, std::pair{FrictionKind::kIsotropic, "isotropic"},
+    std::pair{FrictionKind::kPolygon, "polygon"}, std::pair{FrictionKind::kEllipse, "ellipse"},
+    std::pair{FrictionKind::kEllipseExact, "ellipse_exact"}, std::pair{FrictionKind::kDiscExact, "disc_exact"});
+
+// [geometry]: the box (0,a)×(0,b)×(G_α, height) (spec 01 §2.1, §3); its numbers go into the
+// Bézier shape (a, b) and the body (height).
+struct Geometry {
+  int dim = 2;
+  double a = 0.0, b = 0.0, height = 0.0;
+};
+
 // ---------------------------------------------------------------------------------------
 // Shared readers
 
-Face read_face(const TableReader& r, int dim) {
+mesh::Face read_face(const TableReader& r, int dim) {
   const std::string text = r.required_string("face", fmt::format("one of {}", faces_for(dim)));
   if (text == "bottom")
     r.fail_value("face", fmt::format("one of {}; the bottom is the contact surface and "
                                      "carries neither loads nor Dirichlet conditions",
                                      faces_for(dim)));
-  const std::optional<Face> face = detail::kFaceTable.find(text);
-  if (!face || (dim == 2 && (*face == Face::kFront || *face == Face::kBack)))
+  std::optional<mesh::Face> face;
+  try {
+    face = mesh::parse_face(text);
+  } catch (const InvalidInput&) {
+  }
+  if (!face || (dim == 2 && (*face == mesh::Face::kFront || *face == mesh::Face::kBack)))
     r.fail_value("face", fmt::format("one of {} in {}", faces_for(dim), dim_name(dim)));
   return *face;
 }
@@ -71,7 +96,7 @@ Eigen::VectorXd read_dim_vector(const TableReader& r, std::string_view key, int 
 
 template <class Enum, std::size_t N>
 std::optional<Enum> read_enum(const TableReader& r, std::string_view key,
-                              const detail::EnumTable<Enum, N>& table) {
+                              const frictopt::detail::EnumTable<Enum, N>& table) {
   const std::optional<std::string> text = r.optional_string(key);
   if (!text) return std::nullopt;
   const std::optional<Enum> value = table.find(*text);
@@ -82,8 +107,8 @@ std::optional<Enum> read_enum(const TableReader& r, std::string_view key,
 // ---------------------------------------------------------------------------------------
 // One function per table
 
-GeometrySpec read_geometry(const TableReader& r) {
-  GeometrySpec g;
+Geometry read_geometry(const TableReader& r) {
+  Geometry g;
   g.dim = r.required_int("dim", "2 or 3");
   if (g.dim != 2 && g.dim != 3) r.fail_value("dim", "2 or 3");
   g.a = r.required_number("a", "a number > 0 (the length of the body in x1, m)");
@@ -101,15 +126,17 @@ GeometrySpec read_geometry(const TableReader& r) {
   return g;
 }
 
-MeshSpec read_mesh(const TableReader& r, int dim) {
-  MeshSpec m;
+mesh::GridResolution read_mesh(const TableReader& r, int dim) {
+  mesh::GridResolution m;
   const std::string layout = dim == 2 ? "[n1, n_vertical]" : "[n1, n2, n_vertical]";
   const std::string what =
       fmt::format("a list of {} integers >= 1 {} in {}", dim, layout, dim_name(dim));
-  m.cells = r.int_list("cells", what);
-  if (static_cast<int>(m.cells.size()) != dim) r.fail_value("cells", what);
-  for (std::size_t i = 0; i < m.cells.size(); ++i)
-    if (m.cells[i] < 1) r.fail_entry("cells", i, "an integer >= 1");
+  const std::vector<int> cells = r.int_list("cells", what);
+  if (static_cast<int>(cells.size()) != dim) r.fail_value("cells", what);
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    if (cells[i] < 1) r.fail_entry("cells", i, "an integer >= 1");
+  // GridResolution keeps (n1, n2, n_vertical); n2 is unused (0) in 2D.
+  m.cells = dim == 2 ? std::array<int, 3>{cells[0], 0, cells[1]} : std::array<int, 3>{cells[0], cells[1], cells[2]};
   if (auto grading = r.optional_number("grading")) {
     if (!(*grading >= kMinGrading && *grading <= kMaxGrading))
       r.fail_value("grading",
@@ -119,8 +146,8 @@ MeshSpec read_mesh(const TableReader& r, int dim) {
   return m;
 }
 
-MaterialSpec read_material(const TableReader& r, int dim) {
-  MaterialSpec m;
+fem::IsotropicMaterial read_material(const TableReader& r, int dim) {
+  fem::IsotropicMaterial m;
   m.young = r.required_number("young", "a number > 0 (Young's modulus, Pa)");
   if (!(m.young > 0)) r.fail_value("young", "young > 0");
   m.poisson = r.required_number("poisson", "a number in [0, 0.5) (Poisson's ratio)");
@@ -128,19 +155,19 @@ MaterialSpec read_material(const TableReader& r, int dim) {
   if (dim == 3 && r.has("model"))
     r.fail("model", fmt::format("{} = {} is only allowed in 2D, but geometry.dim = 3",
                                 r.field("model"), describe(*r.node("model"))));
-  if (auto model = read_enum(r, "model", detail::kPlaneModelTable)) m.model = *model;
+  if (auto model = read_enum(r, "model", fem::kPlaneModelNames)) m.plane_model = *model;
   return m;
 }
 
-LoadSpec read_load(const TableReader& r, int dim) {
-  LoadSpec load;
+fem::FaceTraction read_load(const TableReader& r, int dim) {
+  fem::FaceTraction load;
   load.face = read_face(r, dim);
   load.traction = read_dim_vector(r, "traction", dim, "traction, N/m²");
   return load;
 }
 
-DirichletSpec read_dirichlet(const TableReader& r, int dim) {
-  DirichletSpec d;
+fem::FaceDirichlet read_dirichlet(const TableReader& r, int dim) {
+  fem::FaceDirichlet d;
   d.face = read_face(r, dim);
   d.displacement = r.has("displacement")
                        ? read_dim_vector(r, "displacement", dim, "displacement, m")
@@ -170,15 +197,19 @@ DirichletSpec read_dirichlet(const TableReader& r, int dim) {
   return d;
 }
 
-DesignSpec read_design(const TableReader& r, const GeometrySpec& g) {
-  DesignSpec d;
+// [design] into the body: the Bézier shape over the geometry's base, Υ and α⁰.
+void read_design(const TableReader& r, const Geometry& g, study::BodyDefinition& body) {
+  shape::AdmissibleSetParameters& d = body.admissible;
+  d.height = g.height;
   const int dim = g.dim;
   const std::string what =
       dim == 2 ? "a list [m1] of 1 integer >= 2 in 2D" : "a list [m1, m2] of 2 integers >= 2 in 3D";
-  d.control_points = r.int_list("control_points", what);
-  if (static_cast<int>(d.control_points.size()) != dim - 1) r.fail_value("control_points", what);
-  for (std::size_t i = 0; i < d.control_points.size(); ++i)
-    if (d.control_points[i] < 2) r.fail_entry("control_points", i, "an integer >= 2");
+  const std::vector<int> control_points = r.int_list("control_points", what);
+  if (static_cast<int>(control_points.size()) != dim - 1) r.fail_value("control_points", what);
+  for (std::size_t i = 0; i < control_points.size(); ++i)
+    if (control_points[i] < 2) r.fail_entry("control_points", i, "an integer >= 2");
+  body.shape = dim == 2 ? shape::BezierShape::curve(g.a, control_points[0])
+                        : shape::BezierShape::surface(g.a, g.b, control_points[0], control_points[1]);
 
   d.upper_bound = r.required_number("upper_bound", "a number > 0 (the bound C0 on α, m)");
   if (!(d.upper_bound > 0 && d.upper_bound < g.height))
@@ -186,7 +217,7 @@ DesignSpec read_design(const TableReader& r, const GeometrySpec& g) {
                                             "point at the top would collapse the body)",
                                             g.height));
 
-  const int m = d.num_control_points();
+  const int m = body.shape.num_controls();
   const std::string initial_what =
       fmt::format("a number or a list of {} numbers (the initial heights α⁰, m)", m);
   const toml::node* initial = r.node("initial");
@@ -197,11 +228,11 @@ DesignSpec read_design(const TableReader& r, const GeometrySpec& g) {
     if (static_cast<int>(values.size()) != m) r.fail_value("initial", initial_what);
     for (std::size_t i = 0; i < values.size(); ++i)
       if (!(values[i] >= 0 && values[i] <= d.upper_bound)) r.fail_entry("initial", i, range);
-    d.initial = Eigen::Map<const Eigen::VectorXd>(values.data(), m);
+    body.initial_design = Eigen::Map<const Eigen::VectorXd>(values.data(), m);
   } else {
     const double value = r.required_number("initial", initial_what);
     if (!(value >= 0 && value <= d.upper_bound)) r.fail_value("initial", range);
-    d.initial = Eigen::VectorXd::Constant(m, value);
+    body.initial_design = Eigen::VectorXd::Constant(m, value);
   }
 
   if (auto c1 = r.optional_number("slope_bound")) {
@@ -222,17 +253,25 @@ DesignSpec read_design(const TableReader& r, const GeometrySpec& g) {
                                          dim == 2 ? "a" : "a·b", dim == 2 ? "a" : "a·b"));
     d.volume = c2;
   }
-  if (auto s = read_enum(r, "slope_scaling", detail::kSlopeScalingTable)) d.slope_scaling = *s;
-  return d;
+  if (auto s = read_enum(r, "slope_scaling", shape::kSlopeScalingNames)) d.slope_scaling = *s;
 }
 
-FrictionSpec read_friction(const TableReader& r, int dim) {
-  FrictionSpec f;
+// [contact.friction] as the case spells it, and the law it defines.
+struct Friction {
+  FrictionKind kind = FrictionKind::kNone;
+  contact::FrictionLaw law = contact::FrictionLaw::disc(0.0);
+  std::size_t num_vertices = 0;  ///< 3D "polygon": the length of mu_vertices
+};
+
+// The law of a kind and its coefficients (DESIGN.md, "Friction sets"); the law validates
+// convexity itself, and its message gets the table's name.
+Friction read_friction(const TableReader& r, int dim) {
+  Friction f;
   const std::string kinds = dim == 2
                                 ? "none, isotropic, polygon"
                                 : "none, isotropic, polygon, ellipse, ellipse_exact, disc_exact";
   const std::string kind_text = r.required_string("kind", fmt::format("one of {}", kinds));
-  const std::optional<FrictionKind> kind = detail::kFrictionKindTable.find(kind_text);
+  const std::optional<FrictionKind> kind = kFrictionKindNames.find(kind_text);
   const bool kind_in_2d = kind == FrictionKind::kNone || kind == FrictionKind::kIsotropic ||
                           kind == FrictionKind::kPolygon;
   if (!kind || (dim == 2 && !kind_in_2d))
@@ -284,104 +323,126 @@ FrictionSpec read_friction(const TableReader& r, int dim) {
     return n;
   };
 
-  switch (f.kind) {
-    case FrictionKind::kNone:
-      break;
-    case FrictionKind::kIsotropic:
-      f.mu = coefficient("mu", "the friction coefficient");
-      if (dim == 3) f.n = sides().value_or(kDefaultPolygonSides);
-      break;
-    case FrictionKind::kDiscExact:
-      f.mu = coefficient("mu", "the friction coefficient");
-      break;
-    case FrictionKind::kPolygon:
-      if (dim == 2) {
-        f.mu_plus = coefficient("mu_plus", "the coefficient for slip in +x1");
-        f.mu_minus = coefficient("mu_minus", "the coefficient for slip in −x1");
-      } else {
-        const std::string what = "a list of >= 3 numbers >= 0 (the coefficient of each vertex)";
-        f.mu_vertices = r.number_list("mu_vertices", what);
-        if (f.mu_vertices.size() < 3) r.fail_value("mu_vertices", what);
-        for (std::size_t i = 0; i < f.mu_vertices.size(); ++i)
-          if (!(f.mu_vertices[i] >= 0)) r.fail_entry("mu_vertices", i, "mu_vertices[i] >= 0");
-        f.n = sides();
-        if (f.n && *f.n != static_cast<int>(f.mu_vertices.size()))
-          r.fail_value("n", fmt::format("n = the length of mu_vertices ({}), or omit n",
-                                        f.mu_vertices.size()));
-        f.n = static_cast<int>(f.mu_vertices.size());
+  using contact::FrictionLaw;
+  // The law validates convexity and coefficients itself; its message gets the table's name.
+  const auto checked = [&](auto build) -> FrictionLaw {
+    try {
+      return build();
+    } catch (const InvalidInput& e) {
+      r.fail("kind", fmt::format("{}: {}", r.path(), e.what()));
+    }
+  };
+  {
+    switch (f.kind) {
+      case FrictionKind::kNone:
+        f.law = dim == 2 ? FrictionLaw::interval(0.0, 0.0) : FrictionLaw::disc(0.0);
+        break;
+      case FrictionKind::kIsotropic: {
+        const double mu = coefficient("mu", "the friction coefficient");
+        const int n = dim == 2 ? 0 : sides().value_or(kDefaultPolygonSides);
+        f.law = checked([&] { return dim == 2 ? FrictionLaw::interval(mu, mu) : FrictionLaw::regular_polygon(mu, n); });
+        break;
       }
-      break;
-    case FrictionKind::kEllipse:
-    case FrictionKind::kEllipseExact:
-      f.mu_x = coefficient("mu_x", "the coefficient along x1");
-      f.mu_y = coefficient("mu_y", "the coefficient along x2");
-      if (f.kind == FrictionKind::kEllipse) f.n = sides().value_or(kDefaultPolygonSides);
-      break;
+      case FrictionKind::kDiscExact:
+        f.law = checked([mu = coefficient("mu", "the friction coefficient")] { return FrictionLaw::disc(mu); });
+        break;
+      case FrictionKind::kPolygon:
+        if (dim == 2) {
+          const double mu_plus = coefficient("mu_plus", "the coefficient for slip in +x1");
+          const double mu_minus = coefficient("mu_minus", "the coefficient for slip in −x1");
+          f.law = checked([&] { return FrictionLaw::interval(mu_minus, mu_plus); });
+        } else {
+          const std::string what = "a list of >= 3 numbers >= 0 (the coefficient of each vertex)";
+          std::vector<double> mu_vertices = r.number_list("mu_vertices", what);
+          if (mu_vertices.size() < 3) r.fail_value("mu_vertices", what);
+          for (std::size_t i = 0; i < mu_vertices.size(); ++i)
+            if (!(mu_vertices[i] >= 0)) r.fail_entry("mu_vertices", i, "mu_vertices[i] >= 0");
+          if (const std::optional<int> n = sides(); n && *n != static_cast<int>(mu_vertices.size()))
+            r.fail_value("n", fmt::format("n = the length of mu_vertices ({}), or omit n", mu_vertices.size()));
+          f.num_vertices = mu_vertices.size();
+          f.law = checked([&] { return FrictionLaw::polygon(std::move(mu_vertices)); });
+        }
+        break;
+      case FrictionKind::kEllipse:
+      case FrictionKind::kEllipseExact: {
+        const double mu_x = coefficient("mu_x", "the coefficient along x1");
+        const double mu_y = coefficient("mu_y", "the coefficient along x2");
+        const int n = f.kind == FrictionKind::kEllipse ? sides().value_or(kDefaultPolygonSides) : 0;
+        f.law = checked([&] {
+          return f.kind == FrictionKind::kEllipse ? FrictionLaw::ellipse_polygon(mu_x, mu_y, n)
+                                                  : FrictionLaw::ellipse(mu_x, mu_y);
+        });
+        break;
+      }
+    }
   }
   return f;
 }
-
-ContactSpec read_contact(const TableReader& r, int dim, std::string_view origin) {
-  ContactSpec c;
-  if (auto law = read_enum(r, "law", detail::kContactLawTable)) c.law = *law;
+// [contact] and [contact.friction]: the law; the solver options come from [solver].
+Friction read_contact(const TableReader& r, int dim, std::string_view origin) {
+  if (const std::optional<std::string> law = r.optional_string("law"); law && *law != "coulomb")
+    r.fail_value("law", "one of coulomb");
   if (const toml::table* friction = r.optional_table("friction"))
-    c.friction = read_friction(
+    return read_friction(
         TableReader(*friction, r.field("friction"), origin,
                     {"kind", "mu", "n", "mu_vertices", "mu_x", "mu_y", "mu_plus", "mu_minus"}),
         dim);
-  return c;
+  return {FrictionKind::kNone, dim == 2 ? contact::FrictionLaw::interval(0.0, 0.0) : contact::FrictionLaw::disc(0.0)};
 }
 
-IterativeSolverSpec read_iterative_solver(const TableReader& r) {
-  IterativeSolverSpec s;
-  if ((s.max_iterations = r.optional_int("max_iterations")) && *s.max_iterations < 1)
-    r.fail_value("max_iterations", "max_iterations >= 1");
-  if ((s.relative_tolerance = r.optional_number("relative_tolerance")) &&
-      !(*s.relative_tolerance > 0))
-    r.fail_value("relative_tolerance", "relative_tolerance > 0");
-  return s;
+// [solver.coulomb] and [solver.qp] override the Coulomb fixed point's and the Tresca QP's
+// own defaults (absent keys keep them).
+template <class SolverOptions>
+void read_iterative_solver(const TableReader& r, SolverOptions& options) {
+  if (const std::optional<int> n = r.optional_int("max_iterations")) {
+    if (*n < 1) r.fail_value("max_iterations", "max_iterations >= 1");
+    options.max_iterations = *n;
+  }
+  if (const std::optional<double> tol = r.optional_number("relative_tolerance")) {
+    if (!(*tol > 0)) r.fail_value("relative_tolerance", "relative_tolerance > 0");
+    options.relative_tolerance = *tol;
+  }
 }
 
-SolverSpec read_solver(const TableReader& r, std::string_view origin) {
-  SolverSpec s;
+// [solver] into the Coulomb solver's options (read, and validated, with or without [contact]).
+contact::CoulombSolver::Options read_solver(const TableReader& r, std::string_view origin) {
+  contact::CoulombSolver::Options s;
   const auto sub = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
     const toml::table* t = r.optional_table(key);
     return t ? std::optional<TableReader>(std::in_place, *t, r.field(key), origin, keys)
              : std::nullopt;
   };
-  if (auto coulomb = sub("coulomb", {"max_iterations", "relative_tolerance"}))
-    s.coulomb = read_iterative_solver(*coulomb);
-  if (auto qp = sub("qp", {"max_iterations", "relative_tolerance"}))
-    s.qp = read_iterative_solver(*qp);
+  if (auto coulomb = sub("coulomb", {"max_iterations", "relative_tolerance"})) read_iterative_solver(*coulomb, s);
+  if (auto qp = sub("qp", {"max_iterations", "relative_tolerance"})) read_iterative_solver(*qp, s.tresca);
   // [solver.fem] is reserved: it may appear, but has no keys yet (the direct solver has no
   // options a case should change); the empty key list makes any key an error.
   (void)sub("fem", {});
   return s;
 }
 
-CostSpec read_cost(const TableReader& r) {
-  CostSpec c;
-  const std::string kind = r.required_string("kind", "the cost functional");
-  try {
-    c.kind = parse_cost_kind(kind);
-  } catch (const InvalidInput&) {
-    r.fail_value("kind", "one of target_pressure, normal_force_power, compliance, pressure_norm, total_slip, "
-                         "traction_uniformity");
-  }
+// [cost] into the study's cost definition (spec 05 §2.4). `dim` checks the traction target.
+study::CostDefinition read_cost(const TableReader& r, int dim) {
+  using cost::CostKind;
+  study::CostDefinition c;
+  const std::string kind_what = fmt::format("one of {}", cost::kCostKindNames.spellings());
+  (void)r.required_string("kind", kind_what);
+  c.kind = *read_enum(r, "kind", cost::kCostKindNames);
+  // The pressure norm's default exponent differs from the force power's (thesis: 4).
+  if (c.kind == CostKind::kPressureNorm) c.exponent = 8.0;
   if (c.kind == CostKind::kTargetPressure) {
     const toml::node* target = r.node("target");
     if (target == nullptr) r.fail_missing("target", "a target pressure [Pa] or \"initial_mean\"");
     if (target->is_string()) {
       if (target->value<std::string>().value_or("") != "initial_mean")
         r.fail_value("target", "a number (pressure in Pa) or \"initial_mean\"");
-      c.target_initial_mean = true;
+      // NaN: the initial total normal force spread as a uniform pressure (study::CostDefinition).
+      c.target_pressure = std::numeric_limits<double>::quiet_NaN();
     } else {
-      c.target_pressure = r.optional_number("target");
-      if (!(*c.target_pressure >= 0)) r.fail_value("target", "target >= 0");
+      c.target_pressure = r.required_number("target", "a target pressure [Pa] or \"initial_mean\"");
+      if (!(c.target_pressure >= 0)) r.fail_value("target", "target >= 0");
     }
   } else if (c.kind == CostKind::kTractionUniformity) {
-    // Optional: "mean" (the default), "initial_mean" or the target traction [Pa]; its length
-    // (dim − 1) is checked against the geometry in parse_case, which knows dim.
+    // Optional: "mean" (the default), "initial_mean" or the target traction [Pa], dim − 1 numbers.
     if (const toml::node* target = r.node("target"); target != nullptr) {
       if (target->is_string()) {
         const std::string word = target->value<std::string>().value_or("");
@@ -389,36 +450,53 @@ CostSpec read_cost(const TableReader& r) {
           r.fail_value("target", "\"mean\", \"initial_mean\" or a list of dim − 1 tangential tractions [Pa]");
         c.target_traction_initial_mean = word == "initial_mean";
       } else {
-        c.target_traction = r.number_list("target", "the target tangential traction [Pa]");
+        const std::vector<double> t = r.number_list("target", "the target tangential traction [Pa]");
+        if (t.size() != static_cast<std::size_t>(dim - 1))
+          r.fail("target", fmt::format("cost.target has {} components; expected {} (the tangential traction [Pa] of "
+                                       "a {}D body) or \"mean\"",
+                                       t.size(), dim - 1, dim));
+        c.target_traction = Eigen::Map<const Eigen::VectorXd>(t.data(), static_cast<Eigen::Index>(t.size()));
       }
     }
   } else if (r.has("target")) {
     r.fail_value("target", "no target for this kind (only target_pressure and traction_uniformity have one)");
   }
-  if ((c.exponent = r.optional_number("exponent"))) {
+  if (const std::optional<double> exponent = r.optional_number("exponent")) {
     if (c.kind != CostKind::kNormalForcePower && c.kind != CostKind::kPressureNorm)
       r.fail_value("exponent", "no exponent for this kind");
-    if (!(*c.exponent >= 2)) r.fail_value("exponent", "exponent >= 2");
+    if (!(*exponent >= 2)) r.fail_value("exponent", "exponent >= 2");
+    c.exponent = *exponent;
   }
-  if ((c.smoothing = r.optional_number("smoothing"))) {
+  if (const std::optional<double> smoothing = r.optional_number("smoothing")) {
     if (c.kind != CostKind::kTotalSlip) r.fail_value("smoothing", "no smoothing for this kind");
-    if (!(*c.smoothing > 0)) r.fail_value("smoothing", "smoothing > 0");
+    if (!(*smoothing > 0)) r.fail_value("smoothing", "smoothing > 0");
+    c.smoothing = *smoothing;
   }
   return c;
 }
 
-OptimizationSpec read_optimization(const TableReader& r) {
-  OptimizationSpec o;
-  if ((o.max_iterations = r.optional_int("max_iterations")) && *o.max_iterations < 1)
-    r.fail_value("max_iterations", "max_iterations >= 1");
-  if ((o.max_evaluations = r.optional_int("max_evaluations")) && *o.max_evaluations < 1)
-    r.fail_value("max_evaluations", "max_evaluations >= 1");
-  if ((o.epsilon = r.optional_number("epsilon")) && !(*o.epsilon > 0)) r.fail_value("epsilon", "epsilon > 0");
-  if ((o.max_step_length = r.optional_number("max_step_length")) && !(*o.max_step_length > 0))
-    r.fail_value("max_step_length", "max_step_length > 0");
-  if ((o.bundle_size = r.optional_int("bundle_size")) && *o.bundle_size < 3)
-    r.fail_value("bundle_size", "bundle_size >= 3");
-  return o;
+// [optimization]: overrides of the bundle trust options (the study's defaults otherwise).
+void read_optimization(const TableReader& r, optim::BundleTrust::Options& o) {
+  if (const std::optional<int> n = r.optional_int("max_iterations")) {
+    if (*n < 1) r.fail_value("max_iterations", "max_iterations >= 1");
+    o.max_iterations = *n;
+  }
+  if (const std::optional<int> n = r.optional_int("max_evaluations")) {
+    if (*n < 1) r.fail_value("max_evaluations", "max_evaluations >= 1");
+    o.max_evaluations = *n;
+  }
+  if (const std::optional<double> eps = r.optional_number("epsilon")) {
+    if (!(*eps > 0)) r.fail_value("epsilon", "epsilon > 0");
+    o.epsilon = *eps;
+  }
+  if (const std::optional<double> t = r.optional_number("max_step_length")) {
+    if (!(*t > 0)) r.fail_value("max_step_length", "max_step_length > 0");
+    o.max_step_length = *t;
+  }
+  if (const std::optional<int> n = r.optional_int("bundle_size")) {
+    if (*n < 3) r.fail_value("bundle_size", "bundle_size >= 3");
+    o.max_bundle_size = *n;
+  }
 }
 
 OutputSpec read_output(const TableReader& r, std::string default_name) {
@@ -435,9 +513,12 @@ OutputSpec read_output(const TableReader& r, std::string default_name) {
 
 // [identification] (issue 7, docs/identification.md). Needs [contact]: the parameter names
 // depend on the friction kind, so a misspelt or foreign name is reported with the valid ones.
-IdentificationSpec read_identification(const TableReader& r, const CaseDescription& c) {
-  IdentificationSpec spec;
-  if (!c.contact)
+// Each identified scalar becomes one study::ParameterSpec ("mu_vertices" one per vertex).
+IdentificationSetup read_identification(const TableReader& r, const CaseDescription& c,
+                                        const std::optional<Friction>& friction) {
+  IdentificationSetup spec;
+  study::Identification::Options& options = spec.options;
+  if (!friction)
     r.fail("measurements", fmt::format("{}: [identification] needs a [contact] table (the measured quantities are "
                                        "contact forces and slips)",
                                        c.origin));
@@ -449,20 +530,22 @@ IdentificationSpec read_identification(const TableReader& r, const CaseDescripti
     spec.measurements = origin_path.parent_path() / spec.measurements;
   if (const auto loss = r.optional_string("loss")) {
     try {
-      spec.loss = study::parse_robust_loss(*loss);
+      options.loss = study::parse_robust_loss(*loss);
     } catch (const InvalidInput&) {
       r.fail_value("loss", "one of none, huber, cauchy");
     }
   }
   if (const auto scale = r.optional_number("loss_scale")) {
     if (!(*scale > 0)) r.fail_value("loss_scale", "loss_scale > 0 (in standard deviations)");
-    spec.loss_scale = *scale;
+    options.loss_scale = *scale;
   }
-  if ((spec.max_iterations = r.optional_int("max_iterations")) && *spec.max_iterations < 1)
-    r.fail_value("max_iterations", "max_iterations >= 1");
+  if (const std::optional<int> n = r.optional_int("max_iterations")) {
+    if (*n < 1) r.fail_value("max_iterations", "max_iterations >= 1");
+    options.max_iterations = *n;
+  }
 
-  const FrictionSpec& f = c.contact->friction;
-  const int dim = c.geometry.dim;
+  const Friction& f = *friction;
+  const int dim = c.dim();
   std::vector<std::string_view> names;
   switch (f.kind) {
     case FrictionKind::kNone: break;
@@ -486,7 +569,7 @@ IdentificationSpec read_identification(const TableReader& r, const CaseDescripti
   if (parameters == nullptr || parameters->empty())
     r.fail_missing("parameters", fmt::format("a table [identification.parameters.<name>] per parameter to identify, "
                                              "<name> one of {} for contact.friction.kind = \"{}\"",
-                                             accepted, to_string(f.kind)));
+                                             accepted, kFrictionKindNames.name(f.kind)));
   for (auto&& [key, node] : *parameters) {
     const std::string name(key.str());
     const std::string field = r.field("parameters") + "." + name;
@@ -494,13 +577,14 @@ IdentificationSpec read_identification(const TableReader& r, const CaseDescripti
       throw InvalidInput(detail::located(
           c.origin, &node,
           fmt::format("{}: unknown parameter \"{}\" for contact.friction.kind = \"{}\" in {}D; expected one of {}",
-                      field, name, to_string(f.kind), dim, accepted)));
+                      field, name, kFrictionKindNames.name(f.kind), dim, accepted)));
     if (!node.is_table())
       throw InvalidInput(detail::located(c.origin, &node,
                                          fmt::format("{} = {}; expected a table with lower, upper and optionally initial",
                                                      field, describe(node))));
     const TableReader t(*node.as_table(), field, c.origin, {"initial", "lower", "upper"});
-    const std::size_t count = name == "mu_vertices" ? f.mu_vertices.size() : 1;
+    const bool per_vertex = name == "mu_vertices";
+    const std::size_t count = per_vertex ? f.num_vertices : 1;
     const auto values = [&](std::string_view k, bool required) -> std::vector<double> {
       const std::string what = count == 1 ? "a number" : fmt::format("a number or a list of {} numbers (one per vertex)", count);
       const toml::node* v = t.node(k);
@@ -518,8 +602,9 @@ IdentificationSpec read_identification(const TableReader& r, const CaseDescripti
         }
       return out;
     };
-    IdentifiedParameterSpec p;
-    p.name = name;
+    struct {
+      std::vector<double> lower, upper, initial;  // 1 entry (every vertex) or one per vertex
+    } p;
     p.lower = values("lower", true);
     p.upper = values("upper", true);
     p.initial = values("initial", false);
@@ -539,7 +624,14 @@ IdentificationSpec read_identification(const TableReader& r, const CaseDescripti
         t.fail("initial", fmt::format("{}.{} = {}; expected within [{}, {}]", field, entry("initial", p.initial, j),
                                       at(p.initial, j), lo, hi));
     }
-    spec.parameters.push_back(std::move(p));
+    for (std::size_t j = 0; j < count; ++j) {
+      study::ParameterSpec scalar;
+      scalar.name = per_vertex ? fmt::format("mu_vertices[{}]", j) : name;
+      if (!p.initial.empty()) scalar.initial = at(p.initial, j);
+      scalar.lower = at(p.lower, j);
+      scalar.upper = at(p.upper, j);
+      options.parameters.push_back(scalar);
+    }
   }
   return spec;
 }
@@ -574,14 +666,16 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
 
   CaseDescription c;
   c.origin = origin;
-  c.geometry = read_geometry(table("geometry", {"dim", "a", "b", "height"}));
-  const int dim = c.geometry.dim;
-  c.mesh = read_mesh(table("mesh", {"cells", "grading"}), dim);
-  c.material = read_material(table("material", {"young", "poisson", "model"}), dim);
+  study::BodyDefinition& body = c.body;
+  const Geometry geometry = read_geometry(table("geometry", {"dim", "a", "b", "height"}));
+  const int dim = geometry.dim;
+  body.height = geometry.height;
+  body.resolution = read_mesh(table("mesh", {"cells", "grading"}), dim);
+  body.material = read_material(table("material", {"young", "poisson", "model"}), dim);
 
   if (const toml::array* loads = top.optional_table_array("load"))
     for (std::size_t i = 0; i < loads->size(); ++i)
-      c.loads.push_back(
+      body.tractions.push_back(
           read_load(TableReader(*loads->get(i)->as_table(), fmt::format("load[{}]", i), origin,
                                 {"face", "traction"}),
                     dim));
@@ -592,53 +686,54 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                      "at least one [[dirichlet]] table (a body without a "
                      "Dirichlet part has rigid-body modes)");
   // (face, component) -> index of the [[dirichlet]] entry that fixes it first.
-  std::map<std::pair<Face, int>, std::size_t> fixed_by;
+  std::map<std::pair<mesh::Face, int>, std::size_t> fixed_by;
   for (std::size_t i = 0; i < dirichlet->size(); ++i) {
     const TableReader r(*dirichlet->get(i)->as_table(), fmt::format("dirichlet[{}]", i), origin,
                         {"face", "displacement", "components"});
-    DirichletSpec d = read_dirichlet(r, dim);
+    fem::FaceDirichlet d = read_dirichlet(r, dim);
     for (int comp : d.components) {
       const auto [it, inserted] = fixed_by.emplace(std::pair{d.face, comp}, i);
       if (!inserted)
         r.fail("face", fmt::format("{}.face = \"{}\" fixes component {}, which dirichlet[{}] "
                                    "already fixes on the same face; expected each component "
                                    "of a face fixed at most once",
-                                   r.path(), to_string(d.face), comp, it->second));
+                                   r.path(), mesh::to_string(d.face), comp, it->second));
     }
-    c.dirichlet.push_back(std::move(d));
+    body.dirichlet.push_back(std::move(d));
   }
 
-  c.design = read_design(table("design", {"control_points", "initial", "upper_bound", "slope_bound",
-                                          "volume", "slope_scaling"}),
-                         c.geometry);
+  read_design(table("design", {"control_points", "initial", "upper_bound", "slope_bound", "volume", "slope_scaling"}),
+              geometry, body);
 
+  std::optional<Friction> friction;
   if (const toml::table* contact = top.optional_table("contact"))
-    c.contact =
-        read_contact(TableReader(*contact, "contact", origin, {"law", "friction"}), dim, origin);
+    friction = read_contact(TableReader(*contact, "contact", origin, {"law", "friction"}), dim, origin);
+  contact::CoulombSolver::Options coulomb;
   if (const toml::table* solver = top.optional_table("solver"))
-    c.solver =
-        read_solver(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem"}), origin);
+    coulomb = read_solver(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem"}), origin);
+  if (friction) {
+    study::ContactDefinition contact_definition;
+    contact_definition.law = friction->law;
+    contact_definition.coulomb = coulomb;
+    body.contact = std::move(contact_definition);
+  }
 
   if (const toml::table* cost = top.optional_table("cost")) {
-    if (!c.contact)
+    if (!body.contact)
       throw InvalidInput(fmt::format("{}: [cost] needs a [contact] table: every cost reads the contact state", origin));
-    c.cost = read_cost(TableReader(*cost, "cost", origin, {"kind", "target", "exponent", "smoothing"}));
-    const std::size_t tangential = static_cast<std::size_t>(c.geometry.dim - 1);
-    if (!c.cost->target_traction.empty() && c.cost->target_traction.size() != tangential)
-      throw InvalidInput(fmt::format("{}: cost.target has {} components; expected {} (the tangential traction [Pa] of "
-                                     "a {}D body) or \"mean\"",
-                                     origin, c.cost->target_traction.size(), tangential, c.geometry.dim));
+    c.cost = read_cost(TableReader(*cost, "cost", origin, {"kind", "target", "exponent", "smoothing"}), dim);
   }
+  c.optimization = study::default_study_options(body);
   if (const toml::table* optimization = top.optional_table("optimization"))
-    c.optimization = read_optimization(TableReader(
-        *optimization, "optimization", origin,
-        {"max_iterations", "max_evaluations", "epsilon", "max_step_length", "bundle_size"}));
+    read_optimization(TableReader(*optimization, "optimization", origin,
+                                  {"max_iterations", "max_evaluations", "epsilon", "max_step_length", "bundle_size"}),
+                      c.optimization);
 
   if (const toml::table* identification = top.optional_table("identification"))
     c.identification = read_identification(
         TableReader(*identification, "identification", origin,
                     {"measurements", "parameters", "loss", "loss_scale", "max_iterations"}),
-        c);
+        c, friction);
 
   // Default output name: the file stem, or the case directory's name for the
   // cases*/<name>/case.toml layout (every case file there is called case.toml).
@@ -652,7 +747,20 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                            std::move(default_name));
   else
     c.output.name = std::move(default_name);
+  body.name = c.output.name;
   return c;
+}
+
+const study::CostDefinition& CaseDescription::required_cost() const {
+  if (!cost)
+    throw InvalidInput(fmt::format("{}: no [cost] table; expected one with kind = one of {}", origin,
+                                   cost::kCostKindNames.spellings()));
+  return *cost;
+}
+
+const IdentificationSetup& CaseDescription::required_identification() const {
+  if (!identification) throw InvalidInput(fmt::format("{}: the case has no [identification] table", origin));
+  return *identification;
 }
 
 CaseDescription load_case(const std::filesystem::path& path) {

@@ -146,27 +146,4 @@ void write_measurements(const std::filesystem::path& path, const std::vector<stu
   detail::write_file_atomically(path, text.str());
 }
 
-study::Identification::Options make_identification_options(const CaseDescription& c) {
-  if (!c.identification) throw InvalidInput(fmt::format("{}: the case has no [identification] table", c.origin));
-  const IdentificationSpec& spec = *c.identification;
-  study::Identification::Options o;
-  for (const IdentifiedParameterSpec& p : spec.parameters) {
-    const bool vector = p.name == "mu_vertices";
-    const std::size_t count = vector ? c.contact->friction.mu_vertices.size() : 1;
-    for (std::size_t j = 0; j < count; ++j) {
-      const auto pick = [&](const std::vector<double>& v) { return v.size() == 1 ? v[0] : v[j]; };
-      study::ParameterSpec s;
-      s.name = vector ? fmt::format("mu_vertices[{}]", j) : p.name;
-      if (!p.initial.empty()) s.initial = pick(p.initial);
-      s.lower = pick(p.lower);
-      s.upper = pick(p.upper);
-      o.parameters.push_back(s);
-    }
-  }
-  o.loss = spec.loss;
-  o.loss_scale = spec.loss_scale;
-  if (spec.max_iterations) o.max_iterations = *spec.max_iterations;
-  return o;
-}
-
 }  // namespace frictopt::io

@@ -16,10 +16,10 @@ optim::LinearConstraints to_optim_constraints(const shape::LinearConstraints& u)
   return c;
 }
 
-optim::BundleTrust::Options default_study_options(const ElasticBody& body) {
+optim::BundleTrust::Options default_study_options(const BodyDefinition& body) {
   optim::BundleTrust::Options o;
   o.scale_objective = true;
-  o.max_step_length = body.definition().admissible.upper_bound;
+  o.max_step_length = body.admissible.upper_bound;
   o.max_iterations = 100;
   o.max_evaluations = 400;
   return o;

@@ -23,7 +23,7 @@ constexpr std::size_t kCacheSize = 512;
 
 std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition, ElasticBody& body,
                                                 const BodyState* initial_state) {
-  using Kind = CostDefinition::Kind;
+  using Kind = cost::CostKind;
   // The state at α⁰ for "initial_mean" targets: the caller's, or solved here.
   std::optional<BodyState> solved;
   const auto initial = [&](const char* what) -> const BodyState& {
@@ -72,8 +72,8 @@ ShapeOracle::ShapeOracle(ElasticBody& body, std::unique_ptr<cost::CostFunctional
 
 ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : ShapeOracle(body, nullptr) {
   const bool needs_initial_state =
-      (definition.kind == CostDefinition::Kind::kTargetPressure && std::isnan(definition.target_pressure)) ||
-      (definition.kind == CostDefinition::Kind::kTractionUniformity && definition.target_traction_initial_mean);
+      (definition.kind == cost::CostKind::kTargetPressure && std::isnan(definition.target_pressure)) ||
+      (definition.kind == cost::CostKind::kTractionUniformity && definition.target_traction_initial_mean);
   if (needs_initial_state) solve_state(body_.definition().initial_design);
   cost_ = make_cost(definition, body_, needs_initial_state ? state_.get() : nullptr);
 }

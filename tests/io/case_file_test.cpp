@@ -7,15 +7,25 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <string>
 
+#include "frictopt/contact/friction_law.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/study/shape_optimization.hpp"
 
 namespace frictopt::io {
 namespace {
+
+using contact::FrictionLawKind;
+using cost::CostKind;
+using fem::PlaneModel;
+using mesh::Face;
+using shape::SlopeScaling;
 
 // The thesis' 2D example (spec 01 §4.4, 05-examples): a = 2, C4 = 1, d = 15, C2 = 1.9.
 constexpr std::string_view kValid2d = R"(
@@ -137,119 +147,128 @@ void expect_invalid(const std::string& text, std::initializer_list<std::string_v
 
 TEST(ParseCase, Valid2dCaseGivesTheWrittenValuesAndDefaults) {
   const CaseDescription c = parse_case(kValid2d, "cases2d/thesis/case.toml");
+  const study::BodyDefinition& body = c.body;
   EXPECT_EQ(c.origin, "cases2d/thesis/case.toml");
-  EXPECT_EQ(c.geometry.dim, 2);
-  EXPECT_EQ(c.geometry.a, 2.0);
-  EXPECT_EQ(c.geometry.b, 0.0);
-  EXPECT_EQ(c.geometry.height, 1.0);
-  EXPECT_EQ(c.mesh.cells, (std::vector<int>{29, 14}));
-  EXPECT_EQ(c.mesh.grading, 2.0);
-  EXPECT_EQ(c.material.young, 2.1e11);
-  EXPECT_EQ(c.material.poisson, 0.3);
-  EXPECT_EQ(c.material.model, PlaneModel::kPlaneStrain);
-  ASSERT_EQ(c.loads.size(), 1u);
-  EXPECT_EQ(c.loads[0].face, Face::kTop);
-  EXPECT_EQ(c.loads[0].traction, Eigen::Vector2d(0.0, -2.0e7));
-  ASSERT_EQ(c.dirichlet.size(), 2u);
-  EXPECT_EQ(c.dirichlet[0].face, Face::kLeft);
-  EXPECT_EQ(c.dirichlet[0].displacement, Eigen::Vector2d::Zero());
-  EXPECT_EQ(c.dirichlet[0].components, (std::vector<int>{0, 1}));
-  EXPECT_EQ(c.dirichlet[1].face, Face::kRight);
-  EXPECT_EQ(c.dirichlet[1].displacement, Eigen::Vector2d(0.0, 1e-3));
-  EXPECT_EQ(c.dirichlet[1].components, (std::vector<int>{1}));
-  EXPECT_EQ(c.design.control_points, (std::vector<int>{15}));
-  EXPECT_EQ(c.design.num_control_points(), 15);
-  EXPECT_EQ(c.design.initial, Eigen::VectorXd::Constant(15, 0.05));
-  EXPECT_EQ(c.design.upper_bound, 0.75);
-  EXPECT_EQ(c.design.slope_bound, 1.0);
-  EXPECT_EQ(c.design.volume, 1.9);
-  EXPECT_EQ(c.design.slope_scaling, SlopeScaling::kThesis);
-  ASSERT_TRUE(c.contact.has_value());
-  EXPECT_EQ(c.contact->law, ContactLaw::kCoulomb);
-  EXPECT_EQ(c.contact->friction.kind, FrictionKind::kIsotropic);
-  EXPECT_EQ(c.contact->friction.mu, 0.3);
-  EXPECT_FALSE(c.contact->friction.n.has_value()) << "2D friction sets are intervals";
-  EXPECT_EQ(c.solver.coulomb.max_iterations, 40);
-  EXPECT_EQ(c.solver.coulomb.relative_tolerance, 1e-9);
-  EXPECT_FALSE(c.solver.qp.max_iterations.has_value());
-  EXPECT_FALSE(c.solver.qp.relative_tolerance.has_value());
+  EXPECT_EQ(c.dim(), 2);
+  EXPECT_EQ(body.shape.extents()[0], 2.0);
+  EXPECT_EQ(body.height, 1.0);
+  EXPECT_EQ(body.resolution.cells, (std::array<int, 3>{29, 0, 14})) << "(n1, unused n2, n_vertical) in 2D";
+  EXPECT_EQ(body.resolution.grading, 2.0);
+  EXPECT_EQ(body.material.young, 2.1e11);
+  EXPECT_EQ(body.material.poisson, 0.3);
+  EXPECT_EQ(body.material.plane_model, PlaneModel::kPlaneStrain);
+  ASSERT_EQ(body.tractions.size(), 1u);
+  EXPECT_EQ(body.tractions[0].face, Face::kTop);
+  EXPECT_EQ(body.tractions[0].traction, Eigen::Vector2d(0.0, -2.0e7));
+  ASSERT_EQ(body.dirichlet.size(), 2u);
+  EXPECT_EQ(body.dirichlet[0].face, Face::kLeft);
+  EXPECT_EQ(body.dirichlet[0].displacement, Eigen::Vector2d::Zero());
+  EXPECT_EQ(body.dirichlet[0].components, (std::vector<int>{0, 1}));
+  EXPECT_EQ(body.dirichlet[1].face, Face::kRight);
+  EXPECT_EQ(body.dirichlet[1].displacement, Eigen::Vector2d(0.0, 1e-3));
+  EXPECT_EQ(body.dirichlet[1].components, (std::vector<int>{1}));
+  EXPECT_EQ(body.shape.num_controls(), 15);
+  EXPECT_EQ(body.initial_design, Eigen::VectorXd::Constant(15, 0.05));
+  EXPECT_EQ(body.admissible.upper_bound, 0.75);
+  EXPECT_EQ(body.admissible.height, 1.0);
+  EXPECT_EQ(body.admissible.slope_bound, 1.0);
+  EXPECT_EQ(body.admissible.volume, 1.9);
+  EXPECT_EQ(body.admissible.slope_scaling, SlopeScaling::kThesis);
+  ASSERT_TRUE(body.contact.has_value());
+  EXPECT_EQ(body.contact->law.kind(), FrictionLawKind::kInterval) << "2D friction sets are intervals";
+  EXPECT_EQ(body.contact->law.vertices()[0], Eigen::Vector2d(-0.3, 0.0));
+  EXPECT_EQ(body.contact->law.vertices()[1], Eigen::Vector2d(0.3, 0.0));
+  const contact::CoulombSolver::Options defaults;
+  EXPECT_EQ(body.contact->coulomb.max_iterations, 40);
+  EXPECT_EQ(body.contact->coulomb.relative_tolerance, 1e-9);
+  EXPECT_EQ(body.contact->coulomb.tresca.max_iterations, defaults.tresca.max_iterations);
+  EXPECT_EQ(body.contact->coulomb.tresca.relative_tolerance, defaults.tresca.relative_tolerance);
   EXPECT_TRUE(c.output.vtk);
   EXPECT_EQ(c.output.every, 5);
   EXPECT_EQ(c.output.name, "thesis") << "default name: the case directory for <dir>/case.toml";
+  EXPECT_EQ(body.name, c.output.name);
 }
 
 TEST(ParseCase, Valid3dCaseGivesTheWrittenValuesAndDefaults) {
   const CaseDescription c = parse_case(kValid3d, "block.toml");
-  EXPECT_EQ(c.geometry.dim, 3);
-  EXPECT_EQ(c.geometry.a, 2.0) << "integers are valid numbers";
-  EXPECT_EQ(c.geometry.b, 1.0);
-  EXPECT_EQ(c.mesh.cells, (std::vector<int>{20, 10, 8}));
-  EXPECT_EQ(c.mesh.grading, 1.0);
-  ASSERT_EQ(c.loads.size(), 2u);
-  EXPECT_EQ(c.loads[0].traction, Eigen::Vector3d(1e5, 0, -1e6));
-  EXPECT_EQ(c.loads[1].face, Face::kFront);
-  ASSERT_EQ(c.dirichlet.size(), 1u);
-  EXPECT_EQ(c.dirichlet[0].components, (std::vector<int>{0, 2})) << "components are sorted";
-  EXPECT_EQ(c.dirichlet[0].displacement, Eigen::Vector3d::Zero());
-  EXPECT_EQ(c.design.num_control_points(), 12);
-  EXPECT_EQ(c.design.initial.size(), 12);
-  EXPECT_EQ(c.design.initial[5], 0.2);
-  EXPECT_FALSE(c.design.slope_bound.has_value());
-  EXPECT_FALSE(c.design.volume.has_value());
-  EXPECT_EQ(c.design.slope_scaling, SlopeScaling::kExact);
-  ASSERT_TRUE(c.contact.has_value());
-  EXPECT_EQ(c.contact->friction.kind, FrictionKind::kPolygon);
-  EXPECT_EQ(c.contact->friction.mu_vertices, (std::vector<double>{0.3, 0.2, 0.3, 0.2}));
-  EXPECT_EQ(c.contact->friction.n, 4) << "n defaults to the number of vertex coefficients";
-  EXPECT_EQ(c.solver.qp.max_iterations, 500);
-  EXPECT_FALSE(c.solver.coulomb.max_iterations.has_value());
+  const study::BodyDefinition& body = c.body;
+  EXPECT_EQ(c.dim(), 3);
+  EXPECT_EQ(body.shape.extents()[0], 2.0) << "integers are valid numbers";
+  EXPECT_EQ(body.shape.extents()[1], 1.0);
+  EXPECT_EQ(body.resolution.cells, (std::array<int, 3>{20, 10, 8}));
+  EXPECT_EQ(body.resolution.grading, 1.0);
+  ASSERT_EQ(body.tractions.size(), 2u);
+  EXPECT_EQ(body.tractions[0].traction, Eigen::Vector3d(1e5, 0, -1e6));
+  EXPECT_EQ(body.tractions[1].face, Face::kFront);
+  ASSERT_EQ(body.dirichlet.size(), 1u);
+  EXPECT_EQ(body.dirichlet[0].components, (std::vector<int>{0, 2})) << "components are sorted";
+  EXPECT_EQ(body.dirichlet[0].displacement, Eigen::Vector3d::Zero());
+  EXPECT_EQ(body.shape.num_controls(), 12);
+  EXPECT_EQ(body.initial_design.size(), 12);
+  EXPECT_EQ(body.initial_design[5], 0.2);
+  EXPECT_FALSE(body.admissible.slope_bound.has_value());
+  EXPECT_FALSE(body.admissible.volume.has_value());
+  EXPECT_EQ(body.admissible.slope_scaling, SlopeScaling::kExact);
+  ASSERT_TRUE(body.contact.has_value());
+  const contact::FrictionLaw expected = contact::FrictionLaw::polygon({0.3, 0.2, 0.3, 0.2});
+  EXPECT_EQ(body.contact->law.kind(), FrictionLawKind::kPolygon);
+  EXPECT_EQ(body.contact->law.describe(), expected.describe());
+  ASSERT_EQ(body.contact->law.vertices().size(), 4u) << "n defaults to the number of vertex coefficients";
+  const contact::CoulombSolver::Options defaults;
+  EXPECT_EQ(body.contact->coulomb.tresca.max_iterations, 500);
+  EXPECT_EQ(body.contact->coulomb.max_iterations, defaults.max_iterations);
   EXPECT_FALSE(c.output.vtk);
   EXPECT_EQ(c.output.every, 1);
   EXPECT_EQ(c.output.name, "block");
+  // No [optimization]: the study's defaults.
+  const optim::BundleTrust::Options study_defaults = study::default_study_options(body);
+  EXPECT_EQ(c.optimization.max_iterations, study_defaults.max_iterations);
+  EXPECT_EQ(c.optimization.max_step_length, body.admissible.upper_bound);
 }
 
 TEST(ParseCase, AbsentContactTableMeansNoContact) {
   const std::string text =
       replaced(kValid2d, "[contact]\n[contact.friction]\nkind = \"isotropic\"\nmu = 0.3\n", "");
-  EXPECT_FALSE(parse_case(text, "case.toml").contact.has_value());
+  EXPECT_FALSE(parse_case(text, "case.toml").body.contact.has_value());
 }
 
 TEST(ParseCase, ContactWithoutFrictionTableIsFrictionless) {
   const std::string text =
       replaced(kValid2d, "[contact.friction]\nkind = \"isotropic\"\nmu = 0.3\n", "");
   const CaseDescription c = parse_case(text, "case.toml");
-  ASSERT_TRUE(c.contact.has_value());
-  EXPECT_EQ(c.contact->friction.kind, FrictionKind::kNone);
+  ASSERT_TRUE(c.body.contact.has_value());
+  EXPECT_TRUE(c.body.contact->law.is_zero());
 }
 
 TEST(ParseCase, IsotropicAndEllipticLawsIn3dDefaultToSixteenSides) {
   const std::string iso =
       replaced(kValid3d, "kind = \"polygon\"\nmu_vertices = [0.3, 0.2, 0.3, 0.2]",
                "kind = \"isotropic\"\nmu = 0.5");
-  EXPECT_EQ(parse_case(iso, "case.toml").contact->friction.n, 16);
+  const contact::FrictionLaw iso_law = parse_case(iso, "case.toml").body.contact->law;
+  EXPECT_EQ(iso_law.kind(), FrictionLawKind::kRegularPolygon);
+  EXPECT_EQ(iso_law.vertices().size(), 16u);
   const std::string ellipse =
       replaced(kValid3d, "kind = \"polygon\"\nmu_vertices = [0.3, 0.2, 0.3, 0.2]",
                "kind = \"ellipse\"\nmu_x = 0.4\nmu_y = 0.2\nn = 32");
-  const FrictionSpec f = parse_case(ellipse, "case.toml").contact->friction;
-  EXPECT_EQ(f.kind, FrictionKind::kEllipse);
-  EXPECT_EQ(f.mu_x, 0.4);
-  EXPECT_EQ(f.mu_y, 0.2);
-  EXPECT_EQ(f.n, 32);
+  const contact::FrictionLaw f = parse_case(ellipse, "case.toml").body.contact->law;
+  EXPECT_EQ(f.kind(), FrictionLawKind::kEllipsePolygon);
+  EXPECT_EQ(f.semi_axes(), Eigen::Vector2d(0.4, 0.2));
+  EXPECT_EQ(f.vertices().size(), 32u);
 }
 
 TEST(ParseCase, DirectionDependentFrictionIn2dReadsBothCoefficients) {
   const std::string text = replaced(kValid2d, "kind = \"isotropic\"\nmu = 0.3",
                                     "kind = \"polygon\"\nmu_plus = 0.4\nmu_minus = 0.1");
-  const FrictionSpec f = parse_case(text, "case.toml").contact->friction;
-  EXPECT_EQ(f.kind, FrictionKind::kPolygon);
-  EXPECT_EQ(f.mu_plus, 0.4);
-  EXPECT_EQ(f.mu_minus, 0.1);
+  const contact::FrictionLaw f = parse_case(text, "case.toml").body.contact->law;
+  EXPECT_EQ(f.kind(), FrictionLawKind::kInterval);
+  EXPECT_EQ(f.support(1.0), 0.4) << "slip in +x1 costs mu_plus";
+  EXPECT_EQ(f.support(-1.0), 0.1) << "slip in -x1 costs mu_minus";
 }
 
 TEST(ParseCase, PlaneStressIsAccepted) {
   const std::string text =
       replaced(kValid2d, "poisson = 0.3", "poisson = 0.3\nmodel = \"plane_stress\"");
-  EXPECT_EQ(parse_case(text, "case.toml").material.model, PlaneModel::kPlaneStress);
+  EXPECT_EQ(parse_case(text, "case.toml").body.material.plane_model, PlaneModel::kPlaneStress);
 }
 
 TEST(ParseCase, SyntaxErrorNamesTheLine) {
@@ -274,7 +293,7 @@ TEST(ParseCase, CostAndOptimizationTablesAreValidated) {
                                        "case.toml");
   ASSERT_TRUE(c.cost.has_value());
   EXPECT_EQ(c.cost->kind, CostKind::kTargetPressure);
-  EXPECT_TRUE(c.cost->target_initial_mean);
+  EXPECT_TRUE(std::isnan(c.cost->target_pressure)) << "NaN: the initial mean pressure";
   EXPECT_EQ(c.optimization.max_iterations, 30);
   EXPECT_EQ(c.optimization.epsilon, 1e-5);
   expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"x\"\n", {"cost.kind"});
@@ -290,13 +309,13 @@ TEST(ParseCase, TractionUniformityTakesTheMeanOrATargetOfDimMinusOneComponents) 
       parse_case(std::string(kValid3d) + "\n[cost]\nkind = \"traction_uniformity\"\n", "case.toml");
   ASSERT_TRUE(mean.cost.has_value());
   EXPECT_EQ(mean.cost->kind, CostKind::kTractionUniformity);
-  EXPECT_TRUE(mean.cost->target_traction.empty());
+  EXPECT_EQ(mean.cost->target_traction.size(), 0);
   const CaseDescription target = parse_case(
       std::string(kValid3d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = [2e4, -1e4]\n", "case.toml");
-  EXPECT_EQ(target.cost->target_traction, (std::vector<double>{2e4, -1e4}));
+  EXPECT_EQ(target.cost->target_traction, Eigen::Vector2d(2e4, -1e4));
   EXPECT_TRUE(parse_case(std::string(kValid2d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = \"mean\"\n",
                          "case.toml")
-                  .cost->target_traction.empty());
+                  .cost->target_traction.size() == 0);
   expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = [1, 2]\n",
                  {"cost.target has 2 components; expected 1"});
   expect_invalid(std::string(kValid3d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = \"median\"\n",
@@ -483,17 +502,21 @@ TEST(LoadCase, MissingFileIsInvalidInputNamingThePath) {
   EXPECT_THROW((void)load_case("/nonexistent/frictopt/case.toml"), InvalidInput);
 }
 
-TEST(CaseEnums, SpellingsRoundTrip) {
+TEST(CaseEnums, SpellingsComeFromTheNumericModulesTables) {
   for (Face f : {Face::kLeft, Face::kRight, Face::kFront, Face::kBack, Face::kTop})
-    EXPECT_EQ(parse_face(to_string(f)), f);
-  for (FrictionKind k :
-       {FrictionKind::kNone, FrictionKind::kIsotropic, FrictionKind::kPolygon,
-        FrictionKind::kEllipse, FrictionKind::kEllipseExact, FrictionKind::kDiscExact})
-    EXPECT_EQ(parse_friction_kind(to_string(k)), k);
-  EXPECT_EQ(parse_plane_model("plane_stress"), PlaneModel::kPlaneStress);
-  EXPECT_EQ(parse_slope_scaling("exact"), SlopeScaling::kExact);
-  EXPECT_EQ(parse_contact_law("coulomb"), ContactLaw::kCoulomb);
-  EXPECT_THROW((void)parse_face("bottom"), InvalidInput);
+    EXPECT_EQ(mesh::parse_face(mesh::to_string(f)), f);
+  for (CostKind k : {CostKind::kTargetPressure, CostKind::kNormalForcePower, CostKind::kCompliance,
+                     CostKind::kPressureNorm, CostKind::kTotalSlip, CostKind::kTractionUniformity})
+    EXPECT_EQ(cost::parse_cost_kind(cost::to_string(k)), k);
+  EXPECT_EQ(fem::parse_plane_model("plane_stress"), PlaneModel::kPlaneStress);
+  EXPECT_EQ(shape::kSlopeScalingNames.find("exact"), SlopeScaling::kExact);
+  EXPECT_THROW((void)cost::parse_cost_kind("compliancee"), InvalidInput);
+}
+
+TEST(ParseCase, PressureNormDefaultsToExponentEightAndForcePowerToFour) {
+  EXPECT_EQ(parse_case(std::string(kValid2d) + "\n[cost]\nkind = \"pressure_norm\"\n", "case.toml").cost->exponent, 8.0);
+  EXPECT_EQ(parse_case(std::string(kValid2d) + "\n[cost]\nkind = \"normal_force_power\"\n", "case.toml").cost->exponent,
+            4.0);
 }
 
 }  // namespace

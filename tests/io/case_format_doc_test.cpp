@@ -42,21 +42,21 @@ TEST(CaseFormatDoc, FullExamplesParseToTheirStatedDimension) {
   ASSERT_EQ(blocks.size(), 2u) << "expected the full 2D and 3D examples";
 
   const CaseDescription c2 = parse_case(blocks[0], "case-format.md (2D example)");
-  EXPECT_EQ(c2.geometry.dim, 2);
-  EXPECT_EQ(c2.design.num_control_points(), 15);
+  EXPECT_EQ(c2.dim(), 2);
+  EXPECT_EQ(c2.body.shape.num_controls(), 15);
   EXPECT_EQ(c2.output.name, "thesis_2d");
 
   const CaseDescription c3 = parse_case(blocks[1], "case-format.md (3D example)");
-  EXPECT_EQ(c3.geometry.dim, 3);
-  EXPECT_EQ(c3.design.num_control_points(), 12);
+  EXPECT_EQ(c3.dim(), 3);
+  EXPECT_EQ(c3.body.shape.num_controls(), 12);
   // The documented initial design is feasible for the documented volume: the mean control
   // height equals height − volume/(a·b) (spec 01 §3, A-3DUPS), up to summation round-off.
-  const double mean = c3.design.initial.mean();
-  EXPECT_NEAR(mean, 1.0 - *c3.design.volume / 2.0, 1e-15);
-  ASSERT_TRUE(c3.contact.has_value());
-  EXPECT_EQ(c3.contact->friction.n, 8);
-  ASSERT_EQ(c3.dirichlet.size(), 2u);
-  EXPECT_EQ(c3.dirichlet[1].components, (std::vector<int>{1}));
+  const double mean = c3.body.initial_design.mean();
+  EXPECT_NEAR(mean, 1.0 - *c3.body.admissible.volume / 2.0, 1e-15);
+  ASSERT_TRUE(c3.body.contact.has_value());
+  EXPECT_EQ(c3.body.contact->law.vertices().size(), 8u);
+  ASSERT_EQ(c3.body.dirichlet.size(), 2u);
+  EXPECT_EQ(c3.body.dirichlet[1].components, (std::vector<int>{1}));
 }
 
 }  // namespace

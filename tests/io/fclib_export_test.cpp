@@ -25,7 +25,6 @@ extern "C" {
 #include "frictopt/contact/delassus.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
-#include "frictopt/io/study_setup.hpp"
 
 namespace {
 
@@ -41,7 +40,7 @@ using frictopt::study::ElasticBody;
 const fs::path kData = fs::path(FRICTOPT_SOURCE_DIR) / "tests/io/data";
 
 BodyDefinition definition_of(const std::string& file) {
-  return frictopt::io::make_body_definition(frictopt::io::load_case(kData / file));
+  return frictopt::io::load_case(kData / file).body;
 }
 
 // Each test writes into its own directory (named after the test and the process id, removed

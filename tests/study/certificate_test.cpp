@@ -115,7 +115,7 @@ TEST(Certify, DistanceFallsAlongAShortOptimization) {
   const Eigen::VectorXd alpha0 = body.definition().initial_design;
   const Certificate before = certify(oracle, alpha0);
   ASSERT_EQ(before.status, Status::kConverged) << before.message;
-  optim::BundleTrust::Options options = default_study_options(body);
+  optim::BundleTrust::Options options = default_study_options(body.definition());
   options.max_iterations = 15;
   const optim::BundleTrust::Summary run = optimize(oracle, options, {});
   const Certificate after = certify(oracle, run.x);

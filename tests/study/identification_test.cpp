@@ -19,7 +19,6 @@
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
 #include "frictopt/io/measurements.hpp"
-#include "frictopt/io/study_setup.hpp"
 #include "frictopt/study/elastic_body.hpp"
 
 namespace frictopt::study {
@@ -677,7 +676,7 @@ upper = 1e12
   const io::CaseDescription c = io::parse_case(good, "cases/x/case.toml");
   ASSERT_TRUE(c.identification.has_value());
   EXPECT_EQ(c.identification->measurements, std::filesystem::path("cases/x/data/m.csv"));
-  const Identification::Options o = io::make_identification_options(c);
+  const Identification::Options o = c.required_identification().options;
   ASSERT_EQ(o.parameters.size(), 5u);
   EXPECT_EQ(o.parameters[3].name, "mu_vertices[3]");
   EXPECT_EQ(o.parameters[3].initial, 0.5);
@@ -722,8 +721,8 @@ namespace {
 TEST(IdentifyAnisotropicCase, RecoversTheTrueLawWithinThreeStandardDeviations) {
   const io::CaseDescription c = io::load_case("cases3d/identify-anisotropic/case.toml");
   ASSERT_TRUE(c.identification.has_value());
-  Identification id(io::make_body_definition(c), io::read_measurements(c.identification->measurements),
-                    io::make_identification_options(c));
+  Identification id(c.body, io::read_measurements(c.identification->measurements),
+                    c.required_identification().options);
   const Eigen::VectorXd truth = id.case_parameters();
   const Identification::Summary s = id.run();
   print_estimates(s, truth);

@@ -4,12 +4,20 @@
 
 #include <string_view>
 
+#include "frictopt/core/enum_table.hpp"
+
 namespace frictopt::fem {
 
 /// 2D model (spec 01, A-PS): plane strain (default, unit thickness) or plane stress.
 enum class PlaneModel { kPlaneStrain, kPlaneStress };
-std::string_view to_string(PlaneModel model);
-PlaneModel parse_plane_model(std::string_view name);  ///< throws InvalidInput
+/// The spellings of PlaneModel (case files, reports).
+inline constexpr auto kPlaneModelNames = frictopt::detail::make_enum_table<PlaneModel>(
+    std::pair{PlaneModel::kPlaneStrain, "plane_strain"}, std::pair{PlaneModel::kPlaneStress, "plane_stress"});
+[[nodiscard]] inline std::string_view to_string(PlaneModel model) { return kPlaneModelNames.name(model); }
+/// Inverse of to_string; throws InvalidInput listing the accepted spellings.
+[[nodiscard]] inline PlaneModel parse_plane_model(std::string_view name) {
+  return kPlaneModelNames.parse(name, "material.model");
+}
 
 /// Hooke's law τ = λ tr(ε) I + 2μ ε with Lamé constants from E and ν.
 struct IsotropicMaterial {

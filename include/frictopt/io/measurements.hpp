@@ -24,8 +24,4 @@ namespace frictopt::io {
 void write_measurements(const std::filesystem::path& path, const std::vector<study::Measurement>& measurements,
                         const std::string& comment = "");
 
-/// The options of the case's [identification] table, with the parameter groups expanded
-/// (mu_vertices → "mu_vertices[0]", …). Throws InvalidInput when the case has none.
-[[nodiscard]] study::Identification::Options make_identification_options(const CaseDescription& description);
-
 }  // namespace frictopt::io

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "frictopt/core/enum_table.hpp"
 #include "frictopt/shape/bezier_shape.hpp"
 
 namespace frictopt::shape {
@@ -13,6 +14,10 @@ namespace frictopt::shape {
 /// Slope-bound scaling, spec 01 §4.3: the thesis' |Δα| ≤ C1/(m−1) (which bounds the true slope
 /// by C1/a), or the exact |Δα| ≤ a·C1/(m−1) that bounds |∂G/∂x| by C1.
 enum class SlopeScaling { kThesis, kExact };
+/// The spellings of SlopeScaling (case files, reports).
+inline constexpr auto kSlopeScalingNames = frictopt::detail::make_enum_table<SlopeScaling>(
+    std::pair{SlopeScaling::kThesis, "thesis"}, std::pair{SlopeScaling::kExact, "exact"});
+[[nodiscard]] inline std::string_view to_string(SlopeScaling scaling) { return kSlopeScalingNames.name(scaling); }
 
 /// Data of Υ (spec 01, §4.1 with the corrected volume of §4.2).
 struct AdmissibleSetParameters {

@@ -11,6 +11,7 @@
 
 #include "frictopt/contact/coulomb_solver.hpp"
 #include "frictopt/contact/friction_law.hpp"
+#include "frictopt/cost/cost_kind.hpp"
 #include "frictopt/fem/boundary_conditions.hpp"
 #include "frictopt/fem/material.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
@@ -37,12 +38,11 @@ struct ContactDefinition {
 
 /// The cost functional of a study (spec 05 §2.4; cost module).
 struct CostDefinition {
-  enum class Kind { kTargetPressure, kNormalForcePower, kCompliance, kPressureNorm, kTotalSlip, kTractionUniformity };
-  Kind kind = Kind::kCompliance;
+  cost::CostKind kind = cost::CostKind::kCompliance;
   /// kTargetPressure: uniform target pressure p̄ [Pa], λ̄_i = p̄·a_i; NaN: the initial total
   /// normal force spread as a uniform pressure (spec 05 §2.3's reading of the thesis' target).
   double target_pressure = std::numeric_limits<double>::quiet_NaN();
-  double exponent = 4.0;    ///< kNormalForcePower (thesis: 4), kPressureNorm
+  double exponent = 4.0;    ///< kNormalForcePower (thesis: 4), kPressureNorm (case files: 8)
   double smoothing = 1e-6;  ///< kTotalSlip [m]
   /// kTractionUniformity: the target tangential traction t̄ [Pa] (dim − 1 components); empty:
   /// the area-weighted mean traction of the current state (J is then its variance).

@@ -31,7 +31,7 @@ using ProgressCallback = std::function<CallbackResult(const OptimizationProgress
 /// Bundle trust options for shape studies: the objective is scaled by |Θ(α⁰)| so that ε is a
 /// relative stationarity tolerance whatever the cost's units (spec 04 §7 "robustness"), and the
 /// first step is at most the design range C0 (the optimizer's max_step_length).
-optim::BundleTrust::Options default_study_options(const ElasticBody& body);
+optim::BundleTrust::Options default_study_options(const BodyDefinition& body);
 
 /// Runs (or, from a checkpoint, resumes) the optimization. The oracle must belong to `body`.
 /// `on_progress` is called after every outer iteration (history, checkpoints, VTK series); it
