@@ -128,7 +128,7 @@ FclibLocalProblem make_fclib_local(const study::ElasticBody& body, const study::
 
   // Our dual data (spec 02, §9.2): M = G A⁻¹ Gᵀ through the factorization of the last solve,
   // c = G A⁻¹ l + (0, g).
-  const fem::SparseCholesky& cholesky = body.elasticity().factorization();
+  const linalg::SpdSolver& cholesky = body.elasticity().factorization();
   const Eigen::MatrixXd M = contact::dense_delassus(cholesky, *boundary);
   Eigen::VectorXd c = boundary->times(cholesky.solve(body.elasticity().load()));
   for (Eigen::Index i = 0; i < p; ++i) c(d * i + d - 1) += result.gaps(i);

@@ -16,7 +16,7 @@
 #include <set>
 
 #include "frictopt/contact/delassus.hpp"
-#include "frictopt/contact/linear_operator.hpp"
+#include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/sensitivity/adjoint.hpp"
@@ -371,7 +371,7 @@ const Identification::Prediction& Identification::Impl::predict(const Eigen::Vec
     return out;
   }
   const double rho = young_for(p) / young0;
-  const contact::ScaledOperator M(*M0_op, 1.0 / rho);  // M(E) = M(E₀) E₀/E, no copy
+  const linalg::ScaledOperator M(*M0_op, 1.0 / rho);  // M(E) = M(E₀) E₀/E, no copy
   const Eigen::VectorXd c = c_traction / rho + c_dirichlet + gap_vector;
   contact::ContactState state = warm_start ? *warm_start : contact::ContactState(dim, num_nodes);
   const contact::CoulombSolver solver(M, law, coulomb);
