@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/study/shape_optimization.hpp"
 
 namespace frictopt::io {
 namespace {
@@ -117,6 +118,17 @@ study::CostDefinition make_cost_definition(const CaseDescription& c) {
   if (c.cost->exponent) d.exponent = *c.cost->exponent;
   if (c.cost->smoothing) d.smoothing = *c.cost->smoothing;
   return d;
+}
+
+optim::BundleTrust::Options make_optimizer_options(const CaseDescription& description, const study::ElasticBody& body) {
+  optim::BundleTrust::Options options = study::default_study_options(body);
+  const OptimizationSpec& o = description.optimization;
+  if (o.max_iterations) options.max_iterations = *o.max_iterations;
+  if (o.max_evaluations) options.max_evaluations = *o.max_evaluations;
+  if (o.epsilon) options.epsilon = *o.epsilon;
+  if (o.max_step_length) options.max_step_length = *o.max_step_length;
+  if (o.bundle_size) options.max_bundle_size = *o.bundle_size;
+  return options;
 }
 
 }  // namespace frictopt::io

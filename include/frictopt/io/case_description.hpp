@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -115,7 +116,8 @@ struct DesignSpec {
   std::optional<double> volume;
   SlopeScaling slope_scaling = SlopeScaling::kThesis;
 
-  /// m1 (2D) or m1·m2 (3D): the length of α.
+  /// m1 (2D) or m1·m2 (3D): the length of α (the parser bounds it, docs/case-format.md
+  /// "Size limits", so it fits an int).
   [[nodiscard]] int num_control_points() const;
 };
 
@@ -240,6 +242,12 @@ struct CaseDescription {
   OptimizationSpec optimization;
   OutputSpec output;
   std::optional<IdentificationSpec> identification;  ///< [identification], absent: no `identify`
+  /// The problem the case defines, normalized: every key of the file except the run controls
+  /// [optimization] and [output], as dotted key ("material.young", "load[0].traction") ->
+  /// canonical value text (numbers in shortest round-trip form, so 7e10 and 70000000000.0
+  /// agree; comments, layout and key order do not matter). A run's checkpoint stores it to
+  /// refuse resuming a different problem (io/checkpoint.hpp).
+  std::map<std::string, std::string> problem_settings;
 };
 
 }  // namespace frictopt::io

@@ -4,7 +4,9 @@
 #pragma once
 
 #include "frictopt/io/case_description.hpp"
+#include "frictopt/optim/bundle_trust.hpp"
 #include "frictopt/study/body_definition.hpp"
+#include "frictopt/study/elastic_body.hpp"
 
 namespace frictopt::io {
 
@@ -13,5 +15,10 @@ namespace frictopt::io {
 
 /// The cost of a case ([cost] table); throws InvalidInput when the case has none.
 [[nodiscard]] study::CostDefinition make_cost_definition(const CaseDescription& description);
+
+/// The bundle trust options of a shape study (study::default_study_options) with the case's
+/// [optimization] settings applied.
+[[nodiscard]] optim::BundleTrust::Options make_optimizer_options(const CaseDescription& description,
+                                                                 const study::ElasticBody& body);
 
 }  // namespace frictopt::io
