@@ -365,17 +365,9 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   const auto start = std::chrono::steady_clock::now();
   const ElasticBody& body = oracle.body();
   const Eigen::Index d = body.definition().shape.num_controls();
-  if (alpha.size() != d)
-    throw InvalidInput(fmt::format("certify: the design has {} entries; expected {} (the shape's control points)",
-                                   alpha.size(), d));
-  // N_Υ(α) exists on Υ only: refuse an outside design before any state solve or adjoint.
+  require_admissible_design(body, alpha, options.active_tolerance, "certify");
   const shape::LinearConstraints& upsilon = body.admissible_set();
   const optim::LinearConstraints constraints = to_optim_constraints(upsilon);
-  if (const double violation = constraints.max_violation(alpha);
-      violation > options.active_tolerance * std::max(1.0, alpha.lpNorm<Eigen::Infinity>()))
-    throw InvalidInput(fmt::format("certify: the design violates the admissible set by {:.3e}; expected a design in "
-                                   "Υ ({})",
-                                   violation, upsilon.describe_violation(alpha, 0.0)));
   Certificate c;
   c.alpha = alpha;
   const Evaluation& e = oracle.evaluate_design(alpha, false);  // ξ of every piece follows below
