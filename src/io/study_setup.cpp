@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/mesh/face.hpp"
 
 namespace frictopt::io {
 namespace {
@@ -70,8 +71,9 @@ study::BodyDefinition make_body_definition(const CaseDescription& c) {
                                   ? fem::PlaneModel::kPlaneStress
                                   : fem::PlaneModel::kPlaneStrain;
   for (const DirichletSpec& d : c.dirichlet)
-    body.dirichlet.push_back({to_mesh_face(d.face), d.components, d.displacement});
-  for (const LoadSpec& l : c.loads) body.tractions.push_back({to_mesh_face(l.face), l.traction});
+    body.dirichlet.push_back({std::string(mesh::to_string(to_mesh_face(d.face))), d.components, d.displacement});
+  for (const LoadSpec& l : c.loads)
+    body.tractions.push_back({std::string(mesh::to_string(to_mesh_face(l.face))), l.traction});
   body.admissible.upper_bound = c.design.upper_bound;
   body.admissible.slope_bound = c.design.slope_bound;
   body.admissible.volume = c.design.volume;

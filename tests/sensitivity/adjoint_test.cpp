@@ -32,7 +32,7 @@ study::BodyDefinition block_3d(const contact::FrictionLaw& law, Eigen::Vector2d 
   b.height = 0.5;
   b.resolution = {{8, 8, 4}, 1.0};
   b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{mesh::Face::kTop, {}, Eigen::Vector3d(shift(0), shift(1), -1.2e-3)}};
+  b.dirichlet = {{"top", {}, Eigen::Vector3d(shift(0), shift(1), -1.2e-3)}};
   b.admissible.upper_bound = 5e-3;
   b.admissible.height = 0.5;
   b.initial_design.resize(9);
@@ -210,7 +210,7 @@ study::BodyDefinition weak_contact_body(int dim) {
   if (dim == 3) {
     b.resolution = {{1, 1, 1}, 1.0};
     b.shape = shape::BezierShape::surface(1.0, 1.0, 2, 2);
-    b.dirichlet = {{mesh::Face::kLeft, {}, {}}};
+    b.dirichlet = {{"left", {}, {}}};
   }
   b.tractions.clear();
   b.initial_design = Eigen::VectorXd::Zero(b.shape.num_controls());
