@@ -65,12 +65,16 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
   for (const std::string& note : notes) fmt::print("note: {}\n", note);
 
   const int every = description.output.every;
+  int output_solves = 0;  // solves made for pictures only: not counted as the method's
   const auto write_design_vtu = [&](int iteration, const Eigen::VectorXd& alpha) {
     if (!description.output.vtk) return;
-    // Output must not change the numbers: a state solved here for the picture would move the
-    // warm start of the next solve, so it is restored afterwards.
+    // Output must not change the numbers: a state solved here for the picture (the design is
+    // not among the oracle's recent states, e.g. right after a resume) would move the warm
+    // start of the next solve, so it is restored afterwards.
     const auto warm_start = body.warm_start();
+    const int solves = oracle.num_state_solves();
     run.add_to_series(iteration, [&](const std::filesystem::path& vtu) { io::write_state_vtu(vtu, body, oracle.state(alpha)); });
+    output_solves += oracle.num_state_solves() - solves;
     body.set_warm_start(warm_start);
   };
 
@@ -102,20 +106,25 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
   // aggregate error are relative to |Θ(α⁰)| per unit of α; summary.json also gives them in Θ's units.
   fmt::print("{:>5} {:>6} {:>14} {:>14} {:>10} {:>12} {:>8} {:>9}\n", "iter", "evals", "theta", "step", "t",
              "stat. (rel)", "QP its", "elapsed");
+  // State solves this process made before the method started (the oracle's initial state on
+  // a resume) were counted by the interrupted process already.
+  const std::int64_t solves_before = checkpoint ? oracle.num_state_solves() : 0;
+  io::RunCheckpoint::CenterColumns center = checkpoint ? checkpoint->center : io::RunCheckpoint::CenterColumns{};
   const auto on_progress = [&](const study::OptimizationProgress& p) {
     const auto& m = p.method;
     const double elapsed = elapsed_offset + p.elapsed_seconds;
-    const std::int64_t solves = solves_offset + p.state_solves;
+    const std::int64_t solves = solves_offset + p.state_solves - solves_before - output_solves;
+    if (p.center.ok)  // else the centre is the checkpoint's, not evaluated by this process
+      center = {p.center.contact.iterations, p.center.contact.qp_iterations, p.center.index_sets.num_weak_nodes(),
+                p.center.state_seconds, p.center.subgradient_seconds};
     history.write_row({static_cast<std::int64_t>(m.iteration), static_cast<std::int64_t>(m.evaluations),
                        std::string(optim::to_string(m.step)), m.f, m.t, m.stationarity, m.aggregate_error,
                        static_cast<std::int64_t>(m.bundle.size()), static_cast<std::int64_t>(m.serious_steps),
-                       static_cast<std::int64_t>(m.null_steps), solves,
-                       static_cast<std::int64_t>(p.center.contact.iterations),
-                       static_cast<std::int64_t>(p.center.contact.qp_iterations),
-                       static_cast<std::int64_t>(p.center.index_sets.num_weak_nodes()), p.center.state_seconds,
-                       p.center.subgradient_seconds, elapsed});
+                       static_cast<std::int64_t>(m.null_steps), solves, center.coulomb_iterations,
+                       center.qp_iterations, center.weak_nodes, center.state_seconds, center.subgradient_seconds,
+                       elapsed});
     fmt::print("{:>5} {:>6} {:>14.6e} {:>14} {:>10.3e} {:>12.3e} {:>8} {:>8.1f}s\n", m.iteration, m.evaluations, m.f,
-               optim::to_string(m.step), m.t, m.stationarity, p.center.contact.qp_iterations, elapsed);
+               optim::to_string(m.step), m.t, m.stationarity, center.qp_iterations, elapsed);
     std::fflush(stdout);
     if (m.iteration % every == 0) write_design_vtu(m.iteration, m.x);
     // Last, so the checkpoint holds the state the next iteration starts from.
@@ -129,6 +138,7 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
     c.initial_cost = initial_value;
     c.elapsed_seconds = elapsed;
     c.state_solves = solves;
+    c.center = center;
     run.write_checkpoint(c);
     return CallbackResult::kContinue;
   };
@@ -164,7 +174,8 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
   json["objective_scale"] = summary.objective_scale;  // |Θ(α⁰)|: history.csv's columns are relative to it
   json["stationarity_relative"] = summary.stationarity / summary.objective_scale;
   json["cost_kind"] = std::string(io::to_string(description.cost->kind));
-  json["state_solves"] = solves_offset + oracle.num_state_solves();  // over all resumes, as history.csv
+  // The method's state solves over all resumes, as history.csv (pictures' solves not counted).
+  json["state_solves"] = solves_offset + oracle.num_state_solves() - solves_before - output_solves;
   json["time_seconds"] = summary.time_seconds;                      // this process's optimizer
   json["elapsed_seconds"] = elapsed_offset + summary.time_seconds;   // over all resumes
   json["final_index_sets"] = final.index_sets.summary();
