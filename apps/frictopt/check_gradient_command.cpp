@@ -3,11 +3,7 @@
 #include "commands.hpp"
 
 #include <fmt/format.h>
-#include <algorithm>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
 #include "frictopt/io/design_file.hpp"
@@ -15,6 +11,7 @@
 #include "frictopt/sensitivity/friction_parameters.hpp"
 #include "frictopt/study/certificate.hpp"
 #include "frictopt/study/derivative_accuracy.hpp"
+#include "frictopt/study/gradient_check.hpp"
 #include "frictopt/study/shape_optimization.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 #include "frictopt/study/elastic_body.hpp"
@@ -39,37 +36,26 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
   study::require_admissible_design(body, alpha, study::CertifyOptions{}.active_tolerance,
                                    design_path.empty() ? case_path.string() + ": design.initial" : design_path.string());
   study::ShapeOracle oracle(body, description.required_cost());
-  const study::Evaluation e = oracle.evaluate_design(alpha);
+  const study::GradientCheck check = study::check_gradient(oracle, alpha, relative_step);
+  const study::Evaluation& e = check.evaluation;
   fmt::print("{}: cost {}, Θ = {:.10e}\n", case_path.string(), oracle.cost().name(), e.value);
   fmt::print("{}\n{}\n", e.contact.brief_report(), e.adjoint.brief_report());
   if (!e.ok) {
     fmt::print("error: {}\n", e.message);
     return kExitNumericalFailure;
   }
-  const sensitivity::PieceEnumeration pieces = oracle.pieces(alpha, 1);
-  fmt::print("index sets: {}; |L| = {:.0f}\n", e.index_sets.summary(), pieces.cardinality);
+  fmt::print("index sets: {}; |L| = {:.0f}\n", e.index_sets.summary(), check.cardinality);
   if (e.index_sets.num_weak_nodes() > 0)
     fmt::print("note: {} weak node(s): Θ has a kink here and the difference quotients need not match ξ "
                "(compare one-sided quotients with the pieces of L instead)\n",
                e.index_sets.num_weak_nodes());
-  const double h = relative_step * std::max(alpha.cwiseAbs().maxCoeff(), 1e-12);
-  fmt::print("central differences with h = {:.3e} (relative step {:.1e} of max|α|)\n", h, relative_step);
+  fmt::print("central differences with h = {:.3e} (relative step {:.1e} of max|α|)\n", check.step, relative_step);
   fmt::print("{:>4} {:>20} {:>20} {:>12}\n", "k", "finite difference", "adjoint", "rel. error");
-  double worst = 0.0;
-  const double scale = std::max(e.subgradient.cwiseAbs().maxCoeff(), 1e-300);
-  for (Eigen::Index k = 0; k < alpha.size(); ++k) {
-    Eigen::VectorXd a = alpha;
-    a(k) += h;
-    const double plus = oracle.evaluate_design(a, false).value;
-    a(k) -= 2 * h;
-    const double minus = oracle.evaluate_design(a, false).value;
-    const double fd = (plus - minus) / (2 * h);
-    // Relative to the largest component, so near-zero components do not inflate the error.
-    const double error = std::abs(fd - e.subgradient(k)) / scale;
-    worst = std::max(worst, error);
-    fmt::print("{:>4} {:>20.10e} {:>20.10e} {:>12.2e}\n", k, fd, e.subgradient(k), error);
+  for (std::size_t k = 0; k < check.components.size(); ++k) {
+    const auto& c = check.components[k];
+    fmt::print("{:>4} {:>20.10e} {:>20.10e} {:>12.2e}\n", k, c.finite_difference, c.adjoint, c.relative_error);
   }
-  fmt::print("largest error relative to max|ξ|: {:.2e}\n", worst);
+  fmt::print("largest error relative to max|ξ|: {:.2e}\n", check.worst_relative_error);
   if (e.friction_gradient.size()) {
     const auto params = sensitivity::friction_parameters(body.definition().contact->law);
     for (Eigen::Index k = 0; k < e.friction_gradient.size(); ++k)

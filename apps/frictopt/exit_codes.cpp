@@ -15,6 +15,9 @@ int run_guarded(const std::function<int()>& command) {
   } catch (const InvalidInput& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitInvalidInput;
+  } catch (const NumericalFailure& e) {
+    std::cerr << "error: numerical failure: " << e.what() << '\n';
+    return kExitNumericalFailure;
   } catch (const std::bad_alloc&) {
     std::cerr << "error: out of memory: the problem does not fit in this machine's memory (see the size "
                  "limits in docs/case-format.md)\n";

@@ -15,7 +15,8 @@ inline constexpr int kExitInternalError = 1;
 /// Bad input: the case, a CLI argument (also CLI11's usage errors), a design or measurement
 /// file, a run directory that is refused (foreign files, locked by another run, wrong case).
 inline constexpr int kExitInvalidInput = 2;
-/// A solver failed (status not converged): the one-line report says what failed.
+/// A solver failed (a status other than converged, or NumericalFailure): the one-line report
+/// says what failed.
 inline constexpr int kExitNumericalFailure = 3;
 /// std::bad_alloc: the problem does not fit in memory.
 inline constexpr int kExitOutOfMemory = 4;

@@ -53,7 +53,7 @@ constexpr double kMaxGrading = 10.0;
 // which n^(4/3) is an upper bound.
 constexpr std::int64_t kMaxUnknowns = 2'000'000;
 constexpr double kCalibrationUnknowns = 100'860.0;
-constexpr double kCalibrationBytes = 1.1e9;
+constexpr double kCalibrationBytes = 1.85e9;  // 1,848,728 kB peak (GNU time), cases3d/punch-large
 constexpr int kMaxControlPointsPerDirection = 64;  // Bernstein degree 63
 constexpr std::int64_t kMaxDesignVariables = 1024;  // the bundle QP is dense in d
 constexpr int kMaxPolygonSides = 256;               // 1 − cos(π/256) < 1e-4 of the disc
@@ -68,8 +68,8 @@ constexpr double kMinLength = 1e-6;      // m
 constexpr double kMaxLength = 1e6;       // m
 constexpr double kMaxFriction = 10.0;    // no dry-friction pair comes near
 
-double estimated_bytes(std::int64_t unknowns) {
-  return kCalibrationBytes * std::pow(static_cast<double>(unknowns) / kCalibrationUnknowns, 4.0 / 3.0);
+double estimated_bytes(double unknowns) {
+  return kCalibrationBytes * std::pow(unknowns / kCalibrationUnknowns, 4.0 / 3.0);
 }
 
 std::string_view dim_name(int dim) { return dim == 2 ? "2D" : "3D"; }
@@ -169,17 +169,15 @@ mesh::GridResolution read_mesh(const TableReader& r, int dim) {
   if (static_cast<int>(cells.size()) != dim) r.fail_value("cells", what);
   for (std::size_t i = 0; i < cells.size(); ++i)
     if (cells[i] < 1) r.fail_entry("cells", i, "an integer >= 1");
-  std::int64_t nodes = 1;  // each factor <= 2^31, at most 3 of them: no int64 overflow before the check
-  for (int c : cells) {
-    nodes *= static_cast<std::int64_t>(c) + 1;
-    if (nodes > kMaxUnknowns) break;
-  }
-  const std::int64_t unknowns = nodes * dim;
-  if (unknowns > kMaxUnknowns)
-    r.fail_value("cells", fmt::format("at most {} unknowns ({} per node); this grid has {}{} nodes, about {:.0f} GB "
-                                      "of memory for its factorization (docs/case-format.md, \"Size limits\")",
-                                      kMaxUnknowns, dim, nodes > kMaxUnknowns ? "more than " : "",
-                                      std::min(nodes, kMaxUnknowns), estimated_bytes(std::max(unknowns, kMaxUnknowns)) / 1e9));
+  // Counted in double: exact far beyond the limit and free of overflow (three factors <= 2^31).
+  double nodes = 1.0;
+  for (int c : cells) nodes *= static_cast<double>(c) + 1.0;
+  const double unknowns = nodes * dim;
+  if (unknowns > static_cast<double>(kMaxUnknowns))
+    r.fail_value("cells", fmt::format("at most {} unknowns ({} per node): this grid has {:.4g} nodes and {:.4g} "
+                                      "unknowns and would need about {:.3g} GB of memory (docs/case-format.md, "
+                                      "\"Size limits\")",
+                                      kMaxUnknowns, dim, nodes, unknowns, estimated_bytes(unknowns) / 1e9));
   // GridResolution keeps (n1, n2, n_vertical); n2 is unused (0) in 2D.
   m.cells = dim == 2 ? std::array<int, 3>{cells[0], 0, cells[1]} : std::array<int, 3>{cells[0], cells[1], cells[2]};
   if (auto grading = r.optional_number("grading")) {
@@ -470,16 +468,23 @@ Friction read_contact(const TableReader& r, int dim, std::string_view origin) {
   return {FrictionKind::kNone, dim == 2 ? contact::FrictionLaw::interval(0.0, 0.0) : contact::FrictionLaw::disc(0.0)};
 }
 
-// [solver.coulomb] and [solver.qp] override the Coulomb fixed point's and the Tresca QP's
-// own defaults (absent keys keep them).
+// Solver limits (docs/case-format.md, "Solver settings"): a relative tolerance below the
+// double precision floor cannot be met, so with a large iteration cap a solve would run for
+// hours before reporting the cap; both are bounded. [solver.coulomb] and [solver.qp] override
+// the Coulomb fixed point's and the Tresca QP's own defaults (absent keys keep them).
+constexpr double kMinRelativeTolerance = 1e-15;
 template <class SolverOptions>
-void read_iterative_solver(const TableReader& r, SolverOptions& options) {
+void read_iterative_solver(const TableReader& r, int max_iterations_bound, SolverOptions& options) {
   if (const std::optional<int> n = r.optional_int("max_iterations")) {
-    if (*n < 1) r.fail_value("max_iterations", "max_iterations >= 1");
+    if (*n < 1 || *n > max_iterations_bound)
+      r.fail_value("max_iterations", fmt::format("1 <= max_iterations <= {}", max_iterations_bound));
     options.max_iterations = *n;
   }
   if (const std::optional<double> tol = r.optional_number("relative_tolerance")) {
-    if (!(*tol > 0)) r.fail_value("relative_tolerance", "relative_tolerance > 0");
+    if (!(*tol >= kMinRelativeTolerance && *tol < 1))
+      r.fail_value("relative_tolerance",
+                   fmt::format("{:g} <= relative_tolerance < 1 (below it double precision cannot meet it)",
+                               kMinRelativeTolerance));
     options.relative_tolerance = *tol;
   }
 }
@@ -492,8 +497,9 @@ contact::CoulombSolver::Options read_solver(const TableReader& r, std::string_vi
     return t ? std::optional<TableReader>(std::in_place, *t, r.field(key), origin, keys)
              : std::nullopt;
   };
-  if (auto coulomb = sub("coulomb", {"max_iterations", "relative_tolerance"})) read_iterative_solver(*coulomb, s);
-  if (auto qp = sub("qp", {"max_iterations", "relative_tolerance"})) read_iterative_solver(*qp, s.tresca);
+  if (auto coulomb = sub("coulomb", {"max_iterations", "relative_tolerance"}))
+    read_iterative_solver(*coulomb, 10'000, s);
+  if (auto qp = sub("qp", {"max_iterations", "relative_tolerance"})) read_iterative_solver(*qp, 1'000'000, s.tresca);
   // [solver.fem] is reserved: it may appear, but has no keys yet (the direct solver has no
   // options a case should change); the empty key list makes any key an error.
   (void)sub("fem", {});

@@ -187,6 +187,13 @@ JsonValue checkpoint_to_json(const RunCheckpoint& c) {
   run["state_solves"] = c.state_solves;
   run["warm_start_dim"] = c.warm_start_dim;
   run["warm_start"] = c.warm_start;
+  JsonValue center = JsonValue::object();
+  center["coulomb_iterations"] = c.center.coulomb_iterations;
+  center["qp_iterations"] = c.center.qp_iterations;
+  center["weak_nodes"] = c.center.weak_nodes;
+  center["state_seconds"] = c.center.state_seconds;
+  center["subgradient_seconds"] = c.center.subgradient_seconds;
+  run["center"] = std::move(center);
   j["run"] = std::move(run);
   JsonValue fingerprint = JsonValue::object();
   fingerprint["dim"] = c.fingerprint.dim;
@@ -253,6 +260,12 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
   if (c.warm_start.size() > 0 && (c.warm_start_dim < 2 || c.warm_start.size() % c.warm_start_dim != 0))
     fail_field(origin, "run.warm_start", fmt::format("a list of {} numbers", c.warm_start.size()),
                fmt::format("a multiple of run.warm_start_dim = {} (2 or 3)", c.warm_start_dim));
+  const Fields center(run.at("center"), origin, "run.center.");
+  c.center.coulomb_iterations = center.count("coulomb_iterations");
+  c.center.qp_iterations = center.count("qp_iterations", 0, std::numeric_limits<std::int64_t>::max());
+  c.center.weak_nodes = center.count("weak_nodes", 0, std::numeric_limits<std::int64_t>::max());
+  c.center.state_seconds = center.number("state_seconds", true);
+  c.center.subgradient_seconds = center.number("subgradient_seconds", true);
   const Fields f(top.at("fingerprint"), origin, "fingerprint.");
   c.fingerprint.dim = static_cast<int>(f.count("dim", 2, 3));
   c.fingerprint.case_hash = f.hash("case_hash");

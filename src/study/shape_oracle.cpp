@@ -30,8 +30,8 @@ std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition
     if (!initial_state) solved = body.solve(body.definition().initial_design, "initial design");
     const BodyState& s = initial_state ? *initial_state : *solved;
     if (s.summary.status != Status::kConverged)
-      throw InvalidInput(std::string("cost ") + what + " = initial_mean: the state at the initial design did not solve: " +
-                         s.summary.message);
+      throw NumericalFailure(std::string("cost ") + what + " = initial_mean: the state at the initial design did not solve: " +
+                             s.summary.message);
     return s;
   };
   switch (definition.kind) {

@@ -393,7 +393,7 @@ TEST(ParseCase, OutOfRangeValuesNameFieldValueAndRange) {
   expect_invalid(replaced(kValid2d, "slope_bound = 1.0", "slope_bound = 0"),
                  {"design.slope_bound = 0; expected slope_bound > 0"});
   expect_invalid(replaced(kValid2d, "max_iterations = 40", "max_iterations = 0"),
-                 {"solver.coulomb.max_iterations = 0; expected max_iterations >= 1"});
+                 {"solver.coulomb.max_iterations = 0; expected 1 <= max_iterations <= 10000"});
   expect_invalid(replaced(kValid2d, "relative_tolerance = 1e-9", "relative_tolerance = -1e-9"),
                  {"solver.coulomb.relative_tolerance = -1e-09"});
   expect_invalid(replaced(kValid2d, "every = 5", "every = 0"), {"output.every = 0"});

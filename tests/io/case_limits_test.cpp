@@ -109,7 +109,7 @@ TEST(CaseLimits, AHugeGridIsRefusedAtOnceWithAMemoryEstimate) {
   expect_invalid(replaced(kCase3d, "cells = [4, 4, 2]", "cells = [300, 300, 300]"),
                  {"mesh.cells", "at most 2000000 unknowns", "GB"});
   expect_invalid(replaced(kCase3d, "cells = [4, 4, 2]", "cells = [2000000000, 2000000000, 2000000000]"),
-                 {"mesh.cells", "more than"});
+                 {"mesh.cells", "8e+27 nodes", "2.4e+28 unknowns"});
   expect_invalid(replaced(kCase2d, "cells = [29, 14]", "cells = [1000000, 1000000]"), {"mesh.cells", "GB"});
 }
 
@@ -141,6 +141,16 @@ TEST(CaseLimits, PhysicalBoundsNameTheField) {
                  {"load[0].traction[1]", "material.young"});
   expect_invalid(replaced(kCase2d, "a = 2.0", "a = 1e300"), {"geometry.a", "1000000 m"});
   expect_invalid(replaced(kCase2d, "mu = 0.3", "mu = 1e300"), {"contact.friction.mu", "<= 10"});
+}
+
+TEST(CaseLimits, SolverSettingsThatCouldNeverBeMetAreRefused) {
+  // Found by the case fuzzer (tests/fuzz): relative_tolerance = 1e-300 with a huge cap ran for hours.
+  expect_invalid(std::string(kCase2d) + "\n[solver.qp]\nrelative_tolerance = 1e-300\n",
+                 {"solver.qp.relative_tolerance = 1e-300", "1e-15 <= relative_tolerance < 1"});
+  expect_invalid(std::string(kCase2d) + "\n[solver.qp]\nmax_iterations = 2147483647\n",
+                 {"solver.qp.max_iterations = 2147483647", "<= 1000000"});
+  expect_invalid(std::string(kCase2d) + "\n[solver.coulomb]\nmax_iterations = 100000\n",
+                 {"solver.coulomb.max_iterations = 100000", "<= 10000"});
 }
 
 TEST(CaseLimits, AMeshWithoutFreeUnknownsAboveTheContactSurfaceIsRefused) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The error types and the assert macro every frictopt module may use (STYLE.md §5):
-// bad input at an API boundary throws InvalidInput; broken invariants are FRICTOPT_ASSERT.
+// bad input at an API boundary throws InvalidInput; a result a caller cannot do without
+// that a solver failed to produce throws NumericalFailure; broken invariants are FRICTOPT_ASSERT.
 #pragma once
 
 #include <source_location>
@@ -15,6 +16,15 @@ namespace frictopt {
 class InvalidInput : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
+};
+
+/// A solver failed where the caller cannot go on without its result (e.g. the state a cost
+/// is normalized by). Solvers themselves report non-convergence as a Status in their Summary;
+/// this is for the layers above that need the result. The command line maps it to exit code 3,
+/// the same as a failed solve reported by status.
+class NumericalFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 namespace detail {

@@ -44,6 +44,15 @@ struct RunCheckpoint {
   double initial_cost = kNaN;        ///< Θ(α⁰), for summary.json
   double elapsed_seconds = 0.0;      ///< over all processes of the run so far
   std::int64_t state_solves = 0;     ///< over all processes of the run so far
+  /// The history columns of the centre's evaluation (a resumed process has not evaluated the
+  /// centre itself, so its rows repeat these until the next serious step).
+  struct CenterColumns {
+    std::int64_t coulomb_iterations = 0;
+    std::int64_t qp_iterations = 0;
+    std::int64_t weak_nodes = 0;
+    double state_seconds = 0.0;
+    double subgradient_seconds = 0.0;
+  } center;
 };
 
 /// Every field (doubles round-trip exactly: JSON numbers are written with 17 significant digits).

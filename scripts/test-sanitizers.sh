@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The quick tests under AddressSanitizer and UndefinedBehaviorSanitizer (issue 17), in a second
+# build tree ./build-asan (RelWithDebInfo: -O2 -g, frictopt's asserts on; -fno-sanitize-recover
+# makes any undefined behaviour fail its test). CI runs it after scripts/test.sh.
+#   scripts/test-sanitizers.sh            the quick tests (label quick, without the slow ones)
+#   scripts/test-sanitizers.sh -R Cli     any ctest arguments pass through
+# About 15 min on 2 cores with a cold compiler cache (build ~10 min, tests ~5 min).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+bash "$root/scripts/install-deps.sh"
+build="${FRICTOPT_ASAN_BUILD_DIR:-$root/build-asan}"
+jobs="${FRICTOPT_JOBS:-$(nproc)}"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFRICTOPT_SANITIZE="address;undefined" \
+  -DCMAKE_CXX_FLAGS="-fno-sanitize-recover=all" -DFRICTOPT_WARNINGS_AS_ERRORS=ON \
+  -DFRICTOPT_BUILD_BENCHMARKS=OFF >/dev/null
+cmake --build "$build" -j "$jobs"
+export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+cd "$build"
+if [ "$#" -eq 0 ]; then set -- -L quick -LE "slow|viz"; fi
+ctest --output-on-failure -j "$jobs" "$@"

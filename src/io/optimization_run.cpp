@@ -1,0 +1,176 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/io/optimization_run.hpp"
+
+#include <fmt/format.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frictopt/core/error.hpp"
+#include "frictopt/io/case_file.hpp"
+#include "frictopt/io/checkpoint.hpp"
+#include "frictopt/io/state_output.hpp"
+#include "frictopt/io/summary_json.hpp"
+#include "frictopt/study/elastic_body.hpp"
+#include "frictopt/study/shape_optimization.hpp"
+#include "frictopt/study/shape_oracle.hpp"
+
+namespace frictopt::io {
+namespace {
+
+const std::vector<std::string> kHistoryColumns = {
+    "iteration",    "evaluations",        "step",          "theta",      "t",           "stationarity_relative",
+    "aggregate_error_relative", "bundle_size", "serious_steps", "null_steps", "state_solves", "coulomb_iterations",
+    "qp_iterations", "weak_nodes",        "state_seconds", "subgradient_seconds", "elapsed_seconds"};
+
+}  // namespace
+
+OptimizationRunResult run_optimization(RunDirectory& run, const std::filesystem::path& case_path, bool resume,
+                                       const std::function<void(const std::string&)>& report) {
+  const CaseDescription description = load_case(case_path);
+  const study::BodyDefinition& definition = description.body;
+  if (!definition.contact) throw InvalidInput(case_path.string() + ": optimize needs a [contact] table");
+  study::ElasticBody body(definition);
+  study::require_admissible_design(body, definition.initial_design, 1e-9,
+                                   case_path.string() + ": design.initial");
+  const CaseFingerprint fingerprint = fingerprint_of(description, body);
+  std::optional<RunCheckpoint> checkpoint;
+  if (resume) {
+    checkpoint = run.read_checkpoint();
+    run.check_resume(description, *checkpoint, fingerprint);
+  }
+  study::ShapeOracle oracle(body, description.required_cost());
+  const optim::BundleTrust::Options& options = description.optimization;
+
+  std::vector<std::string> notes;
+  CsvWriter history = run.open_history(kHistoryColumns, checkpoint ? checkpoint->method.iteration : 0, notes);
+  run.start_series(definition.name, checkpoint ? checkpoint->method.iteration : 0, notes);
+  for (const std::string& note : notes) report(fmt::format("note: {}", note));
+
+  const int every = description.output.every;
+  int output_solves = 0;  // solves made for pictures only: not counted as the method's
+  const auto write_design_vtu = [&](int iteration, const Eigen::VectorXd& alpha) {
+    if (!description.output.vtk) return;
+    // Output must not change the numbers: a state solved here for the picture (the design is
+    // not among the oracle's recent states, e.g. right after a resume) would move the warm
+    // start of the next solve, so it is restored afterwards.
+    const auto warm_start = body.warm_start();
+    const int solves = oracle.num_state_solves();
+    run.add_to_series(iteration, [&](const std::filesystem::path& vtu) { write_state_vtu(vtu, body, oracle.state(alpha)); });
+    output_solves += oracle.num_state_solves() - solves;
+    body.set_warm_start(warm_start);
+  };
+
+  // The run's counters continue over resumes (history.csv's and summary.json's alike).
+  const double elapsed_offset = checkpoint ? checkpoint->elapsed_seconds : 0.0;
+  const std::int64_t solves_offset = checkpoint ? checkpoint->state_solves : 0;
+  double initial_value = kNaN;
+  if (checkpoint) {
+    initial_value = checkpoint->initial_cost;
+    if (checkpoint->warm_start.size() > 0) {
+      contact::ContactState warm(checkpoint->warm_start_dim, checkpoint->warm_start.size() / checkpoint->warm_start_dim);
+      warm.z = checkpoint->warm_start;
+      body.set_warm_start(std::move(warm));
+    } else {
+      body.set_warm_start(std::nullopt);
+    }
+    report(fmt::format("resuming at iteration {} (Θ = {:.6e}, {} evaluations so far)", checkpoint->method.iteration,
+               checkpoint->method.f, checkpoint->method.evaluations));
+  } else {
+    // Θ(α⁰) for the summary, now: the method's first evaluation then hits the cache.
+    initial_value = oracle.evaluate_design(definition.initial_design, true).value;
+    write_design_vtu(0, definition.initial_design);
+  }
+
+  report(fmt::format("{}: {} design variables, {} contact nodes, cost {}, {} inequalities and {} equalities of Υ",
+             case_path.string(), definition.shape.num_controls(), body.contact_boundary()->num_nodes(),
+             oracle.cost().name(), body.admissible_set().A_in.rows(), body.admissible_set().A_eq.rows()));
+  // The method minimizes Θ/|Θ(α⁰)| (study defaults): its stationarity measure ‖z + ω‖ and
+  // aggregate error are relative to |Θ(α⁰)| per unit of α; summary.json also gives them in Θ's units.
+  report(fmt::format("{:>5} {:>6} {:>14} {:>14} {:>10} {:>12} {:>8} {:>9}", "iter", "evals", "theta", "step", "t",
+             "stat. (rel)", "QP its", "elapsed"));
+  // State solves this process made before the method started (the oracle's initial state on
+  // a resume) were counted by the interrupted process already.
+  const std::int64_t solves_before = checkpoint ? oracle.num_state_solves() : 0;
+  RunCheckpoint::CenterColumns center = checkpoint ? checkpoint->center : RunCheckpoint::CenterColumns{};
+  const auto on_progress = [&](const study::OptimizationProgress& p) {
+    const auto& m = p.method;
+    const double elapsed = elapsed_offset + p.elapsed_seconds;
+    const std::int64_t solves = solves_offset + p.state_solves - solves_before - output_solves;
+    if (p.center.ok)  // else the centre is the checkpoint's, not evaluated by this process
+      center = {p.center.contact.iterations, p.center.contact.qp_iterations, p.center.index_sets.num_weak_nodes(),
+                p.center.state_seconds, p.center.subgradient_seconds};
+    history.write_row({static_cast<std::int64_t>(m.iteration), static_cast<std::int64_t>(m.evaluations),
+                       std::string(optim::to_string(m.step)), m.f, m.t, m.stationarity, m.aggregate_error,
+                       static_cast<std::int64_t>(m.bundle.size()), static_cast<std::int64_t>(m.serious_steps),
+                       static_cast<std::int64_t>(m.null_steps), solves, center.coulomb_iterations,
+                       center.qp_iterations, center.weak_nodes, center.state_seconds, center.subgradient_seconds,
+                       elapsed});
+    report(fmt::format("{:>5} {:>6} {:>14.6e} {:>14} {:>10.3e} {:>12.3e} {:>8} {:>8.1f}s", m.iteration, m.evaluations, m.f,
+               optim::to_string(m.step), m.t, m.stationarity, center.qp_iterations, elapsed));
+    if (m.iteration % every == 0) write_design_vtu(m.iteration, m.x);
+    // Last, so the checkpoint holds the state the next iteration starts from.
+    RunCheckpoint c;
+    c.method = m;
+    c.fingerprint = fingerprint;
+    if (const auto& warm = body.warm_start()) {
+      c.warm_start = warm->z;
+      c.warm_start_dim = warm->dim;
+    }
+    c.initial_cost = initial_value;
+    c.elapsed_seconds = elapsed;
+    c.state_solves = solves;
+    c.center = center;
+    run.write_checkpoint(c);
+    return CallbackResult::kContinue;
+  };
+
+  const optim::BundleTrust::Summary summary =
+      study::optimize(oracle, options, on_progress, checkpoint ? &checkpoint->method : nullptr);
+  report(summary.brief_report());
+
+  const study::Evaluation& final = oracle.evaluate_design(summary.x, true);
+  if (!run.series_has(summary.iterations)) write_design_vtu(summary.iterations, summary.x);
+  JsonValue design = JsonValue::object();
+  design["alpha"] = summary.x;
+  run.write_json_file(RunDirectory::kFinalDesign, design);
+
+  JsonValue json = JsonValue::object();
+  json["case"] = case_path.string();
+  json["command"] = "optimize";
+  json["cost"] = oracle.cost().name();
+  json["status"] = std::string(to_string(summary.status));
+  json["message"] = summary.message;
+  json["stopped_by"] = to_json(summary).at("stopped_by");
+  json["initial_cost"] = initial_value;
+  json["final_cost"] = final.value;
+  json["alpha"] = summary.x;
+  json["initial_alpha"] = definition.initial_design;
+  json["iterations"] = summary.iterations;
+  json["serious_steps"] = summary.serious_steps;
+  json["null_steps"] = summary.null_steps;
+  json["evaluations"] = summary.evaluations;
+  json["failed_evaluations"] = summary.failed_evaluations;  // this process's
+  json["stationarity"] = summary.stationarity;  // ‖z + ω‖ in units of Θ per unit of α
+  json["aggregate_error"] = summary.aggregate_error;
+  json["objective_scale"] = summary.objective_scale;  // |Θ(α⁰)|: history.csv's columns are relative to it
+  json["stationarity_relative"] = summary.stationarity / summary.objective_scale;
+  json["cost_kind"] = std::string(to_string(description.cost->kind));
+  // The method's state solves over all resumes, as history.csv (pictures' solves not counted).
+  json["state_solves"] = solves_offset + oracle.num_state_solves() - solves_before - output_solves;
+  json["time_seconds"] = summary.time_seconds;                      // this process's optimizer
+  json["elapsed_seconds"] = elapsed_offset + summary.time_seconds;   // over all resumes
+  json["final_index_sets"] = final.index_sets.summary();
+  json["final_contact"] = final.contact.brief_report();
+  json["final_contact_solve"] = to_json(final.contact);
+  json["optimizer"] = to_json(summary);
+  run.write_json_file(RunDirectory::kSummary, json);
+  OptimizationRunResult result;
+  result.summary = summary;
+  result.initial_cost = initial_value;
+  result.final_cost = final.value;
+  return result;
+}
+
+}  // namespace frictopt::io
