@@ -11,6 +11,13 @@ find_package(fmt REQUIRED)
 # linalg: the sparse Cholesky backend and the dense kernels (private). Debian's SuiteSparse 5.x
 # ships no CMake config; CHOLMOD is found through our small module cmake/FindCholmod.cmake.
 find_package(Cholmod REQUIRED)
+# The generic libblas/liblapack names, which Debian's alternatives point at OpenBLAS — the BLAS
+# that CHOLMOD itself is linked against. Without a vendor FindBLAS may pick ATLAS
+# (libf77blas + libatlas) when it is installed; linked ahead of libblas it also captured
+# CHOLMOD's dgemm/dsyrk/dtrsm, which made the supernodal factorization twice as slow.
+if(NOT DEFINED BLA_VENDOR)
+  set(BLA_VENDOR Generic)
+endif()
 find_package(BLAS REQUIRED)
 find_package(LAPACK REQUIRED)
 # study: identification (least squares, covariance; issue 7).

@@ -120,6 +120,20 @@ TEST(SpdSolver, ReportsASystemWithoutUnknownsInsteadOfCrashing) {
   EXPECT_NE(solver->message().find("no unknowns"), std::string::npos) << solver->message();
 }
 
+// The backend's own analysis failing (here CHOLMOD refusing a non-square stype = −1 matrix: it
+// returns no factor) is a status with CHOLMOD's reason in every build, never a dereference.
+TEST(SpdSolver, ReportsAFailedBackendAnalysis) {
+  Eigen::SparseMatrix<double> rectangular(3, 2);
+  rectangular.insert(0, 0) = 1.0;
+  rectangular.insert(2, 1) = 1.0;
+  rectangular.makeCompressed();
+  const std::unique_ptr<SpdSolver> solver = SpdSolver::create();
+  EXPECT_EQ(solver->analyze(rectangular), Status::kNumericalFailure);
+  EXPECT_NE(solver->message().find("cholmod_analyze returned no factor"), std::string::npos) << solver->message();
+  EXPECT_FALSE(solver->analyzed());
+  EXPECT_EQ(solver->factorize(rectangular), Status::kNumericalFailure);
+}
+
 TEST(SpdSolver, RefusesInvalidTrailingIndices) {
   const Eigen::SparseMatrix<double> A = grid_laplacian(2);
   const std::unique_ptr<SpdSolver> solver = SpdSolver::create();
