@@ -49,6 +49,10 @@ JsonValue checkpoint_to_json(const optim::BundleTrust::IterationSummary& s) {
   j["z_prev"] = s.z_prev;
   j["sigma_prev"] = s.sigma_prev;
   j["objective_scale"] = s.objective_scale;
+  j["f_start"] = s.f_start;  // start data of the relative stopping test
+  j["g_start_norm"] = s.g_start_norm;
+  j["t_start"] = s.t_start;
+  j["t_reference"] = s.t_reference;
   JsonValue bundle = JsonValue::array();
   for (const optim::BundleElement& e : s.bundle) {
     JsonValue element = JsonValue::object();
@@ -85,6 +89,10 @@ optim::BundleTrust::IterationSummary checkpoint_from_json(const JsonValue& j) {
     s.z_prev = vector_of(j.at("z_prev"));
     s.sigma_prev = number_of(j.at("sigma_prev"));
     s.objective_scale = number_of(j.at("objective_scale"));
+    // Absent in checkpoints written before the relative stopping test: resume() rebuilds them.
+    for (auto [key, field] : {std::pair{"f_start", &s.f_start}, std::pair{"g_start_norm", &s.g_start_norm}, std::pair{"t_start", &s.t_start},
+                              std::pair{"t_reference", &s.t_reference}})
+      if (j.contains(key)) *field = number_of(j.at(key));
     for (const JsonValue& e : j.at("bundle").as_array()) {
       optim::BundleElement element;
       element.g = vector_of(e.at("g"));
