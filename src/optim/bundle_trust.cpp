@@ -195,6 +195,10 @@ constexpr double kAutomaticStepFactor = 10.0;
 // certified": two give the certificate a hundredfold margin, and a run that cannot be
 // certified still ends.
 constexpr int kMaxTightenings = 2;
+// Restarts (dropping the non-local elements) after an uncertified stop: each costs a few
+// evaluations; without a cap a run could cycle between the same stop and the same null step
+// (seen on MAD6).
+constexpr int kMaxRestarts = 10;
 
 // The accepted outcome of one inner iteration (spec 04 §4): the new bundle element and what
 // the step rule needs to update t.
@@ -251,11 +255,13 @@ class Run {
   }
 
  private:
-  // Locality β = max(|α|, γ s²/t_ref) (spec 04 §5 item 8 with γ → γ/t_ref), t_ref = the t of
-  // the last serious step: s²/t_ref has the units of f (t is in x²/f), so β — and with it the
-  // method — reads the same for f·c and x·c, which the spec's γ s² does not (docs/optim.md).
-  // t_ref is fixed during an inner iteration, so shrinking t makes new cuts more local, as in
-  // the spec's fixed-γ reading.
+  // Locality β = max(|α|, γ s²/t_ref) (spec 04 §5 item 8 with γ → γ/t_ref), t_ref = t_1: s²/t_1
+  // has the units of f (t is in x²/f), so β — and with it the method — reads the same for f·c
+  // and x·c (with the automatic first step), which the spec's γ s² does not (docs/optim.md).
+  // t_ref is fixed, so shrinking t makes new cuts more local, as in the spec's fixed-γ reading.
+  // (Tried and rejected on the test set: t_ref = current t makes every trial as "far" as the
+  // predicted decrease and t collapses; t_ref = t of the last serious step let the growth of
+  // t weaken locality until nonconvex problems stopped at non-optimal stationary points.)
   [[nodiscard]] double beta_of(double alpha, double dist, double t_ref) const {
     return std::max(std::abs(alpha), o_.locality_weight * dist * dist / t_ref);
   }
@@ -306,7 +312,7 @@ class Run {
     }
     // Not certified. If far elements carried the aggregate, the stop was premature: drop them
     // (a restart of the bundle at x, as bundle codes do when the aggregate goes stale) and go on.
-    if (local.size() < st.bundle.size()) {
+    if (local.size() < st.bundle.size() && restarts_ < kMaxRestarts) {
       st.bundle = std::move(local);
       ++restarts_;
       return Check::kRestart;

@@ -74,7 +74,7 @@ class BundleTrust {
     double f_start = kNaN;      ///< f(x_1) in the method's units (for F)
     double g_start_norm = kNaN; ///< ‖g(x_1)‖ in the method's units (for G)
     double t_start = kNaN;      ///< t_1 (t_min = t_min_relative·t_1)
-    double t_reference = kNaN;  ///< t of the last serious step: unit of the locality γ s²/t_ref
+    double t_reference = kNaN;  ///< unit of the locality γ s²/t_ref (= t_1; docs/optim.md)
   };
   using IterationCallback = std::function<CallbackResult(const IterationSummary&)>;
 
@@ -112,8 +112,7 @@ class BundleTrust {
     // per active piece (DEM, CB3: thousands of null steps with 4, a few dozen with 10).
     // Otherwise >= 3.
     int max_bundle_size = 0;
-    // γ of β = max(|α|, γ s²/t_ref) (spec 04 §5 item 8, made unit-free by t_ref, the t of the
-    // last serious step). > 0.
+    // γ of β = max(|α|, γ s²/t_1) (spec 04 §5 item 8, made unit-free by the first t). > 0.
     double locality_weight = 1;
     // Reading (a′) of spec 04 §5 item 5: within an inner iteration, also try a larger t (up to
     // t_growth_limit·t) when a descent step is "too short". Costs evaluations; the between-
