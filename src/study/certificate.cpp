@@ -370,7 +370,7 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
                                    alpha.size(), d));
   // N_Υ(α) exists on Υ only: refuse an outside design before any state solve or adjoint.
   const shape::LinearConstraints& upsilon = body.admissible_set();
-  const optim::LinearConstraints constraints = to_optim_constraints(upsilon);
+  const LinearConstraints& constraints = upsilon;  // one type: shape builds it, optim uses it
   if (const double violation = constraints.max_violation(alpha);
       violation > options.active_tolerance * std::max(1.0, alpha.lpNorm<Eigen::Infinity>()))
     throw InvalidInput(fmt::format("certify: the design violates the admissible set by {:.3e}; expected a design in "

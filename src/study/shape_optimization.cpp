@@ -5,17 +5,6 @@
 
 namespace frictopt::study {
 
-optim::LinearConstraints to_optim_constraints(const shape::LinearConstraints& u) {
-  optim::LinearConstraints c;
-  c.lower = u.lower;
-  c.upper = u.upper;
-  c.A_in = u.A_in;
-  c.b_in = u.b_in;
-  c.A_eq = u.A_eq;
-  c.b_eq = u.b_eq;
-  return c;
-}
-
 optim::BundleTrust::Options default_study_options(const ElasticBody& body) {
   optim::BundleTrust::Options o;
   o.scale_objective = true;
@@ -40,7 +29,7 @@ optim::BundleTrust::Summary optimize(ShapeOracle& oracle, optim::BundleTrust::Op
       return on_progress({s, center, elapsed, oracle.num_state_solves()});
     };
   }
-  const optim::BundleTrust method(options, to_optim_constraints(oracle.body().admissible_set()));
+  const optim::BundleTrust method(options, oracle.body().admissible_set());
   return checkpoint ? method.resume(oracle, *checkpoint)
                     : method.minimize(oracle, oracle.body().definition().initial_design);
 }
