@@ -210,6 +210,7 @@ struct Trial {
   double t = kNaN;       // t of the QP whose direction was used
   double step = 1.0;     // fraction s of d taken (line search), 1 otherwise
   double ratio = kNaN;   // (f(y) − f(x_k)) / v: actual over predicted change
+  bool repeats_known_point = false;  // y equals the point of an element already in the bundle
   DirectionQp qp;        // the last QP at x_k (aggregates for the reset)
 };
 
@@ -491,6 +492,9 @@ bool Run::inner_iteration(BundleTrust::IterationSummary& st, Trial& out) {
     if (local && near) {  // (c)(i)
       trial.lin_err = a_y;
       line_search(st, qp, trial);
+      for (const BundleElement& b : st.bundle)
+        if (!b.is_aggregate() && (b.y - trial.y).norm() <= 1e-12 * (1.0 + trial.y.norm()))
+          trial.repeats_known_point = true;
       out = std::move(trial);
       return true;
     }
@@ -606,6 +610,11 @@ void Run::update_t(BundleTrust::IterationSummary& st, const Trial& trial) {
   if (trial.kind == StepKind::kSerious && trial.ratio >= o_.model_agreement) {
     const double grown = trial.ratio >= 1.0 ? o_.t_growth_limit * t : t / (2.0 * (1.0 - trial.ratio));
     t = std::clamp(grown, t, o_.t_growth_limit * t);
+  } else if (trial.kind == StepKind::kLineSearchNull && trial.repeats_known_point) {
+    // The line search ended at a point the bundle already holds: the new cut cannot change the
+    // next QP, which would repeat the same line search (21 evaluations each, until the
+    // evaluation limit, on the 2D example 5.2.2). Halve t so the next direction differs.
+    t *= 0.5;
   }
   if (!std::isnan(o_.t_max)) t = std::min(t, o_.t_max);
   st.t = t;
