@@ -267,16 +267,18 @@ class Run {
     return std::max(std::abs(alpha), o_.locality_weight * dist * dist / t_ref);
   }
   // β_i of every element; also stored in the elements (reports, reset, certificate).
-  Eigen::VectorXd localities(std::vector<BundleElement>& bundle, double t) const {
+  Eigen::VectorXd localities(std::vector<BundleElement>& bundle, double t_ref) const {
     Eigen::VectorXd beta(static_cast<Eigen::Index>(bundle.size()));
     for (std::size_t i = 0; i < bundle.size(); ++i) {
-      bundle[i].locality = beta_of(bundle[i].lin_err, bundle[i].distance, t);
+      bundle[i].locality = beta_of(bundle[i].lin_err, bundle[i].distance, t_ref);
       beta(static_cast<Eigen::Index>(i)) = bundle[i].locality;
     }
     return beta;
   }
 
-  // Relative stopping test (docs/optim.md): ‖z + ω‖ <= ε·G and σ + μᵀ(c − Cx) <= ε·F, with
+  // Relative stopping test (docs/optim.md): ‖z + ω‖ <= ε·G, σ + μᵀ(c − Cx) <= ε·F and −v <= ε·F
+  // (the next step's predicted decrease is negligible: keeps a large t from stopping on a flat
+  // aggregate), with
   // G = max(‖g(x_k)‖, √ε·‖g(x_1)‖) and F = max(|f(x_k)|, √ε·|f(x_1)|): relative to the
   // subgradient and value at the center, floored by √ε times those at the start so that a
   // smooth minimum (g(x_k) → 0) or a zero optimal value (f(x_k) → 0) still ends the run.
@@ -326,13 +328,15 @@ class Run {
       test_factor_ *= 0.1;
       return Check::kRestart;
     }
+    // (The restart and tightening counters belong to this minimize/resume call; a resumed run
+    // starts them afresh.)
     std::ostringstream m;
     m << "the stopping test passed (|z+w| = " << st.stationarity * st.objective_scale
       << ", agg. error = " << st.aggregate_error * st.objective_scale << ") but ";
     if (c.status != Status::kConverged)
       m << "the certificate QP failed: " << c.message;
     else
-      m << "the stationarity certificate of the " << st.bundle.size() << " local subgradients at x is "
+      m << "the stationarity certificate of the " << local.size() << " local subgradients at x is "
         << c.distance * st.objective_scale << " > epsilon*G = "
         << o_.epsilon * st.subgradient_scale * st.objective_scale << ": x is not certified stationary";
     message = m.str();
