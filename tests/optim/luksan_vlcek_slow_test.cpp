@@ -5,6 +5,7 @@
 // by accident, so that fixing one fails this test until the list is updated.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <set>
 #include <string>
 

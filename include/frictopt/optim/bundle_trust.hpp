@@ -16,12 +16,12 @@
 namespace frictopt::optim {
 
 /// One bundle element (spec 04 §5 item 9): a subgradient with its linearization error α,
-/// distance measure s and locality measure β = max(|α|, γ s²) relative to the current center.
+/// distance measure s and locality measure β = max(|α|, γ s²/t_1) relative to the current center.
 struct BundleElement {
   Eigen::VectorXd g;        ///< subgradient at y (or the aggregate z for an aggregate element)
   double lin_err = 0.0;     ///< α = f(x_c) − f(y) − gᵀ(x_c − y)  (spec 04 §2)
   double distance = 0.0;    ///< s: ‖x_c − y‖ (real) or its triangle-inequality bound (aggregate)
-  double locality = 0.0;    ///< β = max(|α|, γ s²)  (spec 04 §5 item 8)
+  double locality = 0.0;    ///< β = max(|α|, γ s²/t_1)  (spec 04 §5 item 8; docs/optim.md)
   Eigen::VectorXd y;        ///< trial point; empty for an aggregate element
   bool is_center = false;   ///< y is the current stability center (β = 0)
   [[nodiscard]] bool is_aggregate() const { return y.size() == 0; }
