@@ -169,6 +169,10 @@ JsonValue checkpoint_to_json(const RunCheckpoint& c) {
   j["z_prev"] = s.z_prev;
   j["sigma_prev"] = s.sigma_prev;
   j["objective_scale"] = s.objective_scale;
+  j["f_start"] = s.f_start;  // start data of the relative stopping test
+  j["g_start_norm"] = s.g_start_norm;
+  j["t_start"] = s.t_start;
+  j["t_reference"] = s.t_reference;
   JsonValue bundle = JsonValue::array();
   for (const optim::BundleElement& e : s.bundle) {
     JsonValue element = JsonValue::object();
@@ -236,6 +240,11 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
   s.z_prev = top.vector("z_prev", n);
   s.sigma_prev = top.number("sigma_prev");
   s.objective_scale = top.positive("objective_scale");
+  // Start data of the relative stopping test (docs/optim.md); absent in checkpoints written
+  // before it (NaN: resume() rebuilds them).
+  for (auto [key, field] : {std::pair{"f_start", &s.f_start}, std::pair{"g_start_norm", &s.g_start_norm},
+                            std::pair{"t_start", &s.t_start}, std::pair{"t_reference", &s.t_reference}})
+    if (j.contains(key)) *field = top.number(key);
   const JsonValue& bundle = top.at("bundle");
   if (!bundle.is_array() || bundle.as_array().empty()) fail_field(origin, "bundle", "empty", "a non-empty list");
   for (std::size_t i = 0; i < bundle.as_array().size(); ++i) {

@@ -82,10 +82,21 @@ StationarityCertificate stationarity_certificate(const Eigen::Ref<const Eigen::M
   const auto pa = static_cast<Eigen::Index>(out.active_inequalities.size());
   const Eigen::Index q = gf.E.rows();
   // Variables w = (θ, η, ζ); M w = Ξθ + C_Aᵀη + Eᵀζ; objective ½‖Mw‖² (H = MᵀM, PSD).
+  // Scaling (issue 16): the subgradient columns are divided by S = max‖ξ_i‖ and every
+  // constraint normal by its own norm (η, ζ absorb the factors; η ≥ 0 is kept), so H has O(1)
+  // entries whatever the units: unscaled, ‖ξ‖ ~ 1e15 next to unit normals left the active-set
+  // solver without a usable tolerance. δ = S·min‖M̂ŵ‖.
+  const double S = out.subgradient_scale > 0.0 ? out.subgradient_scale : 1.0;
   Eigen::MatrixXd M(n, m + pa + q);
-  for (Eigen::Index r = 0; r < m; ++r) M.col(r) = Xi.col(rep[static_cast<std::size_t>(r)]);
-  for (Eigen::Index r = 0; r < pa; ++r) M.col(m + r) = gf.C.row(out.active_inequalities[static_cast<std::size_t>(r)]).transpose();
-  for (Eigen::Index r = 0; r < q; ++r) M.col(m + pa + r) = gf.E.row(r).transpose();
+  for (Eigen::Index r = 0; r < m; ++r) M.col(r) = Xi.col(rep[static_cast<std::size_t>(r)]) / S;
+  for (Eigen::Index r = 0; r < pa; ++r) {
+    const Eigen::VectorXd c = gf.C.row(out.active_inequalities[static_cast<std::size_t>(r)]).transpose();
+    M.col(m + r) = c / c.norm();  // rows of the general form are never zero
+  }
+  for (Eigen::Index r = 0; r < q; ++r) {
+    const double nrm = gf.E.row(r).norm();
+    M.col(m + pa + r) = nrm > 0.0 ? Eigen::VectorXd(gf.E.row(r).transpose() / nrm) : Eigen::VectorXd::Zero(n);
+  }
   QpProblem qp;
   qp.H = M.transpose() * M;
   qp.g = Eigen::VectorXd::Zero(M.cols());
@@ -96,13 +107,16 @@ StationarityCertificate stationarity_certificate(const Eigen::Ref<const Eigen::M
   qp.A_in.topLeftCorner(m + pa, m + pa) = -Eigen::MatrixXd::Identity(m + pa, m + pa);
   qp.b_in = Eigen::VectorXd::Zero(m + pa);
   Eigen::VectorXd start = Eigen::VectorXd::Zero(M.cols());
-  start(0) = 1.0;  // θ = e_1: feasible, so no phase one
+  // Start at the shortest ξ (θ = e_i): feasible, so no phase one, and already an upper bound.
+  Eigen::Index shortest = 0;
+  M.leftCols(m).colwise().norm().minCoeff(&shortest);
+  start(shortest) = 1.0;
   const DenseQpSolver solver;
   const DenseQpSolver::Summary s = solver.solve(qp, start);
-  if (!s.converged()) {
-    out.status = s.status;
+  if (!s.converged() || !s.x.allFinite()) {
+    out.status = s.converged() ? Status::kNumericalFailure : s.status;
     out.message = "stationarity QP failed: " + s.brief_report();
-    return out;
+    return out;  // distance, weights, parts stay NaN/empty: not a result
   }
   const Eigen::VectorXd w = s.x;
   out.weights = Eigen::VectorXd::Zero(Xi.cols());
@@ -110,10 +124,24 @@ StationarityCertificate stationarity_certificate(const Eigen::Ref<const Eigen::M
     const Eigen::Index r = group[static_cast<std::size_t>(j)];
     if (rep[static_cast<std::size_t>(r)] == j) out.weights(j) = std::max(0.0, w(r));
   }
-  out.weights /= out.weights.sum();
+  const double weight_sum = out.weights.sum();
+  if (!(weight_sum > 0.0) || !std::isfinite(weight_sum)) {
+    out.status = Status::kNumericalFailure;
+    out.message = "stationarity QP returned weights that do not sum to a positive number (" +
+                  std::to_string(weight_sum) + ")";
+    out.weights.resize(0);
+    return out;
+  }
+  out.weights /= weight_sum;
   out.subgradient_part = Xi * out.weights;
-  out.normal_part = M.rightCols(pa + q) * w.tail(pa + q);
+  out.normal_part = S * (M.rightCols(pa + q) * w.tail(pa + q));
   out.distance = (out.subgradient_part + out.normal_part).norm();
+  if (!std::isfinite(out.distance)) {
+    out.status = Status::kNumericalFailure;
+    out.message = "stationarity distance is not finite";
+    out.distance = kNaN;
+    return out;
+  }
   out.status = Status::kConverged;
   out.message.clear();
   return out;

@@ -9,47 +9,6 @@
 
 namespace frictopt::shape {
 
-double LinearConstraints::max_violation(const Eigen::Ref<const Eigen::VectorXd>& alpha) const {
-  double v = 0.0;
-  v = std::max(v, (lower - alpha).maxCoeff());
-  v = std::max(v, (alpha - upper).maxCoeff());
-  if (A_in.rows() > 0) v = std::max(v, (A_in * alpha - b_in).maxCoeff());
-  if (A_eq.rows() > 0) v = std::max(v, (A_eq * alpha - b_eq).cwiseAbs().maxCoeff());
-  return v;
-}
-
-std::string LinearConstraints::describe_violation(const Eigen::Ref<const Eigen::VectorXd>& alpha,
-                                                  double tol) const {
-  double worst = tol;
-  std::string what;
-  for (Eigen::Index k = 0; k < alpha.size(); ++k) {
-    if (lower(k) - alpha(k) > worst) {
-      worst = lower(k) - alpha(k);
-      what = fmt::format("alpha[{}] = {:.6g}; expected >= {:.6g}", k, alpha(k), lower(k));
-    }
-    if (alpha(k) - upper(k) > worst) {
-      worst = alpha(k) - upper(k);
-      what = fmt::format("alpha[{}] = {:.6g}; expected <= {:.6g} (upper bound C0)", k, alpha(k),
-                         upper(k));
-    }
-  }
-  for (Eigen::Index r = 0; r < A_in.rows(); ++r) {
-    const double lhs = A_in.row(r).dot(alpha);
-    if (lhs - b_in(r) > worst) {
-      worst = lhs - b_in(r);
-      what = fmt::format("{}: value {:.6g}; expected <= {:.6g}", inequality_names[r], lhs, b_in(r));
-    }
-  }
-  for (Eigen::Index r = 0; r < A_eq.rows(); ++r) {
-    const double lhs = A_eq.row(r).dot(alpha);
-    if (std::abs(lhs - b_eq(r)) > worst) {
-      worst = std::abs(lhs - b_eq(r));
-      what = fmt::format("volume: sum of alpha = {:.6g}; expected {:.6g}", lhs, b_eq(r));
-    }
-  }
-  return what;
-}
-
 LinearConstraints make_admissible_set(const BezierShape& shape, const AdmissibleSetParameters& p) {
   if (!(p.upper_bound > 0))
     throw InvalidInput(fmt::format("design.upper_bound = {}; expected > 0", p.upper_bound));
@@ -65,6 +24,7 @@ LinearConstraints make_admissible_set(const BezierShape& shape, const Admissible
   const auto m = shape.control_net();
   const auto extent = shape.extents();
   LinearConstraints c;
+  c.variable_name = "alpha";
   c.lower = Eigen::VectorXd::Zero(d);
   c.upper = Eigen::VectorXd::Constant(d, p.upper_bound);
 
@@ -115,6 +75,7 @@ LinearConstraints make_admissible_set(const BezierShape& shape, const Admissible
           *p.volume, mean_height, p.upper_bound));
     c.A_eq = Eigen::MatrixXd::Ones(1, d);
     c.b_eq = Eigen::VectorXd::Constant(1, sum);
+    c.equality_names = {"volume: sum of alpha"};
   } else {
     c.A_eq.resize(0, d);
     c.b_eq.resize(0);

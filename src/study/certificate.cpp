@@ -367,7 +367,7 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   const Eigen::Index d = body.definition().shape.num_controls();
   require_admissible_design(body, alpha, options.active_tolerance, "certify");
   const shape::LinearConstraints& upsilon = body.admissible_set();
-  const optim::LinearConstraints constraints = to_optim_constraints(upsilon);
+  const LinearConstraints& constraints = upsilon;  // one type: shape builds it, optim uses it
   Certificate c;
   c.alpha = alpha;
   const Evaluation& e = oracle.evaluate_design(alpha, false);  // ξ of every piece follows below

@@ -10,17 +10,6 @@
 
 namespace frictopt::study {
 
-optim::LinearConstraints to_optim_constraints(const shape::LinearConstraints& u) {
-  optim::LinearConstraints c;
-  c.lower = u.lower;
-  c.upper = u.upper;
-  c.A_in = u.A_in;
-  c.b_in = u.b_in;
-  c.A_eq = u.A_eq;
-  c.b_eq = u.b_eq;
-  return c;
-}
-
 void require_admissible_design(const ElasticBody& body, const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                double tolerance, std::string_view who) {
   const Eigen::Index d = body.definition().shape.num_controls();
@@ -28,8 +17,8 @@ void require_admissible_design(const ElasticBody& body, const Eigen::Ref<const E
     throw InvalidInput(fmt::format("{}: the design has {} entries; expected {} (the shape's control points)", who,
                                    alpha.size(), d));
   // N_Υ(α) and the state exist on Υ only: refuse an outside design before any solve.
-  const shape::LinearConstraints& upsilon = body.admissible_set();
-  const double violation = to_optim_constraints(upsilon).max_violation(alpha);
+  const LinearConstraints& upsilon = body.admissible_set();
+  const double violation = upsilon.max_violation(alpha);
   if (!(violation <= tolerance * std::max(1.0, alpha.lpNorm<Eigen::Infinity>())))
     throw InvalidInput(fmt::format("{}: the design violates the admissible set by {:.3e}; expected a design in Υ ({})",
                                    who, violation, upsilon.describe_violation(alpha, 0.0)));
@@ -59,7 +48,7 @@ optim::BundleTrust::Summary optimize(ShapeOracle& oracle, optim::BundleTrust::Op
       return on_progress({s, center, elapsed, oracle.num_state_solves()});
     };
   }
-  const optim::BundleTrust method(options, to_optim_constraints(oracle.body().admissible_set()));
+  const optim::BundleTrust method(options, oracle.body().admissible_set());
   return checkpoint ? method.resume(oracle, *checkpoint)
                     : method.minimize(oracle, oracle.body().definition().initial_design);
 }

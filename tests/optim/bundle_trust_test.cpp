@@ -3,8 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "frictopt/core/error.hpp"
 
@@ -251,4 +253,115 @@ TEST(BundleTrust, BriefReportNamesStatusAndCounters) {
   EXPECT_NE(r.find("converged"), std::string::npos) << r;
   EXPECT_NE(r.find("evaluations"), std::string::npos) << r;
   EXPECT_NEAR(s.f, 0.0, kFTol);
+}
+
+// ---- issue 16: scale invariance, adaptive step bound, no false "converged" ----------------
+
+namespace {
+// CB2-like max of three smooth pieces (Charalambous–Bandler), scaled in f by cf and in x by cx:
+// f̃(x̃) = cf·f(x̃/cx). Minimum cf·1.9522245 (Lukšan–Vlček TEST19 #3).
+fo::FunctionOracle scaled_cb2(double cf, double cx) {
+  return fo::FunctionOracle([cf, cx](const Eigen::Ref<const Eigen::VectorXd>& xs) {
+    const Eigen::Vector2d x = xs / cx;
+    const double f1 = x(0) * x(0) + std::pow(x(1), 4);
+    const double f2 = std::pow(2 - x(0), 2) + std::pow(2 - x(1), 2);
+    const double f3 = 2 * std::exp(x(1) - x(0));
+    Eigen::Vector2d g;
+    double f = f1;
+    g << 2 * x(0), 4 * std::pow(x(1), 3);
+    if (f2 > f) {
+      f = f2;
+      g << -2 * (2 - x(0)), -2 * (2 - x(1));
+    }
+    if (f3 > f) {
+      f = f3;
+      g << -f3, f3;
+    }
+    return fo::OracleResult::success(cf * f, (cf / cx) * g);
+  });
+}
+constexpr double kCb2Min = 1.9522245;
+}  // namespace
+
+// Same decisions up to round-off: identical step kinds along the common history, and the
+// stop at most one iteration apart (the last test compares numbers that sit within round-off
+// of its threshold, so it may fire one iteration earlier or later).
+static void expect_same_run(const fo::BundleTrust::Summary& a, const fo::BundleTrust::Summary& b, const std::string& what) {
+  const std::size_t common = std::min(a.history.size(), b.history.size());
+  for (std::size_t i = 0; i < common; ++i)
+    EXPECT_EQ(a.history[i].step, b.history[i].step) << what << ", iteration " << i + 1;
+  EXPECT_LE(std::abs(a.iterations - b.iterations), 1) << what;
+  EXPECT_LE(std::abs(a.evaluations - b.evaluations), 1) << what;
+}
+
+TEST(BundleTrust, ScalingTheObjectiveChangesNoDecision) {
+  // The step rule, the locality measure and the stopping test are homogeneous in f: f·c takes
+  // the same steps for c from 1e-6 to 1e6.
+  auto ref_oracle = scaled_cb2(1.0, 1.0);
+  const auto ref = fo::BundleTrust({}).minimize(ref_oracle, Eigen::Vector2d(1.0, -0.1));
+  ASSERT_TRUE(ref.converged()) << ref.brief_report();
+  EXPECT_NEAR(ref.f, kCb2Min, 1e-4 * kCb2Min);
+  for (const double c : {1e-6, 1e6}) {
+    auto oracle = scaled_cb2(c, 1.0);
+    const auto s = fo::BundleTrust({}).minimize(oracle, Eigen::Vector2d(1.0, -0.1));
+    ASSERT_TRUE(s.converged()) << "f·" << c << ": " << s.brief_report();
+    expect_same_run(s, ref, "f·" + std::to_string(c));
+    EXPECT_NEAR(s.f / c, ref.f, 1e-7 * kCb2Min) << "f·" << c;  // both within the tolerance of f*
+  }
+}
+
+TEST(BundleTrust, ScaleObjectiveOptionGivesTheSameRun) {
+  // Regression (issue 16): scale_objective = true used to stop after one iteration at twice
+  // the optimum, because the absolute test met a rescaled f. Now the option changes nothing.
+  auto oracle = scaled_cb2(1e3, 1.0);
+  fo::BundleTrust::Options o;
+  const auto plain = fo::BundleTrust(o).minimize(oracle, Eigen::Vector2d(1.0, -0.1));
+  o.scale_objective = true;
+  const auto scaled = fo::BundleTrust(o).minimize(oracle, Eigen::Vector2d(1.0, -0.1));
+  ASSERT_TRUE(scaled.converged()) << scaled.brief_report();
+  expect_same_run(scaled, plain, "scale_objective");
+  EXPECT_NEAR(scaled.f, 1e3 * kCb2Min, 1e-4 * 1e3 * kCb2Min);
+}
+
+TEST(BundleTrust, StepBoundAdaptsToVariablesScaledByAThousand) {
+  // With the first step fixed from the first subgradient and never revisited, x·1e3 crept with
+  // thousands of tiny steps (issue 16). The bound now grows with the observed model quality.
+  for (const double cx : {1e-3, 1e3}) {
+    auto oracle = scaled_cb2(1.0, cx);
+    const auto s = fo::BundleTrust({}).minimize(oracle, cx * Eigen::Vector2d(1.0, -0.1));
+    ASSERT_TRUE(s.converged()) << "x·" << cx << ": " << s.brief_report();
+    EXPECT_NEAR(s.f, kCb2Min, 1e-4 * kCb2Min) << "x·" << cx;
+    EXPECT_LE(s.evaluations, 100) << "x·" << cx << ": " << s.brief_report();
+  }
+}
+
+TEST(BundleTrust, LargeSubgradientsNeitherStallTheQpNorCreep) {
+  // ‖g‖ ~ 1e7: the unscaled direction QP reported "unbounded" at the first iteration (issue
+  // 16). Weighted ℓ1 with weights 1e6..4e6: minimum 0 at c.
+  auto oracle = weighted_l1(Eigen::Vector3d(1e6, 4e6, 2e6), Eigen::Vector3d(1.0, -2.0, 3.0));
+  const auto s = fo::BundleTrust({}).minimize(oracle, Eigen::Vector3d(50.0, 50.0, 50.0));
+  ASSERT_TRUE(s.converged()) << s.brief_report();
+  EXPECT_LE(s.f, 1e-4 * 1e6);  // relative to the weights: the same accuracy as with weights O(1)
+  EXPECT_LE(s.evaluations, 200) << s.brief_report();
+}
+
+TEST(BundleTrust, ConvergedRunsPassTheStationarityCertificate) {
+  // "converged" is only reported with a certificate distance <= ε·G (docs/optim.md).
+  auto oracle = weighted_l1(Eigen::Vector3d(1.0, 2.0, 0.5), Eigen::Vector3d(1.0, -2.0, 3.0));
+  const auto s = fo::BundleTrust(tight()).minimize(oracle, Eigen::Vector3d(5.0, 5.0, 5.0));
+  ASSERT_TRUE(s.converged());
+  EXPECT_EQ(s.stop_reason, fo::StopReason::kCertifiedStationary);
+  ASSERT_TRUE(std::isfinite(s.certificate_distance));
+  EXPECT_LE(s.certificate_distance, kEpsilon * s.subgradient_scale);
+  EXPECT_EQ(fo::to_string(s.stop_reason), "certified_stationary");
+}
+
+TEST(BundleTrust, NamesWhichLimitStoppedTheRun) {
+  auto o = tight();
+  o.epsilon = 0.0;
+  o.max_iterations = 3;
+  auto oracle = weighted_l1(Eigen::Vector2d(1.0, 1.0), Eigen::Vector2d(0.3, 0.7));
+  const auto s = fo::BundleTrust(o).minimize(oracle, Eigen::Vector2d(5.0, 5.0));
+  EXPECT_EQ(s.stop_reason, fo::StopReason::kIterationLimit);
+  EXPECT_EQ(fo::to_string(s.stop_reason), "max_iterations");
 }

@@ -218,3 +218,33 @@ TEST(DenseQpSolver, RejectsInconsistentDimensionsNamingTheBlock) {
   o.feasibility_tolerance = -1.0;
   EXPECT_THROW(fo::DenseQpSolver{o}, frictopt::InvalidInput);
 }
+
+TEST(DenseQpSolver, BadlyScaledBundleQpEndsWithAStatusAndNeverANanSolution) {
+  // The unscaled direction QP of issue 16: min v + ‖d‖²/(2t) s.t. gᵀd − v ≤ 0 with ‖g‖ = 1e7,
+  // t = 1e-6. Its reduced Hessian spans 1e6 to 1e-8 and the solver may not resolve it — BundleTrust
+  // now scales the QP (bundle_trust.cpp) — but whatever it does, it must either solve it (finite
+  // x satisfying KKT) or say it did not; a NaN never passes for a solution.
+  for (const double gnorm : {1.0, 1e7, 1e12}) {
+    const Eigen::Index n = 10;
+    fo::QpProblem qp;
+    qp.H = Eigen::MatrixXd::Zero(n + 1, n + 1);
+    qp.H.topLeftCorner(n, n).diagonal().setConstant(1.0 / 1e-6);
+    qp.g = Eigen::VectorXd::Zero(n + 1);
+    qp.g(n) = 1.0;
+    qp.A_in = Eigen::MatrixXd::Zero(1, n + 1);
+    qp.A_in.row(0).head(n) = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0).normalized().transpose() * gnorm;
+    qp.A_in(0, n) = -1.0;
+    qp.b_in = Eigen::VectorXd::Zero(1);
+    qp.A_eq.resize(0, n + 1);
+    qp.b_eq.resize(0);
+    const auto s = fo::DenseQpSolver().solve(qp, Eigen::VectorXd::Zero(n + 1));
+    if (s.converged()) {
+      ASSERT_TRUE(s.x.allFinite()) << "|g| = " << gnorm;
+      // Exact solution: d = −t g, v = −t‖g‖²: objective −t‖g‖²/2.
+      EXPECT_NEAR(s.objective, -0.5e-6 * gnorm * gnorm, 1e-8 * 0.5e-6 * gnorm * gnorm) << "|g| = " << gnorm;
+    } else {
+      EXPECT_NE(s.status, frictopt::Status::kConverged);
+      EXPECT_FALSE(s.message.empty()) << "|g| = " << gnorm;
+    }
+  }
+}

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <type_traits>
+
 #include <cmath>
 #include <limits>
 
@@ -79,4 +81,26 @@ TEST(ProjectOnto, ReportsAnEmptyFeasibleSet) {
   const fo::Projection p = fo::project_onto(k, Eigen::Vector2d(0.3, 0.3));
   EXPECT_TRUE(p.feasible_set_empty);
   EXPECT_FALSE(p.message.empty());
+}
+
+TEST(LinearConstraints, IsTheOneCoreTypeAndNamesTheWorstViolation) {
+  // optim::LinearConstraints and shape::LinearConstraints are the same core type (issue 10
+  // item 5): no copy between them. describe_violation names the worst row by its name.
+  static_assert(std::is_same_v<fo::LinearConstraints, frictopt::LinearConstraints>);
+  frictopt::LinearConstraints k;
+  k.variable_name = "alpha";
+  k.lower = Eigen::Vector2d(0.0, 0.0);
+  k.upper = Eigen::Vector2d(1.0, 1.0);
+  k.A_in = Eigen::MatrixXd{{1.0, -1.0}};
+  k.b_in = Eigen::VectorXd::Constant(1, 0.1);
+  k.inequality_names = {"slope alpha0 - alpha1 <= 0.1"};
+  k.A_eq = Eigen::MatrixXd{{1.0, 1.0}};
+  k.b_eq = Eigen::VectorXd::Constant(1, 1.0);
+  k.equality_names = {"volume: sum of alpha"};
+  EXPECT_EQ(k.describe_violation(Eigen::Vector2d(0.5, 0.5), 1e-12), "");
+  EXPECT_EQ(k.describe_violation(Eigen::Vector2d(-0.5, 1.5), 1e-12), "alpha[0] = -0.5; expected >= 0");
+  EXPECT_EQ(k.describe_violation(Eigen::Vector2d(0.8, 0.2), 1e-12),
+            "slope alpha0 - alpha1 <= 0.1: value 0.6; expected <= 0.1");
+  EXPECT_EQ(k.describe_violation(Eigen::Vector2d(0.1, 0.1), 1e-12), "volume: sum of alpha = 0.2; expected 1");
+  EXPECT_EQ(k.dimension(), 2);
 }

@@ -1,6 +1,13 @@
 // SPDX-License-Identifier: MIT
-// The whole implemented Lukšan–Vlček set with the options of docs/optim-testset.md.
+// The whole Lukšan–Vlček table of docs/optim-testset.md (39 problems + 32 scaled variants) with
+// DEFAULT options, and the tight run (ε = 1e-7 for accuracy 1e-6). Problems listed as open do
+// not reach f* yet (docs/optim-testset.md says why); they are checked not to be reported solved
+// by accident, so that fixing one fails this test until the list is updated.
 #include <gtest/gtest.h>
+
+#include <cstdio>
+#include <set>
+#include <string>
 
 #include "frictopt/optim/bundle_trust.hpp"
 #include "frictopt/optim/luksan_vlcek.hpp"
@@ -8,22 +15,44 @@
 namespace fo = frictopt::optim;
 
 namespace {
-// The report's relative accuracy |f − f*| ≤ 1e-4·max(1, |f*|).
-constexpr double kAccuracy = 1e-4;
+
+std::vector<fo::LuksanVlcekProblem> table() {
+  auto p = fo::luksan_vlcek_unconstrained();
+  for (auto set : {fo::luksan_vlcek_constrained(), fo::luksan_vlcek_scaled_variants()})
+    p.insert(p.end(), set.begin(), set.end());
+  return p;
+}
+
+void check_table(const fo::BundleTrust::Options& options, double accuracy, const std::set<std::string>& open) {
+  int solved = 0;
+  for (const auto& p : table()) {
+    fo::FunctionOracle oracle(p.evaluate);
+    const auto s = fo::BundleTrust(options, p.constraints).minimize(oracle, p.x0);
+    const bool ok = p.solved(s.f, accuracy);
+    solved += ok;
+    EXPECT_LE(p.constraints.max_violation(s.x), 1e-9) << p.name;
+    if (open.count(p.name)) {
+      EXPECT_FALSE(ok) << p.name << " is solved now: remove it from the open list";
+      continue;
+    }
+    EXPECT_TRUE(ok) << p.name << ": f = " << s.f << ", f* = " << p.f_star << ", relative error "
+                    << p.relative_error(s.f) << "; " << s.brief_report();
+  }
+  std::printf("accuracy %g, epsilon %g: %d of %zu solved\n", accuracy, options.epsilon, solved, table().size());
+}
+
 }  // namespace
 
-TEST(LuksanVlcekFullSet, BundleTrustSolvesEveryImplementedProblem) {
-  for (const auto& set : {fo::luksan_vlcek_unconstrained(), fo::luksan_vlcek_constrained()}) {
-    for (const auto& p : set) {
-      fo::FunctionOracle oracle(p.evaluate);
-      fo::BundleTrust::Options o;
-      o.max_iterations = 3000;
-      o.max_evaluations = 10000;
-      o.keep_history = false;
-      const auto s = fo::BundleTrust(o, p.constraints).minimize(oracle, p.x0);
-      EXPECT_TRUE(p.solved(s.f, kAccuracy)) << p.name << ": f = " << s.f << ", f* = " << p.f_star
-                                             << "; " << s.brief_report();
-      EXPECT_LE(p.constraints.max_violation(s.x), 1e-9) << p.name;
-    }
-  }
+TEST(LuksanVlcekFullSet, DefaultOptionsSolveTheTableExceptTheOpenProblems) {
+  fo::BundleTrust::Options o;
+  o.keep_history = false;
+  // The report's relative accuracy |f − f*| <= 1e-4·max(unit, |f*|).
+  check_table(o, 1e-4, {"BPfilter", "ShellDual"});
+}
+
+TEST(LuksanVlcekFullSet, EpsilonOneTenthOfTheAccuracyReachesOneInAMillion) {
+  fo::BundleTrust::Options o;
+  o.keep_history = false;
+  o.epsilon = 1e-7;
+  check_table(o, 1e-6, {"HS78", "ShellDual", "BPfilter", "Dembo3", "Dembo7"});
 }

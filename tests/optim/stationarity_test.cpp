@@ -108,3 +108,31 @@ TEST(StationarityCertificate, RejectsMismatchedShapesAndInfeasiblePoints) {
   EXPECT_THROW((void)fo::stationarity_certificate(pieces({1.0}), Eigen::VectorXd::Constant(1, -1.0), k),
                frictopt::InvalidInput);
 }
+
+TEST(StationarityCertificate, IsHomogeneousInTheSubgradientsOverThirtyOrdersOfMagnitude) {
+  // δ(cΞ) = c·δ(Ξ) with the constraint normals unchanged (N_Υ is a cone). Unscaled, the QP's
+  // Hessian ΞᵀΞ next to unit normals failed for ‖ξ‖ ~ 1e15 (issue 16); the certificate must
+  // return a status and the homogeneous value, never NaN.
+  Eigen::MatrixXd xi(2, 3);
+  xi << 1.0, -1.0, 0.5, -2.0, -2.5, -3.0;  // all descend along +x2: blocked only by x2 <= 0
+  fo::LinearConstraints k;
+  k.upper = Eigen::Vector2d(10.0, 0.0);
+  const Eigen::Vector2d x(0.3, 0.0);
+  const auto ref = fo::stationarity_certificate(xi, x, k);
+  ASSERT_EQ(ref.status, frictopt::Status::kConverged) << ref.brief_report();
+  EXPECT_NEAR(ref.distance, 0.0, kTol);  // 0 ∈ conv{ξ} + cone{e_2}: θ on ξ1, ξ2 cancels x1
+  Eigen::MatrixXd off = xi;
+  off.row(0).array() += 1.0;  // x1-components 2, 0, 1.5: δ = 0 still (ξ2 has zero x1 part)
+  off(0, 1) = 0.5;            // now all x1-components > 0: δ = min over the hull of the x1 part
+  const auto ref_off = fo::stationarity_certificate(off, x, k);
+  ASSERT_EQ(ref_off.status, frictopt::Status::kConverged);
+  EXPECT_NEAR(ref_off.distance, 0.5, kTol);  // the smallest x1-component; x2 absorbed by N_Υ
+  for (const double c : {1e-15, 1e-8, 1e8, 1e15}) {
+    const auto s = fo::stationarity_certificate(c * off, x, k);
+    ASSERT_EQ(s.status, frictopt::Status::kConverged) << "scale " << c << ": " << s.brief_report();
+    ASSERT_TRUE(std::isfinite(s.distance)) << "scale " << c;
+    // Relative round-off of one QP on the rescaled (O(1)) data.
+    EXPECT_NEAR(s.distance / c, ref_off.distance, kTol) << "scale " << c;
+    EXPECT_NEAR(s.weights.sum(), 1.0, kTol);
+  }
+}

@@ -1,33 +1,18 @@
 // SPDX-License-Identifier: MIT
 // The polyhedral feasible set Υ = {x : lb ≤ x ≤ ub, A_in x ≤ b_in, A_eq x = b_eq} of spec 04
-// §3.2, in the form the user writes it and in the general form C x ≤ c, E x = e the QPs use.
+// §3.2 (the core type LinearConstraints) in the general form C x ≤ c, E x = e the QPs use.
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
+#include "frictopt/core/linear_constraints.hpp"
+
 namespace frictopt::optim {
 
-/// Linear constraints on x ∈ ℝⁿ. Every block is optional: `lower`/`upper` have size 0 (no
-/// bounds) or n, entries may be ∓infinity; A_in is m × n with b_in of size m; A_eq is p × n
-/// with b_eq of size p.
-struct LinearConstraints {
-  Eigen::VectorXd lower;
-  Eigen::VectorXd upper;
-  Eigen::MatrixXd A_in;
-  Eigen::VectorXd b_in;
-  Eigen::MatrixXd A_eq;
-  Eigen::VectorXd b_eq;
-
-  /// True when no block constrains anything.
-  [[nodiscard]] bool empty() const;
-  /// Throws InvalidInput naming the block, its shape and the expected shape for n variables,
-  /// or a NaN entry, or a bound pair with lower(i) > upper(i).
-  void validate(Eigen::Index n) const;
-  /// Largest violation max(lb − x, x − ub, A_in x − b_in, |A_eq x − b_eq|, 0) in the user's units.
-  [[nodiscard]] double max_violation(const Eigen::Ref<const Eigen::VectorXd>& x) const;
-};
+/// Υ in the form the user writes it: the one type shared with shape and study (core).
+using LinearConstraints = frictopt::LinearConstraints;
 
 /// Υ as C x ≤ c, E x = e: finite bounds become rows ±e_iᵀ (lower first, then upper, then A_in).
 /// `row_origin` names each row of C for messages ("lower[3]", "upper[0]", "A_in[2]").

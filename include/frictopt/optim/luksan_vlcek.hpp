@@ -2,7 +2,8 @@
 // Nonsmooth test problems of Lukšan & Vlček, "Test problems for nonsmooth unconstrained and
 // linearly constrained optimization", Tech. Rep. V-798, ICS AS CR, 2000 — implemented from the
 // formulas, with data, dimensions and starting points as in the authors' Fortran files TEST19
-// (unconstrained) and TEST22 (linearly constrained minimax). See docs/optim-testset.md.
+// (unconstrained) and TEST22 (linearly constrained minimax) — plus scaled variants (f·c, x·c)
+// that probe scale invariance. See docs/optim-testset.md.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,22 +21,37 @@ namespace frictopt::optim {
 /// ties), the standard starting point, the optimal value f* of the report and its constraints.
 struct LuksanVlcekProblem {
   std::string name;
-  std::string source;          ///< "TEST19 #3" or "TEST22 #1"
+  std::string source;          ///< "TEST19 #3", "TEST22 #1", or "TEST19 #16, f·1e3" for a variant
   Eigen::VectorXd x0;          ///< standard starting point (may violate the constraints)
-  double f_star = 0.0;         ///< optimal value from the report
+  double f_star = 0.0;         ///< optimal value from the report (times c for a variant f·c)
+  /// Unit of the accuracy test: 1, or c for a variant f·c (so that the variant is held to the
+  /// same relative accuracy as the original).
+  double value_unit = 1.0;
   LinearConstraints constraints;
   FunctionOracle::Function evaluate;
   [[nodiscard]] Eigen::Index dimension() const { return x0.size(); }
-  /// |f − f*| ≤ tolerance·max(1, |f*|): the report's usual relative accuracy test.
+  /// |f − f*| <= tolerance·max(value_unit, |f*|): the report's relative accuracy test.
   [[nodiscard]] bool solved(double f, double tolerance = 1e-4) const;
+  /// The relative error |f − f*| / max(value_unit, |f*|) that `solved` compares.
+  [[nodiscard]] double relative_error(double f) const;
 };
 
-/// The unconstrained problems implemented (20 of TEST19's 25; see docs/optim-testset.md for the
-/// five left out and why).
+/// TEST19: 24 of the 25 unconstrained problems (TR48 is left out: its data file TEST19.DAT is
+/// not available to us; docs/optim-testset.md).
 [[nodiscard]] std::vector<LuksanVlcekProblem> luksan_vlcek_unconstrained();
-/// The linearly constrained problems implemented (7 of TEST22's 15).
+/// TEST22: all 15 linearly constrained minimax problems.
 [[nodiscard]] std::vector<LuksanVlcekProblem> luksan_vlcek_constrained();
-/// Looks a problem up by name in both sets; throws InvalidInput listing the names if absent.
+
+/// The variant f̃(x) = c·f(x) (f̃* = c·f*, value_unit = c). c > 0.
+[[nodiscard]] LuksanVlcekProblem with_scaled_values(const LuksanVlcekProblem& p, double c);
+/// The variant in the variables x̃ = c·x: f̃(x̃) = f(x̃/c), x̃0 = c·x0, constraints mapped. c > 0.
+[[nodiscard]] LuksanVlcekProblem with_scaled_variables(const LuksanVlcekProblem& p, double c);
+/// Scaled variants of several problems of both sets (f·10^k and x·10^k, k = ±3), named
+/// "<problem>_f*1e3", "<problem>_x*1e-3".
+[[nodiscard]] std::vector<LuksanVlcekProblem> luksan_vlcek_scaled_variants();
+
+/// Looks a problem up by name in both sets and the variants; throws InvalidInput listing the
+/// names if absent.
 [[nodiscard]] LuksanVlcekProblem luksan_vlcek_problem(std::string_view name);
 
 }  // namespace frictopt::optim

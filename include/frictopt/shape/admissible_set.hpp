@@ -7,6 +7,7 @@
 #include <string>
 
 #include "frictopt/core/enum_table.hpp"
+#include "frictopt/core/linear_constraints.hpp"
 #include "frictopt/shape/bezier_shape.hpp"
 
 namespace frictopt::shape {
@@ -28,21 +29,9 @@ struct AdmissibleSetParameters {
   SlopeScaling slope_scaling = SlopeScaling::kThesis;
 };
 
-/// Υ = {α : lower <= α <= upper, A_in α <= b_in, A_eq α = b_eq}.
-struct LinearConstraints {
-  Eigen::VectorXd lower, upper;
-  Eigen::MatrixXd A_in;
-  Eigen::VectorXd b_in;
-  Eigen::MatrixXd A_eq;
-  Eigen::VectorXd b_eq;
-  std::vector<std::string> inequality_names;  ///< one per row of A_in, e.g. "slope x1 (2,0)-(1,0) <= 0.05"
-
-  Eigen::Index dimension() const { return lower.size(); }
-  /// Largest violation of any constraint at α (0 when feasible).
-  double max_violation(const Eigen::Ref<const Eigen::VectorXd>& alpha) const;
-  /// Empty when max_violation(α) <= tol; else a message naming the worst violated constraint.
-  std::string describe_violation(const Eigen::Ref<const Eigen::VectorXd>& alpha, double tol) const;
-};
+/// Υ = {α : lower <= α <= upper, A_in α <= b_in, A_eq α = b_eq}: the core type, shared with
+/// optim and study unchanged (variable_name "alpha", one name per inequality and equality).
+using LinearConstraints = frictopt::LinearConstraints;
 
 /// Builds Υ for the shape:
 ///  * bounds 0 <= α <= C0;

@@ -15,9 +15,6 @@
 
 namespace frictopt::study {
 
-/// Υ in the optimizer's form (same rows; the slope/volume names stay with shape).
-optim::LinearConstraints to_optim_constraints(const shape::LinearConstraints& upsilon);
-
 /// What a progress line and a history row need after each outer iteration.
 struct OptimizationProgress {
   const optim::BundleTrust::IterationSummary& method;  ///< the optimizer's state (checkpointable)

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+// Building blocks shared by the two Lukšan–Vlček problem files (TEST19, TEST22): a running
+// maximum of smooth pieces, a vector literal, and forward-mode differentiation of the smooth
+// pieces with Eigen's AutoDiffScalar, so that each piece is written once and its gradient
+// cannot disagree with it (the tests still compare with finite differences).
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <string>
+#include <unsupported/Eigen/AutoDiff>
+#include <utility>
+
+#include "frictopt/optim/luksan_vlcek.hpp"
+
+namespace frictopt::optim::detail {
+
+using Vec = const Eigen::Ref<const Eigen::VectorXd>&;
+/// A scalar carrying its gradient with respect to all n variables.
+using Ad = Eigen::AutoDiffScalar<Eigen::VectorXd>;
+using AdVector = Eigen::Matrix<Ad, Eigen::Dynamic, 1>;
+
+/// Running maximum of smooth pieces with their gradients; at ties the first piece wins.
+struct MaxOf {
+  double f = -std::numeric_limits<double>::infinity();
+  Eigen::VectorXd g;
+  void add(double value, const Eigen::VectorXd& grad) {
+    if (value > f) {
+      f = value;
+      g = grad;
+    }
+  }
+  void add(const Ad& piece) { add(piece.value(), piece.derivatives()); }
+};
+
+inline double sgn(double t) { return t >= 0.0 ? 1.0 : -1.0; }
+
+inline Eigen::VectorXd vec(std::initializer_list<double> v) {
+  Eigen::VectorXd x(static_cast<Eigen::Index>(v.size()));
+  Eigen::Index i = 0;
+  for (double a : v) x(i++) = a;
+  return x;
+}
+
+/// x as AutoDiff variables: x_i with derivative e_i.
+inline AdVector variables(Vec x) {
+  AdVector a(x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) a(i) = Ad(x(i), x.size(), i);
+  return a;
+}
+
+/// A constant (zero derivative) in n variables.
+inline Ad constant(double c, Eigen::Index n) { return Ad(c, Eigen::VectorXd::Zero(n)); }
+
+/// max(a, b) and |a| for AutoDiff: the derivative of the branch taken (one Clarke subgradient).
+inline Ad ad_max(const Ad& a, const Ad& b) { return b.value() > a.value() ? b : a; }
+inline Ad ad_abs(const Ad& a) { return a.value() >= 0.0 ? a : Ad(-a); }
+/// sqrt(a² + b²) with the subgradient 0 at the origin (where the norm has no gradient).
+inline Ad ad_hypot(const Ad& a, const Ad& b) {
+  const double r = std::hypot(a.value(), b.value());
+  if (r == 0.0) return constant(0.0, a.derivatives().size());
+  return Ad(r, (a.value() * a.derivatives() + b.value() * b.derivatives()) / r);
+}
+
+inline OracleResult success(const Ad& f) { return OracleResult::success(f.value(), f.derivatives()); }
+
+inline LuksanVlcekProblem make(std::string name, std::string source, Eigen::VectorXd x0, double f_star,
+                               FunctionOracle::Function f) {
+  LuksanVlcekProblem p;
+  p.name = std::move(name);
+  p.source = std::move(source);
+  p.x0 = std::move(x0);
+  p.f_star = f_star;
+  p.evaluate = std::move(f);
+  return p;
+}
+
+/// Minimax objective max_k f_k(x) (or max_k |f_k(x)| when `absolute`), pieces k = 1..m from
+/// `piece(x, k)` (the Fortran's TAFU22 numbering), one subgradient = gradient of the first
+/// maximal piece (times its sign).
+template <class Piece>
+OracleResult minimax(Vec x, int m, bool absolute, const Piece& piece) {
+  const AdVector a = variables(x);
+  MaxOf best;
+  for (int k = 1; k <= m; ++k) {
+    const Ad fk = piece(a, k);
+    if (!std::isfinite(fk.value()) || !fk.derivatives().allFinite())
+      return OracleResult::failure("piece " + std::to_string(k) + " is not finite here");
+    best.add(absolute ? ad_abs(fk) : fk);
+  }
+  return OracleResult::success(best.f, best.g);
+}
+
+}  // namespace frictopt::optim::detail
