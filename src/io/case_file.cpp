@@ -946,7 +946,9 @@ const IdentificationSetup& CaseDescription::required_identification() const {
   return *identification;
 }
 
-CaseDescription load_case(const std::filesystem::path& path) {
+CaseDescription load_case(const std::filesystem::path& path) { return load_case(path, path.string()); }
+
+CaseDescription load_case(const std::filesystem::path& path, std::string_view origin_name) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InvalidInput(
@@ -962,7 +964,7 @@ CaseDescription load_case(const std::filesystem::path& path) {
   }
   text << in.rdbuf();
   if (in.bad() || !text) throw InvalidInput(fmt::format("{}: case file could not be read", path.string()));
-  return parse_case(text.str(), path.string());
+  return parse_case(text.str(), origin_name);
 }
 
 }  // namespace frictopt::io

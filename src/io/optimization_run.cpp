@@ -28,7 +28,10 @@ const std::vector<std::string> kHistoryColumns = {
 
 OptimizationRunResult run_optimization(RunDirectory& run, const std::filesystem::path& case_path, bool resume,
                                        const std::function<void(const std::string&)>& report) {
-  const CaseDescription description = load_case(case_path);
+  // The run solves its own copy of the case, read as the user's file: output names and
+  // messages follow the case the user gave, not the run directory's copy.
+  const CaseDescription description =
+      load_case(case_path, run.case_argument().empty() ? case_path.string() : run.case_argument().string());
   const study::BodyDefinition& definition = description.body;
   if (!definition.contact) throw InvalidInput(case_path.string() + ": optimize needs a [contact] table");
   study::ElasticBody body(definition);

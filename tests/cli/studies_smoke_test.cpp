@@ -135,4 +135,22 @@ TEST(StudiesSmoke, ShortOptimizeRunWritesOutputsResumesAndRefusesAnExistingRun) 
   EXPECT_EQ(count_lines(out / "history.csv"), rows_first);
 }
 
+// The run solves its copy RUN/case.toml, but output names follow the user's case file: the
+// default output.name is the case's stem, not the run directory's name (a run in
+// "demo-output" once wrote demo-output.pvd instead of the case's name).
+TEST(StudiesSmoke, OptimizeNamesItsOutputsAfterTheCaseNotTheRunDirectory) {
+  const fs::path dir = fresh_directory("output_name");
+  const fs::path case_path = dir / "ex521.toml";
+  std::string text = read_text(fs::path(FRICTOPT_SOURCE_DIR) / "cases2d/ex521-target-pressure/case.toml");
+  text = replace_key(text, "max_iterations", "1");
+  text = std::regex_replace(text, std::regex(R"(^name *=[^\n]*\n)", std::regex::multiline), "");
+  write_text(case_path, text);
+  const fs::path out = dir / "some-run";
+  const RunResult result = run("optimize " + case_path.string() + " -o " + out.string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(fs::exists(out / "ex521.pvd")) << result.output;
+  EXPECT_TRUE(fs::exists(out / "ex521_iter0000.vtu")) << result.output;
+  EXPECT_FALSE(fs::exists(out / "some-run.pvd"));
+}
+
 }  // namespace

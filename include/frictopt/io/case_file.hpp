@@ -23,5 +23,8 @@ namespace frictopt::io {
 /// Reads `path` and calls parse_case with origin_name = path.string().
 /// Throws InvalidInput if the file cannot be read, and as parse_case.
 [[nodiscard]] CaseDescription load_case(const std::filesystem::path& path);
+/// Reads `path` but parses it as `origin_name` (messages, the default output.name and relative
+/// paths follow the origin): a run directory's copy of a case is the user's case file.
+[[nodiscard]] CaseDescription load_case(const std::filesystem::path& path, std::string_view origin_name);
 
 }  // namespace frictopt::io

@@ -60,6 +60,8 @@ class RunDirectory {
   RunDirectory& operator=(const RunDirectory&) = delete;
 
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+  /// The case file the command was given (empty for certify).
+  [[nodiscard]] const std::filesystem::path& case_argument() const { return case_argument_; }
   [[nodiscard]] std::filesystem::path file(std::string_view name) const { return path_ / name; }
 
   /// True for the names frictopt writes into a run directory: the fixed names above, fit.csv,
