@@ -10,6 +10,7 @@ packages=(
   libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev
   libfclib-dev libhdf5-dev
   python3 python3-numpy python3-matplotlib python3-vtk9 xvfb xauth
+  pybind11-dev python3-dev python3-pytest
 )
 
 missing=()
