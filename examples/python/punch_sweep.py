@@ -7,10 +7,13 @@ The demo case (cases3d/punch-anisotropic: an aluminium block pressed onto the fo
 rigid plate that moves 0.1 mm along x1 and δ down; anisotropic 4-gon law μ·(0.4, 0.2, 0.4, 0.2)
 / 0.4) on a coarser mesh, at its initial design. Each (μ scale, δ) pair is a case derived with
 Case.with_overrides — validated like a case file — and one Body.solve. The stick-area fraction
-is the tributary area of the sticking contact nodes over the area of Γ_c (1 m²); more friction
-or more normal load (a larger δ, hence a larger normal force, against the same tangential
-motion) makes more of the surface stick. (The initial dish is 0.5–1.5 mm deep: below δ ≈ 0.9 mm
-the block does not touch.)
+is the tributary area of the sticking contact nodes over the area of Γ_c (1 m²). More friction
+makes more of the surface stick at every press. More press first enlarges the contact zone and
+with it the stick zone, but at δ = 2 mm the block's lateral (Poisson) expansion under the larger
+normal load drives outward slip at the rim (every slipping node at δ = 2 mm, μ scale 1, slips
+outward: median cosine between u_t and the outward radius 0.95), and for μ₁ ≤ 0.4 less of Γ_c
+sticks than at 1.5 mm.
+(The initial dish is 0.5–1.5 mm deep: below δ ≈ 0.9 mm the block does not touch.)
 
     python3 examples/python/punch_sweep.py [--out DIR] [--cells 8 8 4]
 writes DIR/punch_sweep.png and DIR/punch_sweep.csv and prints the table.
