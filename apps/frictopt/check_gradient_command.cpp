@@ -2,7 +2,6 @@
 // `frictopt check-gradient`: see apps/frictopt/commands.hpp.
 #include "commands.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <algorithm>
 #include <cstdio>
@@ -15,6 +14,8 @@
 #include "frictopt/io/json.hpp"
 #include "frictopt/sensitivity/friction_parameters.hpp"
 #include "frictopt/study/certificate.hpp"
+#include "frictopt/study/derivative_accuracy.hpp"
+#include "frictopt/study/shape_optimization.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 #include "frictopt/study/elastic_body.hpp"
 
@@ -29,16 +30,14 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
   const io::CaseDescription description = io::load_case(case_path);
   study::BodyDefinition definition = description.body;
   if (!definition.contact) throw InvalidInput(case_path.string() + ": check-gradient needs a [contact] table");
-  // Finite differences need a state far more accurate than the step: tighten the solvers
-  // unless the case asks for even tighter tolerances.
-  auto& coulomb = definition.contact->coulomb;
-  coulomb.relative_tolerance = std::min(coulomb.relative_tolerance, 1e-13);
-  coulomb.tresca.relative_tolerance = std::min(coulomb.tresca.relative_tolerance, 1e-13);
-  coulomb.max_iterations = std::max(coulomb.max_iterations, 200);
-  coulomb.tresca.max_iterations = std::max(coulomb.tresca.max_iterations, 200000);
+  // Finite differences need a state far more accurate than the step.
+  study::tighten_for_derivatives(definition.contact->coulomb);
   study::ElasticBody body(definition);
   const Eigen::VectorXd alpha = design_path.empty() ? definition.initial_design
                                                     : io::read_design_file(design_path, definition.shape.num_controls());
+  // The same admissibility check as certify: Θ and ξ are defined on Υ only.
+  study::require_admissible_design(body, alpha, study::CertifyOptions{}.active_tolerance,
+                                   design_path.empty() ? case_path.string() + ": design.initial" : design_path.string());
   study::ShapeOracle oracle(body, description.required_cost());
   const study::Evaluation e = oracle.evaluate_design(alpha);
   fmt::print("{}: cost {}, Θ = {:.10e}\n", case_path.string(), oracle.cost().name(), e.value);

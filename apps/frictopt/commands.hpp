@@ -1,21 +1,21 @@
 // SPDX-License-Identifier: MIT
 // The subcommands of the frictopt command line, one file each (*_command.cpp). They load the
 // case through io, call study, print one-line reports and return the exit code; main.cpp only
-// parses arguments. Bad input throws frictopt::InvalidInput, which main maps to exit code 2.
+// parses arguments. Exceptions are mapped to exit codes in exit_codes.cpp.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
+
+#include "exit_codes.hpp"
 
 namespace frictopt::app {
 
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitInvalidInput = 2;
-inline constexpr int kExitNumericalFailure = 3;
 
 int run_solve(const std::filesystem::path& case_path, const std::filesystem::path& out_dir);
 int run_export_fclib(const std::filesystem::path& case_path, const std::filesystem::path& out_path,
-                     bool normalize_units, bool include_solution);
+                     const std::string& units, bool include_solution);
 int run_check_gradient(const std::filesystem::path& case_path, const std::filesystem::path& design_path,
                        double relative_step);
 int run_optimize(const std::filesystem::path& case_argument, const std::filesystem::path& out_dir, bool resume,

@@ -2,7 +2,6 @@
 // `frictopt export-fclib`: see apps/frictopt/commands.hpp.
 #include "commands.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <algorithm>
 #include <cstdio>
@@ -21,13 +20,16 @@ namespace frictopt::app {
 // `frictopt export-fclib CASE OUT.hdf5`: the contact problem at the initial design in FCLIB's
 // local format, with our solution (docs/contact.md, "FCLIB export").
 int run_export_fclib(const std::filesystem::path& case_path, const std::filesystem::path& out_path,
-                     bool normalize_units, bool include_solution) {
+                     const std::string& units, bool include_solution) {
   using namespace frictopt;
   const io::CaseDescription description = io::load_case(case_path);
-  study::ElasticBody body(description.body);
-  if (!body.contact_boundary())
+  const study::BodyDefinition& definition = description.body;
+  if (!definition.contact)
     throw InvalidInput(fmt::format("{}: the case has no [contact]; there is no contact problem to export",
                                    case_path.string()));
+  // Refusals first: nothing is solved for a law or a target FCLIB cannot take.
+  io::require_fclib_exportable(definition.contact->law, case_path.string());
+  study::ElasticBody body(definition);
   study::BodyState state = body.solve(body.definition().initial_design, "initial design");
   if (!state.contact) {  // the elasticity factorization failed before the contact solve
     fmt::print("{}\n", state.summary.brief_report());
@@ -36,12 +38,13 @@ int run_export_fclib(const std::filesystem::path& case_path, const std::filesyst
   fmt::print("{}\n", state.contact->summary.brief_report());
   io::FclibExportOptions options;
   options.case_name = case_path.string();
-  options.normalize_units = normalize_units;
+  options.normalize_units = units != "si";
   options.include_solution = include_solution;
   const io::FclibLocalProblem problem = io::export_fclib_local(out_path, body, state, options);
-  fmt::print("wrote {}: FCLIB local problem, spacedim {}, {} contacts, mu = {:.6g}, units {:.6g} N / {:.6g} m; {}\n",
+  fmt::print("wrote {}: FCLIB local problem, spacedim {}, {} contacts, mu = {:.6g}, {} units {:.6g} N / {:.6g} m; {}\n",
              out_path.string(), problem.spacedim, problem.num_contacts(),
-             problem.mu.size() > 0 ? problem.mu(0) : 0.0, problem.force_unit, problem.length_unit,
+             problem.mu.size() > 0 ? problem.mu(0) : 0.0, options.normalize_units ? "normalized" : "SI",
+             problem.force_unit, problem.length_unit,
              !include_solution ? "no solution stored"
              : problem.solution_is_exact
                  ? fmt::format("solution stored (natural-map residual {:.2e})",

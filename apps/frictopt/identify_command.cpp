@@ -2,7 +2,6 @@
 // `frictopt identify`: see apps/frictopt/commands.hpp.
 #include "commands.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <algorithm>
 #include <cstdio>
@@ -13,6 +12,8 @@
 #include "frictopt/io/case_file.hpp"
 #include "frictopt/io/csv_writer.hpp"
 #include "frictopt/io/json.hpp"
+#include "frictopt/io/run_directory.hpp"
+#include "frictopt/io/summary_json.hpp"
 #include "frictopt/io/measurements.hpp"
 #include "frictopt/study/identification.hpp"
 #include "frictopt/study/certificate.hpp"
@@ -34,7 +35,7 @@ int run_identify(const std::filesystem::path& case_path, const std::filesystem::
   const std::vector<study::Measurement> measurements = io::read_measurements(setup.measurements);
   study::Identification identification(description.body, measurements, setup.options);
   const auto& names = identification.parameter_names();
-  std::filesystem::create_directories(out_dir);
+  io::RunDirectory run(out_dir, io::RunOpening::kOutput, case_path);
   if (generate) {
     const Eigen::VectorXd truth = identification.case_parameters();
     const study::Identification::Prediction exact = identification.predict(truth);
@@ -46,7 +47,7 @@ int run_identify(const std::filesystem::path& case_path, const std::filesystem::
     for (std::size_t k = 0; k < names.size(); ++k)
       truth_text += fmt::format("{}{} = {}", k ? ", " : "", names[k], truth(static_cast<Eigen::Index>(k)));
     const auto synthetic = study::synthetic_measurements(measurements, exact.values, seed, !noise_free);
-    const auto path = out_dir / "measurements.csv";
+    const auto path = run.file("measurements.csv");
     io::write_measurements(path, synthetic,
                            fmt::format("synthetic: frictopt identify {} --generate-synthetic --seed {}{}; {}; {}",
                                        case_path.filename().string(), seed, noise_free ? " --noise-free" : "",
@@ -74,9 +75,9 @@ int run_identify(const std::filesystem::path& case_path, const std::filesystem::
       fmt::print("  {:<16}{}\n", names[static_cast<std::size_t>(a)], row);
     }
   }
-  std::ofstream(out_dir / "ceres_report.txt") << s.ceres_full_report;
+  run.write_text_file("ceres_report.txt", s.ceres_full_report);
   if (s.predictions.size()) {
-    io::CsvWriter fit(out_dir / "fit.csv",
+    io::CsvWriter fit(run.file("fit.csv"),
                       {"quantity", "node", "x1", "x2", "measured", "sigma", "fitted", "normalized_residual"});
     const Eigen::MatrixXd& xy = identification.contact_coordinates();
     const auto& ms = identification.measurements();
@@ -92,38 +93,10 @@ int run_identify(const std::filesystem::path& case_path, const std::filesystem::
   io::JsonValue summary = io::JsonValue::object();
   summary["case"] = case_path.string();
   summary["command"] = "identify";
-  summary["status"] = std::string(to_string(s.status));
-  summary["message"] = s.message;
-  summary["ceres_brief_report"] = s.ceres_brief_report;
-  summary["iterations"] = s.iterations;
-  summary["state_solves"] = s.state_solves;
-  summary["initial_cost"] = s.initial_cost;
-  summary["final_cost"] = s.final_cost;
-  summary["chi_square"] = s.chi_square;
-  summary["degrees_of_freedom"] = s.degrees_of_freedom;
-  summary["time_seconds"] = s.time_seconds;
-  summary["index_sets"] = s.index_sets;
-  io::JsonValue estimates = io::JsonValue::array();
-  for (const auto& e : s.estimates) {
-    io::JsonValue j = io::JsonValue::object();
-    j["name"] = e.name;
-    j["initial"] = e.initial;
-    j["value"] = e.value;
-    j["lower"] = e.lower;
-    j["upper"] = e.upper;
-    j["standard_deviation"] = e.standard_deviation;
-    j["identifiability"] = std::string(study::to_string(e.identifiability));
-    j["note"] = e.note;
-    estimates.push_back(j);
-  }
-  summary["estimates"] = estimates;
-  io::JsonValue correlation = io::JsonValue::array();
-  for (Eigen::Index a = 0; a < s.correlation.rows(); ++a) correlation.push_back(io::JsonValue(Eigen::VectorXd(s.correlation.row(a).transpose())));
-  summary["correlation"] = correlation;
-  summary["singular_values"] = s.singular_values;
-  io::write_json(out_dir / "summary.json", summary);
-  fmt::print("wrote {}{}, {}\n", s.predictions.size() ? (out_dir / "fit.csv").string() + ", " : std::string(),
-             (out_dir / "summary.json").string(), (out_dir / "ceres_report.txt").string());
+  io::add_members(summary, io::to_json(s));
+  run.write_json_file(io::RunDirectory::kSummary, summary);
+  fmt::print("wrote {}{}, {}\n", s.predictions.size() ? run.file("fit.csv").string() + ", " : std::string(),
+             run.file(io::RunDirectory::kSummary).string(), run.file("ceres_report.txt").string());
   return s.status == Status::kConverged ? kExitOk : kExitNumericalFailure;
 }
 

@@ -1,15 +1,36 @@
 // SPDX-License-Identifier: MIT
 // The frictopt command line: parses arguments (CLI11) and dispatches to the subcommands in
-// *_command.cpp; maps InvalidInput to exit code 2. No numerics live here.
+// *_command.cpp. Usage errors exit 2 like every other invalid input; exceptions are mapped to
+// exit codes in one place (exit_codes.cpp). No numerics live here.
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <string>
 
 #include "commands.hpp"
+#include "exit_codes.hpp"
 #include "frictopt/core/error.hpp"
 
 using namespace frictopt::app;
+
+namespace {
+
+// CLI::Range lets NaN through (NaN fails both of its comparisons): numbers must be finite first.
+const CLI::Validator kFiniteNumber(
+    [](std::string& text) {
+      try {
+        std::size_t used = 0;
+        const double value = std::stod(text, &used);
+        if (used == text.size() && std::isfinite(value)) return std::string();
+      } catch (const std::exception&) {
+      }
+      return "'" + text + "' is not a finite number";
+    },
+    "FINITE");
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"frictopt: shape optimization of elastic bodies in contact with (anisotropic) Coulomb friction"};
@@ -19,15 +40,18 @@ int main(int argc, char** argv) {
   solve->add_option("case", case_path, "case file (TOML), see docs/case-format.md")->required()->check(CLI::ExistingFile);
   solve->add_option("-o,--output", out_dir, "output directory (created if missing)");
   std::filesystem::path fclib_out;
-  bool fclib_normalize = false, fclib_no_solution = false;
+  std::string fclib_units = "normalized";
+  bool fclib_no_solution = false;
   CLI::App* export_fclib = app.add_subcommand(
       "export-fclib", "Write the frictional contact problem at the initial design in FCLIB's local format (HDF5)");
   export_fclib->add_option("case", case_path, "case file (TOML) with an isotropic [contact.friction]")
       ->required()
       ->check(CLI::ExistingFile);
   export_fclib->add_option("out", fclib_out, "output file (.hdf5), replaced if it exists")->required();
-  export_fclib->add_flag("--normalize", fclib_normalize,
-                         "write in units of our solution's largest force and displacement (O(1) data)");
+  export_fclib->add_option("--units", fclib_units,
+                           "normalized (default: units of our solution's largest force and displacement, O(1) "
+                           "data) or si")
+      ->check(CLI::IsMember({"normalized", "si"}));
   export_fclib->add_flag("--no-solution", fclib_no_solution, "do not store our solution");
   std::filesystem::path design_path;
   double relative_step = 1e-4;
@@ -39,7 +63,7 @@ int main(int argc, char** argv) {
   check_gradient->add_option("--design", design_path, "design file (JSON with \"alpha\", or numbers); default: the case's initial design")
       ->check(CLI::ExistingFile);
   check_gradient->add_option("--step", relative_step, "finite-difference step relative to max|α|")
-      ->check(CLI::Range(1e-10, 1e-1));
+      ->check(kFiniteNumber & CLI::Range(1e-10, 1e-1));
   bool resume = false, force = false;
   CLI::App* optimize = app.add_subcommand("optimize", "Minimize the case's cost over the admissible designs (bundle trust method)");
   optimize->add_option("case", case_path, "case file (TOML) with [contact] and [cost]")->required();
@@ -63,21 +87,23 @@ int main(int argc, char** argv) {
                      "write DIR/measurements.csv: the measurement rows with values from the case's own law plus noise");
   identify->add_option("--seed", identify_seed, "seed of the synthetic noise (std::mt19937_64)");
   identify->add_flag("--noise-free", identify_noise_free, "synthetic values without noise");
-  CLI11_PARSE(app, argc, argv);
   try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help prints and exits 0; every usage error (CLI11's codes 105, 106, 109, ...) is
+    // invalid input, exit 2 as documented.
+    return app.exit(e) == 0 ? kExitOk : kExitInvalidInput;
+  }
+  return run_guarded([&] {
     if (*solve) return run_solve(case_path, out_dir);
     if (*optimize) {
-      if (!resume && !std::filesystem::exists(case_path))
-        throw frictopt::InvalidInput(case_path.string() + ": the case file does not exist");
+      if (resume && force) throw frictopt::InvalidInput("--resume and --force exclude each other; choose one");
       return run_optimize(case_path, out_dir, resume, force);
     }
     if (*check_gradient) return run_check_gradient(case_path, design_path, relative_step);
     if (*certify) return run_certify(run_dir, certify_cap);
     if (*identify) return run_identify(case_path, out_dir, identify_generate, identify_seed, identify_noise_free);
-    if (*export_fclib) return run_export_fclib(case_path, fclib_out, fclib_normalize, !fclib_no_solution);
-  } catch (const frictopt::InvalidInput& e) {
-    std::cerr << "error: " << e.what() << '\n';
-    return kExitInvalidInput;
-  }
-  return kExitOk;
+    if (*export_fclib) return run_export_fclib(case_path, fclib_out, fclib_units, !fclib_no_solution);
+    return kExitOk;
+  });
 }

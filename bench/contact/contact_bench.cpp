@@ -26,7 +26,7 @@ using namespace frictopt::contact;
 constexpr std::uint64_t kSeed = 20261121;
 
 struct Problem {
-  std::unique_ptr<DenseOperator> op;
+  std::unique_ptr<frictopt::linalg::DenseOperator> op;
   Eigen::VectorXd c;
   Eigen::Index nodes = 0;
 };
@@ -53,7 +53,7 @@ const Problem& problem(Eigen::Index side) {
       m.block<3, 3>(3 * i, 3 * j) = std::exp(-(x.row(i) - x.row(j)).norm() / ell) * block;
   m.diagonal().array() += 0.05;
   Problem pr;
-  pr.op = std::make_unique<DenseOperator>(std::move(m));
+  pr.op = std::make_unique<frictopt::linalg::DenseOperator>(std::move(m));
   pr.nodes = p;
   pr.c.resize(3 * p);
   for (Eigen::Index i = 0; i < p; ++i) {

@@ -69,13 +69,13 @@ std::string CoulombSolver::Summary::brief_report() const {
   return out.str();
 }
 
-CoulombSolver::CoulombSolver(const LinearOperator& delassus, const FrictionLaw& law, Options options)
+CoulombSolver::CoulombSolver(const linalg::LinearOperator& delassus, const FrictionLaw& law, Options options)
     : CoulombSolver(delassus, std::vector<FrictionLaw>{law}, std::move(options)) {}
 
-CoulombSolver::CoulombSolver(const LinearOperator& delassus, const FrictionLaw& law)
+CoulombSolver::CoulombSolver(const linalg::LinearOperator& delassus, const FrictionLaw& law)
     : CoulombSolver(delassus, std::vector<FrictionLaw>{law}, Options{}) {}
 
-CoulombSolver::CoulombSolver(const LinearOperator& delassus, std::vector<FrictionLaw> laws,
+CoulombSolver::CoulombSolver(const linalg::LinearOperator& delassus, std::vector<FrictionLaw> laws,
                              Options options)
     : options_(validated(std::move(options))),
       tresca_(delassus, std::move(laws), options_.tresca) {}

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "frictopt/contact/dense_blas.hpp"
+#include "frictopt/linalg/dense_blas.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::contact {
@@ -20,7 +20,7 @@ void DenseDelassus::apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref
   if (matrix_->rows() < kThreadedMinSize) {
     y.noalias() = *matrix_ * x;
   } else {
-    blas::symmetric_times(*matrix_, x, y);  // Ref<VectorXd> is contiguous (inner stride 1)
+    linalg::blas::symmetric_times(*matrix_, x, y);  // Ref<VectorXd> is contiguous (inner stride 1)
   }
 }
 
@@ -39,14 +39,14 @@ SchurDelassus::SchurDelassus(Eigen::MatrixXd schur_factor, int dim) : L_(std::mo
 
 void SchurDelassus::apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const {
   Eigen::VectorXd v = signs_.cwiseProduct(x);
-  blas::cholesky_solve_in_place(L_, v);
+  linalg::blas::cholesky_solve_in_place(L_, v);
   y = signs_.cwiseProduct(v);
 }
 
 Eigen::VectorXd SchurDelassus::diagonal() const {
   if (diagonal_.size() == 0) {
     Eigen::MatrixXd X = Eigen::MatrixXd::Identity(L_.rows(), L_.cols());
-    blas::lower_solve_in_place(L_, X);
+    linalg::blas::lower_solve_in_place(L_, X);
     diagonal_ = X.colwise().squaredNorm().transpose();
   }
   return diagonal_;
@@ -60,34 +60,34 @@ Eigen::MatrixXd SchurDelassus::block(const std::vector<Eigen::Index>& rows, cons
   all.erase(std::unique(all.begin(), all.end()), all.end());
   Eigen::MatrixXd X = Eigen::MatrixXd::Zero(L_.rows(), static_cast<Eigen::Index>(all.size()));
   for (std::size_t j = 0; j < all.size(); ++j) X(all[j], static_cast<Eigen::Index>(j)) = 1.0;
-  blas::lower_solve_in_place(L_, X);
+  linalg::blas::lower_solve_in_place(L_, X);
   const auto position = [&](Eigen::Index k) {
     return static_cast<Eigen::Index>(std::lower_bound(all.begin(), all.end(), k) - all.begin());
   };
   Eigen::MatrixXd R(X.rows(), static_cast<Eigen::Index>(rows.size())), C(X.rows(), static_cast<Eigen::Index>(cols.size()));
   for (std::size_t i = 0; i < rows.size(); ++i) R.col(static_cast<Eigen::Index>(i)) = signs_(rows[i]) * X.col(position(rows[i]));
   for (std::size_t j = 0; j < cols.size(); ++j) C.col(static_cast<Eigen::Index>(j)) = signs_(cols[j]) * X.col(position(cols[j]));
-  return blas::transpose_times(R, C);
+  return linalg::blas::transpose_times(R, C);
 }
 
 Eigen::MatrixXd SchurDelassus::dense() const {
-  Eigen::MatrixXd M = blas::inverse_from_cholesky(L_);
+  Eigen::MatrixXd M = linalg::blas::inverse_from_cholesky(L_);
   M.array().colwise() *= signs_.array();
   M.array().rowwise() *= signs_.transpose().array();
   return M;
 }
 
-FactorizedDelassus::FactorizedDelassus(const fem::SparseCholesky& cholesky, const ContactBoundary& boundary)
-    : cholesky_(cholesky), boundary_(boundary) {}
+FactorizedDelassus::FactorizedDelassus(const linalg::SpdSolver& solver, const ContactBoundary& boundary)
+    : solver_(solver), boundary_(boundary) {}
 
 void FactorizedDelassus::apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const {
   Eigen::VectorXd w = Eigen::VectorXd::Zero(boundary_.num_free());
   boundary_.add_transpose_times(x, w);
-  y = boundary_.times(cholesky_.solve(w));
+  y = boundary_.times(solver_.solve(w));
 }
 
 Eigen::VectorXd FactorizedDelassus::diagonal() const {
-  if (diagonal_.size() == 0) diagonal_ = dense_delassus(cholesky_, boundary_).diagonal();
+  if (diagonal_.size() == 0) diagonal_ = dense_delassus(solver_, boundary_).diagonal();
   return diagonal_;
 }
 
@@ -100,7 +100,7 @@ Eigen::MatrixXd FactorizedDelassus::block(const std::vector<Eigen::Index>& rows,
     e(cols[j]) = 1.0;
     boundary_.add_transpose_times(e, W.col(static_cast<Eigen::Index>(j)));
   }
-  const Eigen::MatrixXd V = cholesky_.solve_many(W);
+  const Eigen::MatrixXd V = solver_.solve_many(W);
   Eigen::MatrixXd out(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
   for (std::size_t j = 0; j < cols.size(); ++j) {
     const Eigen::VectorXd column = boundary_.times(V.col(static_cast<Eigen::Index>(j)));
@@ -109,7 +109,7 @@ Eigen::MatrixXd FactorizedDelassus::block(const std::vector<Eigen::Index>& rows,
   return out;
 }
 
-Eigen::MatrixXd dense_delassus(const fem::SparseCholesky& cholesky, const ContactBoundary& boundary,
+Eigen::MatrixXd dense_delassus(const linalg::SpdSolver& solver, const ContactBoundary& boundary,
                                int block_columns) {
   const Eigen::Index m = boundary.num_unknowns();
   Eigen::MatrixXd M(m, m);
@@ -121,7 +121,7 @@ Eigen::MatrixXd dense_delassus(const fem::SparseCholesky& cholesky, const Contac
       e(start + j) = 1.0;
       boundary.add_transpose_times(e, W.col(j));
     }
-    const Eigen::MatrixXd V = cholesky.solve_many(W);
+    const Eigen::MatrixXd V = solver.solve_many(W);
     for (Eigen::Index j = 0; j < width; ++j) M.col(start + j) = boundary.times(V.col(j));
   }
   return 0.5 * (M + M.transpose());

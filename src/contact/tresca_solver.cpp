@@ -39,7 +39,7 @@ bool has_tangential(Part part) { return part != Part::kNormal; }
 /// gradient is correct when the other part is solved next (split variant).
 class Engine {
  public:
-  Engine(const LinearOperator& m, const std::vector<FrictionLaw>& laws, int dim,
+  Engine(const linalg::LinearOperator& m, const std::vector<FrictionLaw>& laws, int dim,
          const Eigen::VectorXd& s, double alpha_bar, double gamma, TrescaSolver::Summary& summary)
       : m_(m), laws_(laws), dim_(dim), p_(s.size()), s_(s), alpha_bar_(alpha_bar),
         gamma_(gamma), summary_(summary), mx_(m.size()) {}
@@ -240,7 +240,7 @@ class Engine {
     }
   }
 
-  const LinearOperator& m_;
+  const linalg::LinearOperator& m_;
   const std::vector<FrictionLaw>& laws_;
   int dim_;
   Eigen::Index p_;
@@ -298,13 +298,13 @@ std::string TrescaSolver::Summary::brief_report() const {
   return out.str();
 }
 
-TrescaSolver::TrescaSolver(const LinearOperator& delassus, const FrictionLaw& law, Options options)
+TrescaSolver::TrescaSolver(const linalg::LinearOperator& delassus, const FrictionLaw& law, Options options)
     : TrescaSolver(delassus, std::vector<FrictionLaw>{law}, std::move(options)) {}
 
-TrescaSolver::TrescaSolver(const LinearOperator& delassus, const FrictionLaw& law)
+TrescaSolver::TrescaSolver(const linalg::LinearOperator& delassus, const FrictionLaw& law)
     : TrescaSolver(delassus, std::vector<FrictionLaw>{law}, Options{}) {}
 
-TrescaSolver::TrescaSolver(const LinearOperator& delassus, std::vector<FrictionLaw> laws,
+TrescaSolver::TrescaSolver(const linalg::LinearOperator& delassus, std::vector<FrictionLaw> laws,
                            Options options)
     : delassus_(delassus), laws_(std::move(laws)), options_(std::move(options)) {
   options_.validate();

@@ -11,8 +11,14 @@
 namespace frictopt::fem {
 
 LinearElasticity::LinearElasticity(const mesh::StructuredMesh& mesh, const IsotropicMaterial& material,
-                                   const PrescribedDofs& dirichlet, std::vector<FaceTraction> tractions)
-    : mesh_(mesh), material_(material), dofs_(mesh.num_dofs(), dirichlet), tractions_(std::move(tractions)) {
+                                   const PrescribedDofs& dirichlet, std::vector<FaceTraction> tractions,
+                                   linalg::SpdSolver::Options solver)
+    : mesh_(mesh),
+      material_(material),
+      dofs_(mesh.num_dofs(), dirichlet),
+      tractions_(std::move(tractions)),
+      solver_options_(solver),
+      solver_(linalg::SpdSolver::create(solver)) {
   material_.validate();
   for (std::size_t i = 0; i < tractions_.size(); ++i) {
     if (tractions_[i].traction.size() != mesh.dim())
@@ -133,20 +139,18 @@ void LinearElasticity::assemble(const Eigen::Ref<const Eigen::MatrixXd>& X) {
 
 void LinearElasticity::set_trailing_dofs(std::vector<int> free_indices) {
   trailing_ = std::move(free_indices);
-  cholesky_ = SparseCholesky();  // the next factorize() analyzes again with this ordering
+  solver_ = linalg::SpdSolver::create(solver_options_);  // the next factorize() analyzes with this ordering
 }
 
 Status LinearElasticity::factorize() {
-  if (!cholesky_.analyzed()) {
-    if (trailing_.empty())
-      cholesky_.analyze(A_);
-    else
-      cholesky_.analyze(A_, trailing_);
+  if (!solver_->analyzed()) {
+    const Status analysis = trailing_.empty() ? solver_->analyze(A_) : solver_->analyze(A_, trailing_);
+    if (analysis != Status::kConverged) return analysis;
   }
-  return cholesky_.factorize(A_);
+  return solver_->factorize(A_);
 }
 
-Eigen::VectorXd LinearElasticity::solve() const { return dofs_.expand(cholesky_.solve(l_)); }
+Eigen::VectorXd LinearElasticity::solve() const { return dofs_.expand(solver_->solve(l_)); }
 
 template <int Dim>
 Eigen::VectorXd LinearElasticity::traction_load_impl(const Eigen::Ref<const Eigen::MatrixXd>& X) const {

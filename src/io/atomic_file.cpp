@@ -1,34 +1,102 @@
 // SPDX-License-Identifier: MIT
 #include "atomic_file.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
-#include <fstream>
+#include <cerrno>
+#include <cstring>
+#include <string>
 #include <system_error>
+#include <vector>
 
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::io::detail {
+namespace {
 
-void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
-  std::filesystem::path temporary = path;
-  temporary += ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw InvalidInput(
-          fmt::format("cannot write '{}' (does its directory exist?)", path.string()));
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) throw InvalidInput(fmt::format("writing '{}' failed", temporary.string()));
+std::string kind_of(const std::filesystem::file_status& status) {
+  using std::filesystem::file_type;
+  switch (status.type()) {
+    case file_type::symlink: return "a symbolic link";
+    case file_type::directory: return "a directory";
+    case file_type::block: return "a block device";
+    case file_type::character: return "a character device";
+    case file_type::fifo: return "a FIFO";
+    case file_type::socket: return "a socket";
+    default: return "not a regular file";
   }
+}
+
+}  // namespace
+
+void require_regular_output(const std::filesystem::path& path) {
   std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::symlink_status(path, ec);
+  if (ec || status.type() == std::filesystem::file_type::not_found ||
+      status.type() == std::filesystem::file_type::regular)
+    return;
+  throw InvalidInput(fmt::format("{}: is {}; frictopt writes regular files only and neither replaces nor writes "
+                                 "through it (remove it or choose another output path)",
+                                 path.string(), kind_of(status)));
+}
+
+std::filesystem::path make_sibling_temporary(const std::filesystem::path& path) {
+  require_regular_output(path);
+  const std::filesystem::path parent = path.parent_path().empty() ? "." : path.parent_path();
+  std::string pattern = (parent / ("." + path.filename().string() + ".XXXXXX.tmp")).string();
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  const int fd = ::mkstemps(name.data(), 4);  // O_EXCL: never an existing file
+  if (fd < 0)
+    throw InvalidInput(fmt::format("cannot write '{}': {} (does its directory exist and is it writable?)",
+                                   path.string(), std::strerror(errno)));
+  // mkstemp creates mode 0600; an output file gets the usual 0666 minus the umask (umask has
+  // no read-only query, hence set and restore).
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::fchmod(fd, 0666 & ~mask);
+  ::close(fd);
+  return std::filesystem::path(name.data());
+}
+
+void publish_file(const std::filesystem::path& temporary, const std::filesystem::path& path) {
+  std::error_code ec;
+  try {
+    require_regular_output(path);  // again: the target may have appeared while we wrote
+  } catch (...) {
+    std::filesystem::remove(temporary, ec);
+    throw;
+  }
   std::filesystem::rename(temporary, path, ec);
   if (ec) {
     const std::string reason = ec.message();
     std::filesystem::remove(temporary, ec);
     throw InvalidInput(fmt::format("cannot replace '{}': {}", path.string(), reason));
   }
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  const std::filesystem::path temporary = make_sibling_temporary(path);
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  bool ok = fd >= 0;
+  std::size_t written = 0;
+  while (ok && written < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    ok = n > 0;
+    if (ok) written += static_cast<std::size_t>(n);
+  }
+  const std::string reason = ok ? std::string() : std::strerror(errno);
+  if (fd >= 0 && ::close(fd) != 0 && ok) ok = false;
+  if (!ok) {
+    std::error_code ec;
+    std::filesystem::remove(temporary, ec);
+    throw InvalidInput(fmt::format("writing '{}' failed: {}", path.string(), reason.empty() ? "close failed" : reason));
+  }
+  publish_file(temporary, path);
 }
 
 }  // namespace frictopt::io::detail

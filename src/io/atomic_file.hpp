@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: MIT
-// Whole-file writes that a concurrent reader (ParaView, a plotting script) never sees half
-// done: write a sibling temporary file, then rename it over the target (atomic on POSIX
-// within one file system).
+// How frictopt writes an output file (docs/case-format.md, "Output files"):
+//  - only regular files: an existing symbolic link, device, FIFO, socket or directory at the
+//    target is refused (InvalidInput naming it), never replaced and never written through — a
+//    link could send a run's output anywhere, and replacing /dev/null by a regular file (as
+//    root) damages the system;
+//  - whole files are replaced atomically: the content goes to a new, uniquely named sibling
+//    (created with O_EXCL, so no existing file is ever clobbered) that is renamed over the
+//    target, so a concurrent reader (ParaView, a plotting script) never sees a half-written file.
 #pragma once
 
 #include <filesystem>
@@ -9,7 +14,20 @@
 
 namespace frictopt::io::detail {
 
-/// Replaces `path` by `content`. Throws InvalidInput naming the path if it cannot be written.
+/// Throws InvalidInput unless `path` is absent or a regular file (not following a final
+/// symbolic link), naming what it is instead.
+void require_regular_output(const std::filesystem::path& path);
+
+/// A fresh, uniquely named empty file next to `path` (".<name>.XXXXXX.tmp"), for writers that
+/// produce the file themselves (VTK, HDF5) before publish_file renames it over `path`.
+[[nodiscard]] std::filesystem::path make_sibling_temporary(const std::filesystem::path& path);
+
+/// Renames `temporary` over `path` (after require_regular_output); removes `temporary` and
+/// throws InvalidInput on failure.
+void publish_file(const std::filesystem::path& temporary, const std::filesystem::path& path);
+
+/// Replaces `path` by `content` as above. Throws InvalidInput naming the path if it cannot be
+/// written.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
 }  // namespace frictopt::io::detail

@@ -6,6 +6,7 @@
 #include "frictopt/io/case_file.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <toml++/toml.h>
 
 #include <algorithm>
@@ -19,8 +20,10 @@
 
 #include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/core/validation.hpp"
 #include "frictopt/mesh/face.hpp"
 #include "frictopt/study/shape_optimization.hpp"
+#include "text_input.hpp"
 #include "toml_reader.hpp"
 
 namespace frictopt::io {
@@ -29,8 +32,8 @@ namespace {
 using detail::describe;
 using detail::TableReader;
 
-// Tables a later case-format version will define ([optimization], [cost]); rejecting them
-// with their own message tells the user the feature is planned, not misspelt.
+// Tables a later case-format version will define; rejecting them with their own message
+// tells the user the feature is planned, not misspelt.
 constexpr std::string_view kReservedTables[] = {"study"};
 
 // Default polygon size for the 3D isotropic and elliptic laws: the thesis' 3D runs use
@@ -41,6 +44,33 @@ constexpr int kDefaultPolygonSides = 16;
 // aspect ratio, not the contact zone, limits the accuracy.
 constexpr double kMinGrading = 1.0;
 constexpr double kMaxGrading = 10.0;
+
+// Size limits (docs/case-format.md, "Size limits"), checked before anything is allocated:
+// a case beyond them would exhaust the memory of a workstation or run for days, and the
+// counts stay far inside int. The memory estimate of the message is calibrated on the
+// 100,860-unknown punch (peak resident memory of `frictopt solve`, docs/case-format.md) and
+// grows like the sparse Cholesky factor of a 3D grid, n^(4/3); 2D grows like n log n, for
+// which n^(4/3) is an upper bound.
+constexpr std::int64_t kMaxUnknowns = 2'000'000;
+constexpr double kCalibrationUnknowns = 100'860.0;
+constexpr double kCalibrationBytes = 1.1e9;
+constexpr int kMaxControlPointsPerDirection = 64;  // Bernstein degree 63
+constexpr std::int64_t kMaxDesignVariables = 1024;  // the bundle QP is dense in d
+constexpr int kMaxPolygonSides = 256;               // 1 − cos(π/256) < 1e-4 of the disc
+
+// Physical bounds (docs/case-format.md, "Physical bounds"): beyond them the numbers are
+// outside linear elasticity or outside double precision, and the solvers would fail with
+// messages that do not name the field.
+constexpr double kMinYoung = 1.0;        // Pa: softer than any solid (gels are ~1e2 Pa)
+constexpr double kMaxYoung = 1e13;       // Pa: stiffer than diamond (1.2e12 Pa)
+constexpr double kMaxPoisson = 0.49;     // Q1 elements lock beyond; λ/μ = 49 here
+constexpr double kMinLength = 1e-6;      // m
+constexpr double kMaxLength = 1e6;       // m
+constexpr double kMaxFriction = 10.0;    // no dry-friction pair comes near
+
+double estimated_bytes(std::int64_t unknowns) {
+  return kCalibrationBytes * std::pow(static_cast<double>(unknowns) / kCalibrationUnknowns, 4.0 / 3.0);
+}
 
 std::string_view dim_name(int dim) { return dim == 2 ? "2D" : "3D"; }
 
@@ -111,18 +141,21 @@ Geometry read_geometry(const TableReader& r) {
   Geometry g;
   g.dim = r.required_int("dim", "2 or 3");
   if (g.dim != 2 && g.dim != 3) r.fail_value("dim", "2 or 3");
-  g.a = r.required_number("a", "a number > 0 (the length of the body in x1, m)");
-  if (!(g.a > 0)) r.fail_value("a", "a > 0");
+  const auto length = [&](std::string_view key, std::string_view what) {
+    const double x = r.required_number(key, what);
+    if (!(x >= kMinLength && x <= kMaxLength))
+      r.fail_value(key, fmt::format("{} <= {} <= {} m", kMinLength, key, kMaxLength));
+    return x;
+  };
+  g.a = length("a", "a number > 0 (the length of the body in x1, m)");
   if (g.dim == 3) {
-    g.b = r.required_number("b", "a number > 0 (the length of the body in x2, m) in 3D");
-    if (!(g.b > 0)) r.fail_value("b", "b > 0");
+    g.b = length("b", "a number > 0 (the length of the body in x2, m) in 3D");
   } else if (r.has("b")) {
     r.fail("b", fmt::format("{} = {} is only allowed in 3D, but geometry.dim = 2; remove it or "
                             "set dim = 3",
                             r.field("b"), describe(*r.node("b"))));
   }
-  g.height = r.required_number("height", "a number > 0 (the height C4 of the top, m)");
-  if (!(g.height > 0)) r.fail_value("height", "height > 0");
+  g.height = length("height", "a number > 0 (the height C4 of the top, m)");
   return g;
 }
 
@@ -135,6 +168,17 @@ mesh::GridResolution read_mesh(const TableReader& r, int dim) {
   if (static_cast<int>(cells.size()) != dim) r.fail_value("cells", what);
   for (std::size_t i = 0; i < cells.size(); ++i)
     if (cells[i] < 1) r.fail_entry("cells", i, "an integer >= 1");
+  std::int64_t nodes = 1;  // each factor <= 2^31, at most 3 of them: no int64 overflow before the check
+  for (int c : cells) {
+    nodes *= static_cast<std::int64_t>(c) + 1;
+    if (nodes > kMaxUnknowns) break;
+  }
+  const std::int64_t unknowns = nodes * dim;
+  if (unknowns > kMaxUnknowns)
+    r.fail_value("cells", fmt::format("at most {} unknowns ({} per node); this grid has {}{} nodes, about {:.0f} GB "
+                                      "of memory for its factorization (docs/case-format.md, \"Size limits\")",
+                                      kMaxUnknowns, dim, nodes > kMaxUnknowns ? "more than " : "",
+                                      std::min(nodes, kMaxUnknowns), estimated_bytes(std::max(unknowns, kMaxUnknowns)) / 1e9));
   // GridResolution keeps (n1, n2, n_vertical); n2 is unused (0) in 2D.
   m.cells = dim == 2 ? std::array<int, 3>{cells[0], 0, cells[1]} : std::array<int, 3>{cells[0], cells[1], cells[2]};
   if (auto grading = r.optional_number("grading")) {
@@ -150,8 +194,16 @@ fem::IsotropicMaterial read_material(const TableReader& r, int dim) {
   fem::IsotropicMaterial m;
   m.young = r.required_number("young", "a number > 0 (Young's modulus, Pa)");
   if (!(m.young > 0)) r.fail_value("young", "young > 0");
+  if (!(m.young >= kMinYoung && m.young <= kMaxYoung))
+    r.fail_value("young", fmt::format("{:g} Pa <= young <= {:g} Pa (Young's modulus in Pa; docs/case-format.md, "
+                                      "\"Physical bounds\")",
+                                      kMinYoung, kMaxYoung));
   m.poisson = r.required_number("poisson", "a number in [0, 0.5) (Poisson's ratio)");
   if (!(m.poisson >= 0 && m.poisson < 0.5)) r.fail_value("poisson", "0 <= poisson < 0.5");
+  if (!(m.poisson <= kMaxPoisson))
+    r.fail_value("poisson", fmt::format("0 <= poisson <= {} (Q1 elements lock for a nearly incompressible "
+                                        "material and the solvers lose their accuracy; docs/case-format.md)",
+                                        kMaxPoisson));
   if (dim == 3 && r.has("model"))
     r.fail("model", fmt::format("{} = {} is only allowed in 2D, but geometry.dim = 3",
                                 r.field("model"), describe(*r.node("model"))));
@@ -159,19 +211,32 @@ fem::IsotropicMaterial read_material(const TableReader& r, int dim) {
   return m;
 }
 
-fem::FaceTraction read_load(const TableReader& r, int dim) {
+// A traction above Young's modulus means a strain above 1: outside linear elasticity.
+fem::FaceTraction read_load(const TableReader& r, int dim, double young) {
   fem::FaceTraction load;
   load.face = read_face(r, dim);
   load.traction = read_dim_vector(r, "traction", dim, "traction, N/m²");
+  for (Eigen::Index i = 0; i < dim; ++i)
+    if (!(std::abs(load.traction(i)) <= young))
+      r.fail_entry("traction", static_cast<std::size_t>(i),
+                   fmt::format("|traction| <= material.young = {} Pa (a larger traction strains the body by more "
+                               "than 100%, outside linear elasticity)",
+                               young));
   return load;
 }
 
-fem::FaceDirichlet read_dirichlet(const TableReader& r, int dim) {
+// A prescribed displacement larger than the body is outside small-strain elasticity.
+fem::FaceDirichlet read_dirichlet(const TableReader& r, int dim, double body_size) {
   fem::FaceDirichlet d;
   d.face = read_face(r, dim);
   d.displacement = r.has("displacement")
                        ? read_dim_vector(r, "displacement", dim, "displacement, m")
                        : Eigen::VectorXd::Zero(dim);
+  for (Eigen::Index i = 0; i < dim; ++i)
+    if (!(std::abs(d.displacement(i)) <= body_size))
+      r.fail_entry("displacement", static_cast<std::size_t>(i),
+                   fmt::format("|displacement| <= {} m, the largest side of the body (small-strain elasticity)",
+                               body_size));
   if (r.has("components")) {
     const std::string what = fmt::format(
         "a non-empty list of distinct component indices in "
@@ -206,8 +271,17 @@ void read_design(const TableReader& r, const Geometry& g, study::BodyDefinition&
       dim == 2 ? "a list [m1] of 1 integer >= 2 in 2D" : "a list [m1, m2] of 2 integers >= 2 in 3D";
   const std::vector<int> control_points = r.int_list("control_points", what);
   if (static_cast<int>(control_points.size()) != dim - 1) r.fail_value("control_points", what);
-  for (std::size_t i = 0; i < control_points.size(); ++i)
-    if (control_points[i] < 2) r.fail_entry("control_points", i, "an integer >= 2");
+  std::int64_t num_controls = 1;
+  for (std::size_t i = 0; i < control_points.size(); ++i) {
+    if (control_points[i] < 2 || control_points[i] > kMaxControlPointsPerDirection)
+      r.fail_entry("control_points", i,
+                   fmt::format("an integer in [2, {}] (Bézier degree <= {})", kMaxControlPointsPerDirection,
+                               kMaxControlPointsPerDirection - 1));
+    num_controls *= control_points[i];
+  }
+  if (num_controls > kMaxDesignVariables)
+    r.fail_value("control_points", fmt::format("at most {} design variables in all; this net has {}",
+                                               kMaxDesignVariables, num_controls));
   body.shape = dim == 2 ? shape::BezierShape::curve(g.a, control_points[0])
                         : shape::BezierShape::surface(g.a, g.b, control_points[0], control_points[1]);
 
@@ -314,12 +388,14 @@ Friction read_friction(const TableReader& r, int dim) {
 
   const auto coefficient = [&](std::string_view key, std::string_view meaning) {
     const double mu = r.required_number(key, fmt::format("a number >= 0 ({})", meaning));
-    if (!(mu >= 0)) r.fail_value(key, fmt::format("{} >= 0", key));
+    if (!(mu >= 0 && mu <= kMaxFriction)) r.fail_value(key, fmt::format("0 <= {} <= {}", key, kMaxFriction));
     return mu;
   };
   const auto sides = [&]() -> std::optional<int> {
     auto n = r.optional_int("n");
-    if (n && *n < 3) r.fail_value("n", "n >= 3 (polygon sides)");
+    if (n && (*n < 3 || *n > kMaxPolygonSides))
+      r.fail_value("n", fmt::format("3 <= n <= {} (polygon sides; use disc_exact or ellipse_exact for the exact set)",
+                                    kMaxPolygonSides));
     return n;
   };
 
@@ -352,11 +428,14 @@ Friction read_friction(const TableReader& r, int dim) {
           const double mu_minus = coefficient("mu_minus", "the coefficient for slip in −x1");
           f.law = checked([&] { return FrictionLaw::interval(mu_minus, mu_plus); });
         } else {
-          const std::string what = "a list of >= 3 numbers >= 0 (the coefficient of each vertex)";
+          const std::string what = fmt::format("a list of 3 to {} numbers >= 0 (the coefficient of each vertex)",
+                                               kMaxPolygonSides);
           std::vector<double> mu_vertices = r.number_list("mu_vertices", what);
-          if (mu_vertices.size() < 3) r.fail_value("mu_vertices", what);
+          if (mu_vertices.size() < 3 || mu_vertices.size() > static_cast<std::size_t>(kMaxPolygonSides))
+            r.fail_value("mu_vertices", what);
           for (std::size_t i = 0; i < mu_vertices.size(); ++i)
-            if (!(mu_vertices[i] >= 0)) r.fail_entry("mu_vertices", i, "mu_vertices[i] >= 0");
+            if (!(mu_vertices[i] >= 0 && mu_vertices[i] <= kMaxFriction))
+              r.fail_entry("mu_vertices", i, fmt::format("0 <= mu_vertices[i] <= {}", kMaxFriction));
           if (const std::optional<int> n = sides(); n && *n != static_cast<int>(mu_vertices.size()))
             r.fail_value("n", fmt::format("n = the length of mu_vertices ({}), or omit n", mu_vertices.size()));
           f.num_vertices = mu_vertices.size();
@@ -504,9 +583,13 @@ OutputSpec read_output(const TableReader& r, std::string default_name) {
   o.vtk = r.optional_bool("vtk").value_or(true);
   if ((o.every = r.optional_int("every").value_or(1)) < 1) r.fail_value("every", "every >= 1");
   o.name = r.optional_string("name").value_or(std::move(default_name));
-  // The name becomes part of file names in the output directory.
-  if (o.name.empty() || o.name.find_first_of("/\\") != std::string::npos)
-    r.fail_value("name", "a non-empty file name without '/' or '\\'");
+  // The name becomes part of file names: a NUL byte would cut them short (the CSV then
+  // overwrote the VTU), a '/' would leave the directory, "." and ".." are directories.
+  const bool control = std::any_of(o.name.begin(), o.name.end(),
+                                   [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; });
+  if (o.name.empty() || control || o.name.find_first_of("/\\") != std::string::npos || o.name == "." ||
+      o.name == "..")
+    r.fail_value("name", "a non-empty file name without '/', '\\' or control characters (NUL, newline, ...)");
   return o;
 }
 
@@ -636,13 +719,100 @@ IdentificationSetup read_identification(const TableReader& r, const CaseDescript
   return spec;
 }
 
+// A traction component on a face that a [[dirichlet]] table fixes in that component does no
+// work (the reaction absorbs it): it is always a mistake in the case, so it is refused.
+void check_loads_on_fixed_faces(const CaseDescription& c, int dim,
+                                const std::map<std::pair<mesh::Face, int>, std::size_t>& fixed_by) {
+  const std::vector<fem::FaceTraction>& loads = c.body.tractions;
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    const fem::FaceTraction& load = loads[i];
+    for (int comp = 0; comp < dim; ++comp) {
+      const auto it = fixed_by.find({load.face, comp});
+      if (load.traction(comp) != 0.0 && it != fixed_by.end())
+        throw InvalidInput(fmt::format(
+            "{}: load[{}].traction[{}] = {} acts on face \"{}\" in component {}, which dirichlet[{}] fixes on the "
+            "same face, so the load does no work; expected a traction on free components only (remove the load, "
+            "set that component to 0, or free it)",
+            c.origin, i, comp, load.traction(comp), mesh::to_string(load.face), comp, it->second));
+    }
+  }
+}
+
+// With contact, the unknowns above the contact surface form the leading block of the
+// stiffness (contact unknowns are ordered last, docs/contact.md): with one cell layer and a
+// fully fixed top that block is empty and there is no elastic body left to solve for.
+void check_free_unknowns(const CaseDescription& c, int dim,
+                         const std::map<std::pair<mesh::Face, int>, std::size_t>& fixed_by) {
+  if (!c.body.contact) return;
+  const auto& [n1, n2, nv] = c.body.resolution.cells;  // n2 = 0 in 2D
+  std::int64_t free_unknowns = 0;
+  for (int k = 1; k <= nv && free_unknowns == 0; ++k)
+    for (int i2 = 0; i2 <= n2 && free_unknowns == 0; ++i2)
+      for (int i1 = 0; i1 <= n1; ++i1) {
+        std::vector<mesh::Face> faces;
+        if (i1 == 0) faces.push_back(mesh::Face::kLeft);
+        if (i1 == n1) faces.push_back(mesh::Face::kRight);
+        if (dim == 3 && i2 == 0) faces.push_back(mesh::Face::kFront);
+        if (dim == 3 && i2 == n2) faces.push_back(mesh::Face::kBack);
+        if (k == nv) faces.push_back(mesh::Face::kTop);
+        for (int comp = 0; comp < dim; ++comp)
+          if (std::none_of(faces.begin(), faces.end(), [&](mesh::Face f) { return fixed_by.count({f, comp}) > 0; }))
+            ++free_unknowns;
+        if (free_unknowns > 0) break;
+      }
+  if (free_unknowns == 0) {
+    const std::string cells = dim == 2 ? fmt::format("{}, {}", n1, nv) : fmt::format("{}, {}, {}", n1, n2, nv);
+    throw InvalidInput(fmt::format(
+        "{}: mesh.cells = [{}] with the [[dirichlet]] tables fixes every unknown above the contact surface: the body "
+        "has no free unknown left but the contact ones; expected at least 2 cell layers (mesh.cells[{}] >= 2) or a "
+        "top face that is not fixed in every component",
+        c.origin, cells, dim - 1));
+  }
+}
+
+// The canonical text of a TOML value for CaseDescription::problem_settings.
+std::string canonical(const toml::node& node) {
+  if (const auto* i = node.as_integer()) return format_number(static_cast<double>(i->get()));
+  if (const auto* x = node.as_floating_point()) return format_number(x->get());
+  if (const auto* b = node.as_boolean()) return b->get() ? "true" : "false";
+  if (const auto* t = node.as_string()) return "\"" + t->get() + "\"";
+  if (const auto* a = node.as_array()) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < a->size(); ++i) out += (i ? ", " : "") + canonical(*a->get(i));
+    return out + "]";
+  }
+  std::ostringstream other;  // dates and times
+  node.visit([&](const auto& v) { other << v; });
+  return other.str();
+}
+
+void flatten(const toml::node& node, const std::string& key, std::map<std::string, std::string>& out) {
+  if (const auto* table = node.as_table()) {
+    for (auto&& [k, v] : *table) flatten(v, key.empty() ? std::string(k.str()) : key + "." + std::string(k.str()), out);
+    if (table->empty()) out[key] = "{}";
+    return;
+  }
+  if (const auto* array = node.as_array(); array && array->is_array_of_tables()) {
+    for (std::size_t i = 0; i < array->size(); ++i) flatten(*array->get(i), fmt::format("{}[{}]", key, i), out);
+    return;
+  }
+  out[key] = canonical(node);
+}
+
+std::map<std::string, std::string> problem_settings(const toml::table& root) {
+  std::map<std::string, std::string> out;
+  for (auto&& [key, value] : root)
+    if (key.str() != "optimization" && key.str() != "output") flatten(value, std::string(key.str()), out);
+  return out;
+}
+
 }  // namespace
 
 CaseDescription parse_case(std::string_view toml_text, std::string_view origin_name) {
   const std::string origin(origin_name);
   toml::table root;
   try {
-    root = toml::parse(toml_text, origin_name);
+    root = toml::parse(detail::without_bom(toml_text), origin_name);
   } catch (const toml::parse_error& e) {
     throw InvalidInput(fmt::format("{}:{}:{}: TOML syntax error: {}", origin, e.source().begin.line,
                                    e.source().begin.column, e.description()));
@@ -678,7 +848,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
       body.tractions.push_back(
           read_load(TableReader(*loads->get(i)->as_table(), fmt::format("load[{}]", i), origin,
                                 {"face", "traction"}),
-                    dim));
+                    dim, body.material.young));
 
   const toml::array* dirichlet = top.optional_table_array("dirichlet");
   if (dirichlet == nullptr || dirichlet->empty())
@@ -690,7 +860,8 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   for (std::size_t i = 0; i < dirichlet->size(); ++i) {
     const TableReader r(*dirichlet->get(i)->as_table(), fmt::format("dirichlet[{}]", i), origin,
                         {"face", "displacement", "components"});
-    fem::FaceDirichlet d = read_dirichlet(r, dim);
+    fem::FaceDirichlet d =
+        read_dirichlet(r, dim, std::max({geometry.a, geometry.b, geometry.height}));
     for (int comp : d.components) {
       const auto [it, inserted] = fixed_by.emplace(std::pair{d.face, comp}, i);
       if (!inserted)
@@ -701,6 +872,8 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     }
     body.dirichlet.push_back(std::move(d));
   }
+
+  check_loads_on_fixed_faces(c, dim, fixed_by);
 
   read_design(table("design", {"control_points", "initial", "upper_bound", "slope_bound", "volume", "slope_scaling"}),
               geometry, body);
@@ -717,6 +890,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     contact_definition.coulomb = coulomb;
     body.contact = std::move(contact_definition);
   }
+  check_free_unknowns(c, dim, fixed_by);
 
   if (const toml::table* cost = top.optional_table("cost")) {
     if (!body.contact)
@@ -748,6 +922,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   else
     c.output.name = std::move(default_name);
   body.name = c.output.name;
+  c.problem_settings = problem_settings(root);
   return c;
 }
 
@@ -769,10 +944,16 @@ CaseDescription load_case(const std::filesystem::path& path) {
     throw InvalidInput(
         fmt::format("{}: case file not found (or not a regular file)", path.string()));
   std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidInput(fmt::format("{}: case file could not be opened for reading", path.string()));
   std::ostringstream text;
+  // operator<< of an empty stream buffer sets failbit: an empty file is reported as such.
+  if (in.peek() == std::ifstream::traits_type::eof()) {
+    if (in.bad()) throw InvalidInput(fmt::format("{}: case file could not be read", path.string()));
+    throw InvalidInput(fmt::format("{}: the case file is empty; expected a TOML case (docs/case-format.md)",
+                                   path.string()));
+  }
   text << in.rdbuf();
-  if (!in || !text)
-    throw InvalidInput(fmt::format("{}: case file could not be read", path.string()));
+  if (in.bad() || !text) throw InvalidInput(fmt::format("{}: case file could not be read", path.string()));
   return parse_case(text.str(), path.string());
 }
 

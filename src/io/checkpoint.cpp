@@ -3,36 +3,156 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/core/validation.hpp"
 
 namespace frictopt::io {
 namespace {
 
-Eigen::VectorXd vector_of(const JsonValue& v) {
-  const auto& a = v.as_array();
-  Eigen::VectorXd out(static_cast<Eigen::Index>(a.size()));
-  for (std::size_t i = 0; i < a.size(); ++i) out(static_cast<Eigen::Index>(i)) = a[i].as_number();
-  return out;
-}
+constexpr std::string_view kFormat = "frictopt-run-checkpoint-2";
+// Counters of a run (iterations, evaluations, solves): a billion is far beyond any run and
+// keeps every counter inside int.
+constexpr std::int64_t kMaxCount = 1'000'000'000;
 
-// NaN is stored as null (JSON has no NaN).
-double number_of(const JsonValue& v) { return v.is_null() ? kNaN : v.as_number(); }
+// Reads the checkpoint's fields with the origin and the field's name in every message.
+class Fields {
+ public:
+  Fields(const JsonValue& object, std::string origin, std::string prefix = "")
+      : object_(object), origin_(std::move(origin)), prefix_(std::move(prefix)) {}
 
-optim::StepKind parse_step(const std::string& text) {
+  const JsonValue& at(std::string_view key) const {
+    if (!object_.is_object() || !object_.contains(key))
+      throw InvalidInput(fmt::format("{}: {} is missing", origin_, name(key)));
+    return object_.at(key);
+  }
+  std::string name(std::string_view key) const { return prefix_ + std::string(key); }
+
+  std::int64_t count(std::string_view key, std::int64_t lo = 0, std::int64_t hi = kMaxCount) const {
+    const JsonValue& v = at(key);
+    if (!v.is_integer())
+      fail_field(origin_, name(key), describe(v), fmt::format("an integer in [{}, {}]", lo, hi));
+    const std::int64_t i = v.as_integer();
+    if (i < lo || i > hi) fail_field(origin_, name(key), std::to_string(i), fmt::format("{} <= {} <= {}", lo, key, hi));
+    return i;
+  }
+  // NaN is stored as null (JSON has no NaN); `finite` refuses it.
+  double number(std::string_view key, bool finite = false) const {
+    const JsonValue& v = at(key);
+    if (v.is_null() && !finite) return kNaN;
+    if (!v.is_integer() && !v.is_real()) fail_field(origin_, name(key), describe(v), "a number");
+    const double x = v.as_number();
+    if (finite && !std::isfinite(x)) fail_field(origin_, name(key), format_number(x), "a finite number");
+    return x;
+  }
+  double positive(std::string_view key) const {
+    const double x = number(key, true);
+    require_field(x > 0, origin_, name(key), x, "a finite number > 0");
+    return x;
+  }
+  Eigen::VectorXd vector(std::string_view key, Eigen::Index size = -1) const {
+    const JsonValue& v = at(key);
+    if (!v.is_array()) fail_field(origin_, name(key), describe(v), "a list of numbers");
+    const auto& a = v.as_array();
+    if (size >= 0 && static_cast<Eigen::Index>(a.size()) != size)
+      fail_field(origin_, name(key), fmt::format("a list of {} numbers", a.size()), fmt::format("{} numbers", size));
+    Eigen::VectorXd out(static_cast<Eigen::Index>(a.size()));
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (!a[i].is_integer() && !a[i].is_real())
+        fail_field(origin_, fmt::format("{}[{}]", name(key), i), describe(a[i]), "a finite number");
+      out(static_cast<Eigen::Index>(i)) = a[i].as_number();
+      if (!std::isfinite(out(static_cast<Eigen::Index>(i))))
+        fail_field(origin_, fmt::format("{}[{}]", name(key), i), "non-finite", "a finite number");
+    }
+    return out;
+  }
+  std::string text(std::string_view key) const {
+    const JsonValue& v = at(key);
+    if (!v.is_string()) fail_field(origin_, name(key), describe(v), "a string");
+    return v.as_string();
+  }
+  std::uint64_t hash(std::string_view key) const {
+    const std::string h = text(key);
+    std::uint64_t value = 0;
+    if (h.size() != 16 || h.find_first_not_of("0123456789abcdef") != std::string::npos)
+      fail_field(origin_, name(key), "\"" + h + "\"", "16 lowercase hexadecimal digits");
+    std::istringstream(h) >> std::hex >> value;
+    return value;
+  }
+
+ private:
+  static std::string describe(const JsonValue& v) {
+    if (v.is_null()) return "null";
+    return to_json_string(v, -1).substr(0, 40);
+  }
+  const JsonValue& object_;
+  std::string origin_;
+  std::string prefix_;
+};
+
+optim::StepKind parse_step(const std::string& text, const std::string& origin) {
   for (optim::StepKind k : {optim::StepKind::kStart, optim::StepKind::kSerious, optim::StepKind::kNull,
                             optim::StepKind::kLineSearchSerious, optim::StepKind::kLineSearchNull})
     if (optim::to_string(k) == text) return k;
-  throw InvalidInput("checkpoint: step = '" + text + "' is unknown");
+  fail_field(origin, "step", "'" + text + "'", "start, serious, null or a line-search step");
 }
+
+std::string hex(std::uint64_t h) { return fmt::format("{:016x}", h); }
 
 }  // namespace
 
-JsonValue checkpoint_to_json(const optim::BundleTrust::IterationSummary& s) {
+std::uint64_t fnv1a64(const void* data, std::size_t size, std::uint64_t seed) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  std::uint64_t h = seed;
+  for (std::size_t i = 0; i < size; ++i) {
+    h ^= bytes[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::uint64_t hash_settings(const std::map<std::string, std::string>& settings) {
+  std::uint64_t h = fnv1a64(nullptr, 0);
+  for (const auto& [key, value] : settings) {
+    const std::string line = key + "=" + value + "\n";
+    h = fnv1a64(line.data(), line.size(), h);
+  }
+  return h;
+}
+
+std::vector<std::string> CaseFingerprint::differences_from(const CaseFingerprint& other) const {
+  std::vector<std::string> out;
+  if (dim != other.dim) out.push_back(fmt::format("geometry.dim: {} -> {}", other.dim, dim));
+  auto a = other.settings.begin();
+  auto b = settings.begin();
+  while (a != other.settings.end() || b != settings.end()) {
+    if (b == settings.end() || (a != other.settings.end() && a->first < b->first)) {
+      out.push_back(fmt::format("{}: {} -> (absent)", a->first, a->second));
+      ++a;
+    } else if (a == other.settings.end() || b->first < a->first) {
+      out.push_back(fmt::format("{}: (absent) -> {}", b->first, b->second));
+      ++b;
+    } else {
+      if (a->second != b->second) out.push_back(fmt::format("{}: {} -> {}", a->first, a->second, b->second));
+      ++a;
+      ++b;
+    }
+  }
+  if (out.empty() && case_hash != other.case_hash) out.push_back("the normalized case (hash)");
+  if (num_nodes != other.num_nodes || mesh_hash != other.mesh_hash)
+    out.push_back(fmt::format("the mesh ({} nodes, hash {} -> {} nodes, hash {})", other.num_nodes,
+                              hex(other.mesh_hash), num_nodes, hex(mesh_hash)));
+  return out;
+}
+
+JsonValue checkpoint_to_json(const RunCheckpoint& c) {
+  const optim::BundleTrust::IterationSummary& s = c.method;
   JsonValue j = JsonValue::object();
-  j["format"] = "frictopt-bundle-trust-checkpoint-1";
+  j["format"] = std::string(kFormat);
   j["iteration"] = s.iteration;
   j["evaluations"] = s.evaluations;
   j["serious_steps"] = s.serious_steps;
@@ -61,52 +181,108 @@ JsonValue checkpoint_to_json(const optim::BundleTrust::IterationSummary& s) {
     bundle.push_back(std::move(element));
   }
   j["bundle"] = std::move(bundle);
+  JsonValue run = JsonValue::object();
+  run["initial_cost"] = c.initial_cost;
+  run["elapsed_seconds"] = c.elapsed_seconds;
+  run["state_solves"] = c.state_solves;
+  run["warm_start_dim"] = c.warm_start_dim;
+  run["warm_start"] = c.warm_start;
+  j["run"] = std::move(run);
+  JsonValue fingerprint = JsonValue::object();
+  fingerprint["dim"] = c.fingerprint.dim;
+  fingerprint["case_hash"] = hex(c.fingerprint.case_hash);
+  fingerprint["num_nodes"] = c.fingerprint.num_nodes;
+  fingerprint["mesh_hash"] = hex(c.fingerprint.mesh_hash);
+  JsonValue settings = JsonValue::object();
+  for (const auto& [key, value] : c.fingerprint.settings) settings[key] = value;
+  fingerprint["settings"] = std::move(settings);
+  j["fingerprint"] = std::move(fingerprint);
   return j;
 }
 
-optim::BundleTrust::IterationSummary checkpoint_from_json(const JsonValue& j) {
-  try {
-    if (!j.contains("format") || j.at("format").as_string() != "frictopt-bundle-trust-checkpoint-1")
-      throw InvalidInput("checkpoint: format is not frictopt-bundle-trust-checkpoint-1");
-    optim::BundleTrust::IterationSummary s;
-    s.iteration = static_cast<int>(j.at("iteration").as_integer());
-    s.evaluations = static_cast<int>(j.at("evaluations").as_integer());
-    s.serious_steps = static_cast<int>(j.at("serious_steps").as_integer());
-    s.null_steps = static_cast<int>(j.at("null_steps").as_integer());
-    s.step = parse_step(j.at("step").as_string());
-    s.inner_trials = static_cast<int>(j.at("inner_trials").as_integer());
-    s.x = vector_of(j.at("x"));
-    s.f = number_of(j.at("f"));
-    s.t = number_of(j.at("t"));
-    s.t_max = number_of(j.at("t_max"));
-    s.stationarity = number_of(j.at("stationarity"));
-    s.aggregate_error = number_of(j.at("aggregate_error"));
-    s.predicted_change = number_of(j.at("predicted_change"));
-    s.z_prev = vector_of(j.at("z_prev"));
-    s.sigma_prev = number_of(j.at("sigma_prev"));
-    s.objective_scale = number_of(j.at("objective_scale"));
-    for (const JsonValue& e : j.at("bundle").as_array()) {
-      optim::BundleElement element;
-      element.g = vector_of(e.at("g"));
-      element.lin_err = number_of(e.at("lin_err"));
-      element.distance = number_of(e.at("distance"));
-      element.locality = number_of(e.at("locality"));
-      element.y = vector_of(e.at("y"));
-      element.is_center = e.at("is_center").as_bool();
-      s.bundle.push_back(std::move(element));
-    }
-    return s;
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(std::string("checkpoint is malformed: ") + e.what());
+RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin) {
+  const Fields top(j, origin);
+  if (!j.is_object() || !j.contains("format") || !j.at("format").is_string() || j.at("format").as_string() != kFormat)
+    throw InvalidInput(fmt::format("{}: format is not {} (a checkpoint of an older frictopt or another file); "
+                                   "start the run again with --force",
+                                   origin, kFormat));
+  RunCheckpoint c;
+  optim::BundleTrust::IterationSummary& s = c.method;
+  s.iteration = static_cast<int>(top.count("iteration"));
+  s.evaluations = static_cast<int>(top.count("evaluations", 1));
+  s.serious_steps = static_cast<int>(top.count("serious_steps"));
+  s.null_steps = static_cast<int>(top.count("null_steps"));
+  if (s.serious_steps + s.null_steps != s.iteration)
+    throw InvalidInput(fmt::format("{}: serious_steps + null_steps = {} + {}; expected = iteration = {}", origin,
+                                   s.serious_steps, s.null_steps, s.iteration));
+  s.step = parse_step(top.text("step"), origin);
+  s.inner_trials = static_cast<int>(top.count("inner_trials"));
+  s.x = top.vector("x");
+  const Eigen::Index n = s.x.size();
+  if (n == 0) fail_field(origin, "x", "[]", "the design (a non-empty list)");
+  s.f = top.number("f", true);
+  s.t = top.positive("t");
+  s.t_max = top.positive("t_max");
+  s.stationarity = top.number("stationarity");
+  s.aggregate_error = top.number("aggregate_error");
+  s.predicted_change = top.number("predicted_change");
+  s.z_prev = top.vector("z_prev", n);
+  s.sigma_prev = top.number("sigma_prev");
+  s.objective_scale = top.positive("objective_scale");
+  const JsonValue& bundle = top.at("bundle");
+  if (!bundle.is_array() || bundle.as_array().empty()) fail_field(origin, "bundle", "empty", "a non-empty list");
+  for (std::size_t i = 0; i < bundle.as_array().size(); ++i) {
+    const Fields e(bundle.as_array()[i], origin, fmt::format("bundle[{}].", i));
+    optim::BundleElement element;
+    element.g = e.vector("g", n);
+    element.lin_err = e.number("lin_err", true);
+    element.distance = e.number("distance", true);
+    element.locality = e.number("locality", true);
+    element.y = e.vector("y", n);
+    const JsonValue& center = e.at("is_center");
+    if (!center.is_bool()) fail_field(origin, e.name("is_center"), "not a boolean", "true or false");
+    element.is_center = center.as_bool();
+    s.bundle.push_back(std::move(element));
   }
+  const Fields run(top.at("run"), origin, "run.");
+  c.initial_cost = run.number("initial_cost", true);
+  c.elapsed_seconds = run.number("elapsed_seconds", true);
+  c.state_solves = run.count("state_solves");
+  c.warm_start_dim = static_cast<int>(run.count("warm_start_dim", 0, 3));
+  c.warm_start = run.vector("warm_start");
+  if (c.warm_start.size() > 0 && (c.warm_start_dim < 2 || c.warm_start.size() % c.warm_start_dim != 0))
+    fail_field(origin, "run.warm_start", fmt::format("a list of {} numbers", c.warm_start.size()),
+               fmt::format("a multiple of run.warm_start_dim = {} (2 or 3)", c.warm_start_dim));
+  const Fields f(top.at("fingerprint"), origin, "fingerprint.");
+  c.fingerprint.dim = static_cast<int>(f.count("dim", 2, 3));
+  c.fingerprint.case_hash = f.hash("case_hash");
+  c.fingerprint.num_nodes = f.count("num_nodes", 1, std::numeric_limits<std::int64_t>::max());
+  c.fingerprint.mesh_hash = f.hash("mesh_hash");
+  const JsonValue& settings = f.at("settings");
+  if (!settings.is_object()) fail_field(origin, "fingerprint.settings", "not an object", "an object of strings");
+  for (const auto& [key, value] : settings.as_object()) {
+    if (!value.is_string()) fail_field(origin, "fingerprint.settings." + key, "not a string", "a string");
+    c.fingerprint.settings[key] = value.as_string();
+  }
+  if (hash_settings(c.fingerprint.settings) != c.fingerprint.case_hash)
+    throw InvalidInput(fmt::format("{}: fingerprint.case_hash does not match fingerprint.settings; the checkpoint "
+                                   "was edited or damaged",
+                                   origin));
+  return c;
 }
 
-optim::BundleTrust::IterationSummary read_checkpoint(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InvalidInput(fmt::format("{}: cannot read the checkpoint (was the run started with this directory?)", path.string()));
+RunCheckpoint read_checkpoint(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidInput(fmt::format("{}: cannot read the checkpoint", path.string()));
   std::stringstream text;
   text << in.rdbuf();
-  return checkpoint_from_json(parse_json(text.str()));
+  JsonValue json;
+  try {
+    json = parse_json(text.str());
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("{}: the checkpoint is not valid JSON ({})", path.string(), e.what()));
+  }
+  return checkpoint_from_json(json, path.string());
 }
 
 }  // namespace frictopt::io

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <set>
 
+#include "atomic_file.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::io {
@@ -49,6 +50,9 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string>
                                      path_.string(), name));
   const std::string header_line = join(header_);
 
+  // Rows are appended in place (a history grows while the run goes), so this writer cannot
+  // replace the file atomically; it still writes regular files only (atomic_file.hpp).
+  detail::require_regular_output(path_);
   bool write_header = true;
   std::error_code ec;
   if (mode == Mode::kAppend && std::filesystem::exists(path_, ec) &&

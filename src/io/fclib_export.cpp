@@ -17,6 +17,7 @@ extern "C" {
 #include <fclib.h>
 }
 
+#include "atomic_file.hpp"
 #include "frictopt/contact/delassus.hpp"
 #include "frictopt/contact/friction_law.hpp"
 #include "frictopt/core/error.hpp"
@@ -37,15 +38,16 @@ struct IsotropicReading {
   std::string law_text;  // for the description
 };
 
-IsotropicReading isotropic_reading(const contact::FrictionLaw& law) {
+IsotropicReading isotropic_reading(const contact::FrictionLaw& law, std::string_view case_name) {
   using contact::FrictionLawKind;
   IsotropicReading out;
   out.law_text = law.describe();
   const auto reject = [&](const char* case_kind) {
     return InvalidInput(fmt::format(
-        "contact.friction.kind = {} ({}) cannot be exported to FCLIB, which stores isotropic "
+        "{}{}contact.friction.kind = {} ({}) cannot be exported to FCLIB, which stores isotropic "
         "Coulomb cones only; use kind = disc_exact or isotropic{}",
-        case_kind, law.describe(), law.dim() == 2 ? " (2D: mu_minus = mu_plus)" : ""));
+        case_name, case_name.empty() ? "" : ": ", case_kind, law.describe(),
+        law.dim() == 2 ? " (2D: mu_minus = mu_plus)" : ""));
   };
   switch (law.kind()) {
     case FrictionLawKind::kDisc:
@@ -88,11 +90,23 @@ Eigen::VectorXd project_on_cone(const Eigen::VectorXd& x, double mu) {
   return p;
 }
 
+// The dense Delassus matrix of the state: reused from the state solve when it kept one.
+Eigen::MatrixXd state_delassus(const study::ContactResult& result, const linalg::SpdSolver& cholesky,
+                               const contact::ContactBoundary& boundary) {
+  if (result.delassus_matrix) return *result.delassus_matrix;
+  if (const auto* schur = dynamic_cast<const contact::SchurDelassus*>(result.delassus.get())) return schur->dense();
+  return contact::dense_delassus(cholesky, boundary);  // a state without its operator (released)
+}
+
 std::string case_label(const study::ElasticBody& body, const FclibExportOptions& options) {
   return options.case_name.empty() ? body.definition().name : options.case_name;
 }
 
 }  // namespace
+
+void require_fclib_exportable(const contact::FrictionLaw& law, std::string_view case_name) {
+  (void)isotropic_reading(law, case_name);
+}
 
 FclibLocalProblem make_fclib_local(const study::ElasticBody& body, const study::BodyState& state,
                                    const FclibExportOptions& options) {
@@ -112,7 +126,7 @@ FclibLocalProblem make_fclib_local(const study::ElasticBody& body, const study::
                     "state before exporting it to FCLIB",
                     case_name, state.summary.message));
   const contact::FrictionLaw& law = body.definition().contact->law;
-  const IsotropicReading reading = isotropic_reading(law);
+  const IsotropicReading reading = isotropic_reading(law, case_name);
   const study::ContactResult& result = *state.contact;
   const int d = boundary->dim();
   const Eigen::Index p = boundary->num_nodes();
@@ -126,13 +140,28 @@ FclibLocalProblem make_fclib_local(const study::ElasticBody& body, const study::
     throw InvalidInput(fmt::format("{}: the contact state has {} unknowns; the body has {}",
                                    case_name, result.state.z.size(), m));
 
-  // Our dual data (spec 02, §9.2): M = G A⁻¹ Gᵀ through the factorization of the last solve,
-  // c = G A⁻¹ l + (0, g).
-  const fem::SparseCholesky& cholesky = body.elasticity().factorization();
-  const Eigen::MatrixXd M = contact::dense_delassus(cholesky, *boundary);
+  // Our dual data (spec 02, §9.2): M = G A⁻¹ Gᵀ as the state solve formed it (its dense
+  // copy, or the dense M from its Schur factor: 2m³/3 flops, no second factorization of the
+  // stiffness), c = G A⁻¹ l + (0, g) by one solve with the factorization of the last solve.
+  const linalg::SpdSolver& cholesky = body.elasticity().factorization();
+  const Eigen::MatrixXd M = state_delassus(result, cholesky, *boundary);
   Eigen::VectorXd c = boundary->times(cholesky.solve(body.elasticity().load()));
   for (Eigen::Index i = 0; i < p; ++i) c(d * i + d - 1) += result.gaps(i);
 
+  // The state's operator must be this factorization's: M v against G A⁻¹ Gᵀ v for one v
+  // (one solve), so a state of another design is refused even where its c happens to agree.
+  {
+    const Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(m, 1.0, 2.0);
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(body.elasticity().dofs().num_free());
+    boundary->add_transpose_times(v, w);
+    const Eigen::VectorXd Mv = boundary->times(cholesky.solve(w));
+    const double operator_mismatch = (M * v - Mv).norm() / std::max(Mv.norm(), kTiny);
+    if (!(operator_mismatch <= 1e-8))
+      throw InvalidInput(fmt::format("{}: the state is not the body's most recent solve (its Delassus operator "
+                                     "differs from the body's factorization by {:.2e} relative); call "
+                                     "body.solve(alpha) right before exporting",
+                                     case_name, operator_mismatch));
+  }
   // The state must come from this factorization: its gradient ∇ = Mz + c (a fresh apply in the
   // solver) must match ours to round-off. 1e-8 leaves room for the dense vs factorization-
   // applied Delassus (both backward stable, ~1e-14 relative) while any other design or load
@@ -202,11 +231,15 @@ FclibLocalProblem make_fclib_local(const study::ElasticBody& body, const study::
       "global axes, normal e_{} upward). Isotropic Coulomb friction, mu = {}.{} Static reading "
       "of FCLIB's velocities: u_N = u_nu + g is the gap after deformation and u_T the tangential "
       "displacement at the node; r = (lambda, tau) are the nodal contact forces on the body "
-      "(normal first). Units: forces in {:.17g} N{}, displacements in {:.17g} m. Our solution "
+      "(normal first). Units: {} forces in {:.17g} N{}, displacements in {:.17g} m. Our solution "
       "(Coulomb fixed point over Tresca dual QPs): {}.",
       what, case_name, FRICTOPT_VERSION, body.elasticity().dofs().num_free(), d,
       fmt::join(state.alpha.data(), state.alpha.data() + state.alpha.size(), ", "), p, d,
-      reading.mu, law_note, out.force_unit, d == 2 ? " per metre" : "", out.length_unit,
+      reading.mu, law_note,
+      options.normalize_units ? "normalized (frictopt's default: W, q, r and u are O(1) so that other solvers' "
+                                "absolute tolerances read as relative ones; multiply back by these units for SI):"
+                              : "SI:",
+      out.force_unit, d == 2 ? " per metre" : "", out.length_unit,
       result.summary.brief_report());
   out.math_info = fmt::format(
       "W = H A^-1 H^T with A the stiffness matrix on the free degrees of freedom (symmetric "
@@ -241,8 +274,9 @@ void write_fclib_local(const std::filesystem::path& path, const FclibLocalProble
                                    path.string(), parent.string()));
 
   // fclib's writers append to an existing HDF5 file (and refuse to overwrite a problem), so
-  // write a fresh sibling file and rename it over the target.
-  const std::filesystem::path partial = path.string() + ".partial";
+  // write a fresh, uniquely named sibling and rename it over the target if that is a regular
+  // file (atomic_file.hpp). fclib creates the file itself: the reserved empty name is freed.
+  const std::filesystem::path partial = detail::make_sibling_temporary(path);
   std::error_code ignored;
   std::filesystem::remove(partial, ignored);
 
@@ -292,13 +326,7 @@ void write_fclib_local(const std::filesystem::path& path, const FclibLocalProble
       throw fail("initial guess");
     }
   }
-  std::error_code error;
-  std::filesystem::rename(partial, path, error);
-  if (error) {
-    std::filesystem::remove(partial, ignored);
-    throw InvalidInput(
-        fmt::format("{}: cannot replace the file ({})", path.string(), error.message()));
-  }
+  detail::publish_file(partial, path);
 }
 
 FclibLocalProblem export_fclib_local(const std::filesystem::path& path,

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "atomic_file.hpp"
+#include "text_input.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::io {
@@ -67,7 +68,7 @@ std::vector<study::Measurement> read_measurements(const std::filesystem::path& p
   bool header_seen = false;
   while (std::getline(in, line)) {
     ++number;
-    const std::string_view text = trim(line);
+    const std::string_view text = trim(number == 1 ? detail::without_bom(line) : std::string_view(line));
     if (text.empty() || text.front() == '#') continue;
     const std::string where = fmt::format("{}:{}", path.string(), number);
     const std::vector<std::string_view> fields = split(text, ',');

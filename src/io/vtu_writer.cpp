@@ -16,6 +16,7 @@
 #include <set>
 #include <system_error>
 
+#include "atomic_file.hpp"
 #include "frictopt/core/error.hpp"
 #include "vtk_error_capture.hpp"
 
@@ -195,18 +196,24 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
   if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
     throw InvalidInput(fmt::format("write_vtu: directory '{}' does not exist", parent.string()));
 
+  // VTK writes where it is told (following links, into devices): it writes a fresh sibling
+  // that replaces the target only if that is a regular file (atomic_file.hpp).
+  const std::filesystem::path temporary = detail::make_sibling_temporary(path);
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
   detail::VtkErrorCapture capture(writer);
-  writer->SetFileName(path.c_str());
+  writer->SetFileName(temporary.c_str());
   writer->SetInputData(ugrid);
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary: smaller and faster than base64
   writer->SetCompressorTypeToZLib();
   // 64-bit headers so files above 4 GiB (large 3D series) stay valid.
   writer->SetHeaderTypeToUInt64();
-  if (writer->Write() != 1 || capture.has_error())
+  if (writer->Write() != 1 || capture.has_error()) {
+    std::filesystem::remove(temporary, ec);
     throw InvalidInput(fmt::format("write_vtu: could not write '{}': {}", path.string(),
                                    capture.has_error() ? capture.errors() : "unknown VTK error"));
+  }
+  detail::publish_file(temporary, path);
 }
 
 }  // namespace frictopt::io

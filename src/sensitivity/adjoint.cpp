@@ -8,7 +8,7 @@
 
 #include "frictopt/core/error.hpp"
 #include "friction_geometry.hpp"
-#include "frictopt/contact/dense_blas.hpp"
+#include "frictopt/linalg/dense_blas.hpp"
 #include "frictopt/sensitivity/parameter_sensitivity.hpp"
 
 namespace frictopt::sensitivity {
@@ -189,7 +189,7 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
                                                            const CostPartials& partials) const {
   const auto start = std::chrono::steady_clock::now();
   const fem::DofMap& dofs = fem_.dofs();
-  const fem::SparseCholesky& cholesky = fem_.factorization();
+  const linalg::SpdSolver& cholesky = fem_.factorization();
   const Eigen::Index m = boundary_.num_unknowns();
   FRICTOPT_ASSERT(delassus.size() == m, "Delassus size");
   Result result;
@@ -209,7 +209,7 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   for (std::size_t i = 0; i < red.free_z.size(); ++i) r(static_cast<Eigen::Index>(i)) = rhs(red.free_z[i]);
   Eigen::VectorXd psi_active;
   // An exactly singular K (lu_solve false) has rcond 0 and fails the kSingular test below.
-  if (!contact::blas::lu_solve(K, r, psi_active, result.summary.reciprocal_condition))
+  if (!linalg::blas::lu_solve(K, r, psi_active, result.summary.reciprocal_condition))
     result.summary.reciprocal_condition = 0.0;
   result.summary.relative_residual = K.size() ? (K * psi_active - r).norm() / std::max(r.norm(), 1e-300) : 0.0;
   result.summary.piece_residual = lin.relative_residual;
@@ -250,7 +250,7 @@ AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
     const Eigen::Ref<const Eigen::VectorXd>& u, const contact::ContactState& state,
     const Eigen::Ref<const Eigen::VectorXd>& h) const {
   const fem::DofMap& dofs = fem_.dofs();
-  const fem::SparseCholesky& cholesky = fem_.factorization();
+  const linalg::SpdSolver& cholesky = fem_.factorization();
   const int dim = boundary_.dim();
   const PieceLinearization lin = linearize_piece(piece, law_, state);
   const Reduction red = reduce(lin);
@@ -273,7 +273,7 @@ AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
   out.contact = Eigen::VectorXd::Zero(boundary_.num_unknowns());
   if (K.size()) {
     Eigen::VectorXd dz;
-    if (!contact::blas::lu_solve(K, r, dz, out.reciprocal_condition)) out.reciprocal_condition = 0.0;
+    if (!linalg::blas::lu_solve(K, r, dz, out.reciprocal_condition)) out.reciprocal_condition = 0.0;
     for (std::size_t i = 0; i < red.free_z.size(); ++i) out.contact(red.free_z[i]) = dz(static_cast<Eigen::Index>(i));
   }
   out.status = out.reciprocal_condition > kSingularReciprocalCondition ? Status::kConverged : Status::kNumericalFailure;

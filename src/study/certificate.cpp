@@ -12,7 +12,7 @@
 #include <string>
 
 #include "frictopt/contact/delassus.hpp"
-#include "frictopt/contact/dense_blas.hpp"
+#include "frictopt/linalg/dense_blas.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/sensitivity/adjoint.hpp"
 #include "frictopt/sensitivity/piece.hpp"
@@ -206,7 +206,7 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   out.rows = H.rows();
   out.cols = H.cols();
   out.extra_conditions = static_cast<int>(n_rows - m);
-  const Eigen::VectorXd sv = contact::blas::singular_values(H);
+  const Eigen::VectorXd sv = linalg::blas::singular_values(H);
   out.sigma_max = sv.size() ? sv(0) : 0.0;
   out.sigma_min = sv.size() ? sv(sv.size() - 1) : 0.0;
   out.tolerance = options.rank_tolerance * out.sigma_max;
@@ -229,7 +229,7 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
     out.spec_rank = static_cast<int>(out.spec_rows);
   } else {
     const Eigen::MatrixXd Hs = H(spec_rows, Eigen::all);
-    const Eigen::VectorXd ss = contact::blas::singular_values(Hs);
+    const Eigen::VectorXd ss = linalg::blas::singular_values(Hs);
     out.spec_rank = ss.size() ? static_cast<int>((ss.array() > options.rank_tolerance * ss(0)).count()) : 0;
   }
   out.spec_full_row_rank = out.spec_rank == out.spec_rows;
@@ -365,17 +365,9 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   const auto start = std::chrono::steady_clock::now();
   const ElasticBody& body = oracle.body();
   const Eigen::Index d = body.definition().shape.num_controls();
-  if (alpha.size() != d)
-    throw InvalidInput(fmt::format("certify: the design has {} entries; expected {} (the shape's control points)",
-                                   alpha.size(), d));
-  // N_Υ(α) exists on Υ only: refuse an outside design before any state solve or adjoint.
+  require_admissible_design(body, alpha, options.active_tolerance, "certify");
   const shape::LinearConstraints& upsilon = body.admissible_set();
   const optim::LinearConstraints constraints = to_optim_constraints(upsilon);
-  if (const double violation = constraints.max_violation(alpha);
-      violation > options.active_tolerance * std::max(1.0, alpha.lpNorm<Eigen::Infinity>()))
-    throw InvalidInput(fmt::format("certify: the design violates the admissible set by {:.3e}; expected a design in "
-                                   "Υ ({})",
-                                   violation, upsilon.describe_violation(alpha, 0.0)));
   Certificate c;
   c.alpha = alpha;
   const Evaluation& e = oracle.evaluate_design(alpha, false);  // ξ of every piece follows below

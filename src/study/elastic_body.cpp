@@ -6,7 +6,7 @@
 #include <chrono>
 
 #include "frictopt/contact/delassus.hpp"
-#include "frictopt/contact/linear_operator.hpp"
+#include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::study {
@@ -30,7 +30,7 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
   mesh_ = std::make_unique<mesh::StructuredMesh>(definition_.shape, definition_.height, definition_.resolution);
   fem_ = std::make_unique<fem::LinearElasticity>(*mesh_, definition_.material,
                                                  fem::expand_dirichlet(*mesh_, definition_.dirichlet),
-                                                 definition_.tractions);
+                                                 definition_.tractions, definition_.linear_solver);
   admissible_ = shape::make_admissible_set(definition_.shape, definition_.admissible);
   if (definition_.contact) {
     if (definition_.contact->law.dim() != mesh_->dim())
@@ -39,10 +39,13 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
     definition_.contact->coulomb.validate();
     boundary_ = std::make_unique<contact::ContactBoundary>(*mesh_, fem_->dofs());
     // Contact DOFs last, in z order: the trailing factor gives the Delassus matrix (spec 02 §5).
-    std::vector<int> trailing;
-    for (Eigen::Index i = 0; i < boundary_->num_nodes(); ++i)
-      for (int c = 0; c < mesh_->dim(); ++c) trailing.push_back(boundary_->free_dof(i, c));
-    fem_->set_trailing_dofs(std::move(trailing));
+    // A backend without that capability gets M by solves instead (solve()).
+    if (fem_->factorization().supports_trailing_factor()) {
+      std::vector<int> trailing;
+      for (Eigen::Index i = 0; i < boundary_->num_nodes(); ++i)
+        for (int c = 0; c < mesh_->dim(); ++c) trailing.push_back(boundary_->free_dof(i, c));
+      fem_->set_trailing_dofs(std::move(trailing));
+    }
   }
 }
 
@@ -68,8 +71,8 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
     return state;
   }
   start = std::chrono::steady_clock::now();
-  const fem::SparseCholesky& cholesky = fem_->factorization();
-  Eigen::VectorXd u_free = cholesky.solve(fem_->load());  // the free body's response A⁻¹l
+  const linalg::SpdSolver& solver = fem_->factorization();
+  Eigen::VectorXd u_free = solver.solve(fem_->load());  // the free body's response A⁻¹l
   Eigen::VectorXd rhs = fem_->load();
   if (boundary_) {
     // Dual contact QP (spec 02, §7/§9.2): min ½zᵀMz + zᵀc with c = G A⁻¹ l + (0, g).
@@ -79,27 +82,37 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
     Eigen::VectorXd c = boundary_->times(u_free);
     for (Eigen::Index i = 0; i < boundary_->num_nodes(); ++i) c(dim * i + dim - 1) += result.gaps(i);
     const ContactDefinition& cd = *definition_.contact;
-    auto schur = std::make_shared<contact::SchurDelassus>(cholesky.trailing_factor(), dim);
     result.dense_delassus = boundary_->num_unknowns() <= cd.dense_delassus_max_unknowns;
-    if (result.dense_delassus) {
-      // One copy of the dense M, shared by the QP operator and readers of delassus_matrix; the
-      // Schur factor is released at the end of this scope.
-      result.delassus_matrix = std::make_shared<const Eigen::MatrixXd>(schur->dense());
+    if (solver.trailing_size() > 0) {
+      auto schur = std::make_shared<contact::SchurDelassus>(solver.trailing_factor(), dim);
+      if (result.dense_delassus) {
+        // One copy of the dense M, shared by the QP operator and readers of delassus_matrix; the
+        // Schur factor is released at the end of this scope.
+        result.delassus_matrix = std::make_shared<const Eigen::MatrixXd>(schur->dense());
+        result.delassus = std::make_shared<contact::DenseDelassus>(result.delassus_matrix);
+      } else {
+        result.delassus = std::move(schur);
+      }
+    } else if (result.dense_delassus) {
+      // A backend without the Schur factor (or no contact unknowns): M column block by block.
+      result.delassus_matrix = std::make_shared<const Eigen::MatrixXd>(contact::dense_delassus(solver, *boundary_));
       result.delassus = std::make_shared<contact::DenseDelassus>(result.delassus_matrix);
     } else {
-      result.delassus = std::move(schur);
+      // Applied through the factorization: valid until the next solve() refactorizes, which is
+      // how ShapeOracle uses it (the sensitivity reads M only at the last solved design).
+      result.delassus = std::make_shared<contact::FactorizedDelassus>(solver, *boundary_);
     }
-    const contact::LinearOperator* delassus = result.delassus.get();
+    const linalg::LinearOperator* delassus = result.delassus.get();
     result.state = warm_start_ && warm_start_->z.size() == boundary_->num_unknowns()
                        ? *warm_start_
                        : contact::ContactState(dim, boundary_->num_nodes());
-    const contact::CoulombSolver solver(*delassus, cd.law, cd.coulomb);
-    result.summary = solver.solve(c, result.state);
+    const contact::CoulombSolver coulomb(*delassus, cd.law, cd.coulomb);
+    result.summary = coulomb.solve(c, result.state);
     if (result.summary.converged()) warm_start_ = result.state;
     // u_f = A⁻¹(l + Gᵀz): the body under its loads and the contact forces.
     Eigen::VectorXd w = Eigen::VectorXd::Zero(fem_->dofs().num_free());
     boundary_->add_transpose_times(result.state.z, w);
-    u_free += cholesky.solve(w);
+    u_free += solver.solve(w);
     rhs += w;
     if (!result.summary.converged()) {
       state.summary.status = result.summary.status;

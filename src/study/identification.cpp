@@ -16,7 +16,7 @@
 #include <set>
 
 #include "frictopt/contact/delassus.hpp"
-#include "frictopt/contact/linear_operator.hpp"
+#include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/sensitivity/adjoint.hpp"
@@ -24,6 +24,7 @@
 #include "frictopt/sensitivity/index_sets.hpp"
 #include "frictopt/sensitivity/parameter_sensitivity.hpp"
 #include "frictopt/sensitivity/piece.hpp"
+#include "frictopt/study/derivative_accuracy.hpp"
 #include "frictopt/study/elastic_body.hpp"
 
 namespace frictopt::study {
@@ -371,7 +372,7 @@ const Identification::Prediction& Identification::Impl::predict(const Eigen::Vec
     return out;
   }
   const double rho = young_for(p) / young0;
-  const contact::ScaledOperator M(*M0_op, 1.0 / rho);  // M(E) = M(E₀) E₀/E, no copy
+  const linalg::ScaledOperator M(*M0_op, 1.0 / rho);  // M(E) = M(E₀) E₀/E, no copy
   const Eigen::VectorXd c = c_traction / rho + c_dirichlet + gap_vector;
   contact::ContactState state = warm_start ? *warm_start : contact::ContactState(dim, num_nodes);
   const contact::CoulombSolver solver(M, law, coulomb);
@@ -422,10 +423,7 @@ Identification::Identification(BodyDefinition definition, std::vector<Measuremen
   if (!definition.contact) throw InvalidInput("identification needs a body in contact: add a [contact] table to the case");
   // The Jacobian is exact only for a state far more accurate than Ceres' steps.
   auto& co = definition.contact->coulomb;
-  co.relative_tolerance = std::min(co.relative_tolerance, options.state_tolerance);
-  co.tresca.relative_tolerance = std::min(co.tresca.relative_tolerance, options.state_tolerance);
-  co.max_iterations = std::max(co.max_iterations, 200);
-  co.tresca.max_iterations = std::max(co.tresca.max_iterations, 200000);
+  tighten_for_derivatives(co, options.state_tolerance);
   s.coulomb = co;
   s.definition = std::move(definition);
   s.options = std::move(options);

@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/study/shape_optimization.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <chrono>
+
+#include "frictopt/core/error.hpp"
 
 namespace frictopt::study {
 
@@ -14,6 +19,20 @@ optim::LinearConstraints to_optim_constraints(const shape::LinearConstraints& u)
   c.A_eq = u.A_eq;
   c.b_eq = u.b_eq;
   return c;
+}
+
+void require_admissible_design(const ElasticBody& body, const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                               double tolerance, std::string_view who) {
+  const Eigen::Index d = body.definition().shape.num_controls();
+  if (alpha.size() != d)
+    throw InvalidInput(fmt::format("{}: the design has {} entries; expected {} (the shape's control points)", who,
+                                   alpha.size(), d));
+  // N_Υ(α) and the state exist on Υ only: refuse an outside design before any solve.
+  const shape::LinearConstraints& upsilon = body.admissible_set();
+  const double violation = to_optim_constraints(upsilon).max_violation(alpha);
+  if (!(violation <= tolerance * std::max(1.0, alpha.lpNorm<Eigen::Infinity>())))
+    throw InvalidInput(fmt::format("{}: the design violates the admissible set by {:.3e}; expected a design in Υ ({})",
+                                   who, violation, upsilon.describe_violation(alpha, 0.0)));
 }
 
 optim::BundleTrust::Options default_study_options(const BodyDefinition& body) {

@@ -57,7 +57,7 @@ TEST(CoulombSolver, SatisfiesCoulombKktConditionsForEveryLaw) {
   for (const auto& law : laws) {
     for (auto method : {CoulombMethod::kFixedPoint, CoulombMethod::kSplit}) {
       const auto problem = random_problem(law.dim(), 25, kSeed + 11);
-      const DenseOperator op(problem.m);
+      const linalg::DenseOperator op(problem.m);
       CoulombSolver::Options options;
       options.method = method;
       const CoulombSolver solver(op, law, options);
@@ -82,7 +82,7 @@ TEST(CoulombSolver, ZeroFrictionReproducesFrictionlessContact) {
                           FrictionLaw::disc(0.0)}) {
     const int dim = law.dim();
     const auto problem = random_problem(dim, 20, kSeed + 12);
-    const DenseOperator op(problem.m);
+    const linalg::DenseOperator op(problem.m);
     const CoulombSolver solver(op, law);
     ContactState state;
     const auto summary = solver.solve(problem.c, state);
@@ -99,7 +99,7 @@ TEST(CoulombSolver, ZeroFrictionReproducesFrictionlessContact) {
 TEST(CoulombSolver, SplitAndFullFixedPointAgree) {
   for (const auto& law : {FrictionLaw::interval(0.25, 0.35), FrictionLaw::regular_polygon(0.3, 16)}) {
     const auto problem = random_problem(law.dim(), 30, kSeed + 13);
-    const DenseOperator op(problem.m);
+    const linalg::DenseOperator op(problem.m);
     CoulombSolver::Options full, split;
     split.method = CoulombMethod::kSplit;
     ContactState a, b;
@@ -119,7 +119,7 @@ TEST(CoulombSolver, OneNodeHandComputedSlip) {
   m << 1.0 / k_t, 0.0, 0.0, 1.0 / k;
   Eigen::VectorXd c(2);
   c << -force / k_t, -big_l / k + gap;
-  const DenseOperator op(m);
+  const linalg::DenseOperator op(m);
   for (auto method : {CoulombMethod::kFixedPoint, CoulombMethod::kSplit}) {
     CoulombSolver::Options options;
     options.method = method;
@@ -137,7 +137,7 @@ TEST(CoulombSolver, OneNodeHandComputedSlip) {
 TEST(CoulombSolver, NoContactAnywhereConvergesImmediatelyAllSeparated) {
   std::mt19937_64 rng{kSeed + 14};
   const Eigen::Index p = 15;
-  const DenseOperator op(testing::random_spd(3 * p, rng));
+  const linalg::DenseOperator op(testing::random_spd(3 * p, rng));
   Eigen::VectorXd c = Eigen::VectorXd::Zero(3 * p);
   std::normal_distribution<double> normal(0.0, 1.0);
   for (Eigen::Index i = 0; i < p; ++i) {
@@ -167,7 +167,7 @@ TEST(CoulombSolver, ExpansiveFixedPointIsReportedAsDiverged) {
   m << 1.0, -0.9, -0.9, 1.0;
   Eigen::VectorXd c(2);
   c << -1e4, -1.0;
-  const DenseOperator op(m);
+  const linalg::DenseOperator op(m);
   ContactState state;
   const auto diverged = CoulombSolver(op, FrictionLaw::interval(2.0, 2.0)).solve(c, state);
   EXPECT_EQ(diverged.status, Status::kDiverged) << diverged.brief_report();
@@ -185,7 +185,7 @@ TEST(CoulombSolver, ExpansiveFixedPointIsReportedAsDiverged) {
 
 TEST(CoulombSolver, CallbackCanStopTheIteration) {
   const auto problem = random_problem(3, 10, kSeed + 15);
-  const DenseOperator op(problem.m);
+  const linalg::DenseOperator op(problem.m);
   CoulombSolver::Options options;
   int calls = 0;
   options.on_iteration = [&](const CoulombIterationSummary& it) {
@@ -201,7 +201,7 @@ TEST(CoulombSolver, CallbackCanStopTheIteration) {
 
 TEST(CoulombSolver, WarmStartFromASolutionConvergesInOneOrTwoIterations) {
   const auto problem = random_problem(3, 30, kSeed + 16);
-  const DenseOperator op(problem.m);
+  const linalg::DenseOperator op(problem.m);
   const CoulombSolver solver(op, FrictionLaw::regular_polygon(0.3, 8));
   ContactState state;
   const auto cold = solver.solve(problem.c, state);

@@ -44,7 +44,7 @@ TEST(TrescaSolver, OneNodeSanityCaseMatchesHandComputation) {
   const double k = 2.0, big_l = 3.0, gap = 0.5, k_t = 1.0, force = 1.0, s = 0.6;
   Eigen::MatrixXd m(2, 2);
   m << 1.0 / k_t, 0.0, 0.0, 1.0 / k;
-  const DenseOperator op(m);
+  const linalg::DenseOperator op(m);
   const TrescaSolver solver(op, FrictionLaw::interval(1.0, 1.0));
   Eigen::VectorXd c(2);
   c << -force / k_t, -big_l / k + gap;
@@ -107,7 +107,7 @@ TEST_P(TrescaRandom, SatisfiesKktAndMatchesProjectedGaussSeidel) {
   std::uniform_real_distribution<double> uni(0.5, 1.5);
   Eigen::VectorXd s(param.nodes);
   for (auto& x : s) x = uni(rng);
-  const DenseOperator op(m);
+  const linalg::DenseOperator op(m);
   for (auto algorithm : {TrescaAlgorithm::kJointMpgp, TrescaAlgorithm::kSplit}) {
     TrescaSolver::Options options;
     options.algorithm = algorithm;
@@ -152,7 +152,7 @@ TEST(TrescaSolver, WarmStartReducesIterations) {
   const Eigen::Index p = 60;
   const Eigen::MatrixXd m = testing::random_spd(3 * p, rng);
   const Eigen::VectorXd c = testing::random_c(3, p, rng);
-  const DenseOperator op(m);
+  const linalg::DenseOperator op(m);
   const TrescaSolver solver(op, FrictionLaw::regular_polygon(0.4, 8));
   const Eigen::VectorXd s = Eigen::VectorXd::Ones(p);
   ContactState warm;
@@ -171,7 +171,7 @@ TEST(TrescaSolver, WarmStartReducesIterations) {
 TEST(TrescaSolver, TrivialProblemsConvergeImmediately) {
   std::mt19937_64 rng{kSeed + 8};
   const Eigen::Index p = 10;
-  const DenseOperator op(testing::random_spd(3 * p, rng));
+  const linalg::DenseOperator op(testing::random_spd(3 * p, rng));
   const TrescaSolver solver(op, FrictionLaw::disc(0.3));
   ContactState state;
   const auto zero = solver.solve(Eigen::VectorXd::Zero(3 * p), Eigen::VectorXd::Ones(p), state);
@@ -189,7 +189,7 @@ TEST(TrescaSolver, TrivialProblemsConvergeImmediately) {
 TEST(TrescaSolver, IterationLimitIsAStatusNotAnException) {
   std::mt19937_64 rng{kSeed + 9};
   const Eigen::Index p = 30;
-  const DenseOperator op(testing::random_spd(3 * p, rng));
+  const linalg::DenseOperator op(testing::random_spd(3 * p, rng));
   TrescaSolver::Options options;
   options.max_iterations = 2;
   const TrescaSolver solver(op, FrictionLaw::disc(0.3), options);

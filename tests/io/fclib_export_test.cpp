@@ -153,7 +153,9 @@ TEST_F(FclibExport3d, WAndQAreOursUnderTheSignedPermutation) {
     P(3 * i + 1, 3 * i) = -1.0;
     P(3 * i + 2, 3 * i + 1) = -1.0;
   }
-  const FclibLocalProblem problem = frictopt::io::make_fclib_local(*body_, *state_);
+  FclibExportOptions si;
+  si.normalize_units = false;
+  const FclibLocalProblem problem = frictopt::io::make_fclib_local(*body_, *state_, si);
   // Both sides are the same products of the same numbers up to the order of summation in the
   // dense solves: 1e-12 relative.
   EXPECT_LE((problem.W - P * M * P.transpose()).norm(), 1e-12 * M.norm());
@@ -212,9 +214,13 @@ TEST_F(FclibExport3d, OurSolutionSolvesTheExportedProblemByFclibsMerit) {
 }
 
 TEST_F(FclibExport3d, SiUnitsAndNormalizedUnitsDescribeTheSameProblem) {
-  const FclibLocalProblem si = frictopt::io::make_fclib_local(*body_, *state_);
-  FclibExportOptions normalized;
-  normalized.normalize_units = true;
+  FclibExportOptions si_units;
+  si_units.normalize_units = false;
+  const FclibLocalProblem si = frictopt::io::make_fclib_local(*body_, *state_, si_units);
+  FclibExportOptions normalized;  // the default (issue 17: SI broke other solvers' settings)
+  EXPECT_TRUE(normalized.normalize_units);
+  EXPECT_NE(frictopt::io::make_fclib_local(*body_, *state_, normalized).description.find("Units: normalized"),
+            std::string::npos);
   const FclibLocalProblem scaled = frictopt::io::make_fclib_local(*body_, *state_, normalized);
   EXPECT_EQ(si.force_unit, 1.0);
   EXPECT_EQ(scaled.r.lpNorm<Eigen::Infinity>(), 1.0);
@@ -349,6 +355,46 @@ TEST_F(FclibExportCli, WritesAFileFclibReads) {
       "export-fclib " + polygon_case.string() + " " + temp_file("polygon.hdf5").string());
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("isotropic Coulomb cones"), std::string::npos) << bad.output;
+  // Issue 17: the refusal comes before the solve (no solver report is printed).
+  EXPECT_EQ(bad.output.find("Coulomb fixed point"), std::string::npos) << bad.output;
+  EXPECT_EQ(bad.output.find("iterations"), std::string::npos) << bad.output;
+}
+
+TEST_F(FclibExportCli, NormalizedUnitsAreTheDefaultAndSiIsAnOption) {
+  const fs::path normalized = temp_file("normalized.hdf5"), si = temp_file("si.hdf5");
+  const auto a = frictopt::testing::run_frictopt("export-fclib " + (kData / "fclib3d.toml").string() + " " +
+                                                 normalized.string());
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  const auto b = frictopt::testing::run_frictopt("export-fclib " + (kData / "fclib3d.toml").string() + " " +
+                                                 si.string() + " --units si");
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  const LocalPtr n = read_local(normalized), s = read_local(si);
+  ASSERT_NE(n, nullptr);
+  ASSERT_NE(s, nullptr);
+  EXPECT_NE(std::string(n->info->description).find("Units: normalized"), std::string::npos);
+  EXPECT_NE(std::string(s->info->description).find("Units: SI"), std::string::npos);
+  // In normalized units our reactions r have max norm 1; in SI they are forces in N.
+  const SolutionPtr rn(fclib_read_solution(normalized.c_str()), SolutionDeleter{1});
+  ASSERT_NE(rn, nullptr);
+  EXPECT_DOUBLE_EQ(vec(rn->r, n->W->m).lpNorm<Eigen::Infinity>(), 1.0);
+}
+
+TEST_F(FclibExportCli, ADeviceOrALinkAsTargetIsRefusedAndLeftAsItWas) {
+  // Issue 17 item 2: as root, export-fclib CASE /dev/full replaced the device by a file.
+  const auto dev = frictopt::testing::run_frictopt("export-fclib " + (kData / "small3d_disc.toml").string() +
+                                                   " /dev/null");
+  EXPECT_EQ(dev.exit_code, 2) << dev.output;
+  EXPECT_NE(dev.output.find("character device"), std::string::npos) << dev.output;
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  const fs::path target = temp_file("target.txt"), link = temp_file("link.hdf5");
+  std::ofstream(target) << "keep";
+  fs::remove(link);
+  fs::create_symlink(target, link);
+  const auto linked = frictopt::testing::run_frictopt("export-fclib " + (kData / "small3d_disc.toml").string() + " " +
+                                                      link.string());
+  EXPECT_EQ(linked.exit_code, 2) << linked.output;
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(frictopt::testing::read_text(target), "keep");
 }
 #endif
 

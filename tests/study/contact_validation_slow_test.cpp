@@ -14,7 +14,7 @@
 #include "frictopt/contact/contact_state.hpp"
 #include "frictopt/contact/coulomb_solver.hpp"
 #include "frictopt/contact/delassus.hpp"
-#include "frictopt/contact/linear_operator.hpp"
+#include "frictopt/linalg/linear_operator.hpp"
 #include "study/contact_validation.hpp"
 
 namespace frictopt::study::validation {
@@ -92,7 +92,7 @@ void expect_polygon_convergence(const FrictionLaw& exact, const std::vector<Fric
           ? *reference.contact->delassus_matrix
           : contact::dense_delassus(exact_body.elasticity().factorization(), *exact_body.contact_boundary());
   const Eigen::VectorXd c = linear_term(exact_body, reference);
-  const contact::DenseOperator op(M);
+  const linalg::DenseOperator op(M);
   const auto& options = exact_body.definition().contact->coulomb;
   const double c_scale = c.lpNorm<Eigen::Infinity>();
   const auto energy = [&](const Eigen::VectorXd& z) { return 0.5 * z.dot(M * z) + c.dot(z); };

@@ -116,7 +116,7 @@ TEST(CattaneoMindlin2D, StickZoneHalfWidthMatchesTheoryWithinTenPercent) {
                                 : contact::dense_delassus(hertz_body.elasticity().factorization(),
                                                           *hertz_body.contact_boundary());
   ASSERT_EQ(M.rows(), hertz_body.contact_boundary()->num_unknowns());
-  const contact::DenseOperator op(M);
+  const linalg::DenseOperator op(M);
 
   std::printf("| shift s [m] | Q/(μP) | a Hertz [m] | c theory [m] | c edges [m] | err | c moment [m] | err | stick/slip nodes | one-step: stick/slip, c edges [m] |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");

@@ -12,7 +12,7 @@
 
 #include "frictopt/contact/contact_state.hpp"
 #include "frictopt/contact/friction_law.hpp"
-#include "frictopt/contact/linear_operator.hpp"
+#include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/contact/tresca_solver.hpp"
 #include "frictopt/core/status.hpp"
 
@@ -84,10 +84,10 @@ class CoulombSolver {
 
   /// One friction law for all nodes (W includes μ). Throws InvalidInput on bad options or
   /// sizes; estimates ‖M‖ once (TrescaSolver).
-  CoulombSolver(const LinearOperator& delassus, const FrictionLaw& law, Options options);
-  CoulombSolver(const LinearOperator& delassus, const FrictionLaw& law);
+  CoulombSolver(const linalg::LinearOperator& delassus, const FrictionLaw& law, Options options);
+  CoulombSolver(const linalg::LinearOperator& delassus, const FrictionLaw& law);
   /// One law per node.
-  CoulombSolver(const LinearOperator& delassus, std::vector<FrictionLaw> laws, Options options);
+  CoulombSolver(const linalg::LinearOperator& delassus, std::vector<FrictionLaw> laws, Options options);
 
   /// Solves for the linear term c (size dim·p). Warm start: if state.z has size dim·p the
   /// fixed point starts from s_0 = λ(state.z) and z = state.z; otherwise from the frictionless

@@ -8,14 +8,14 @@
 #include <vector>
 
 #include "frictopt/contact/contact_boundary.hpp"
-#include "frictopt/contact/linear_operator.hpp"
-#include "frictopt/fem/sparse_cholesky.hpp"
+#include "frictopt/linalg/linear_operator.hpp"
+#include "frictopt/linalg/spd_solver.hpp"
 
 namespace frictopt::contact {
 
 /// M as an operator that can also return dense blocks M[rows, cols] (the adjoint needs the
 /// block of the nodes in contact only, spec 03 §7).
-class DelassusMatrix : public LinearOperator {
+class DelassusMatrix : public linalg::LinearOperator {
  public:
   virtual Eigen::MatrixXd block(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& cols) const = 0;
   /// Short name for reports: "dense", "schur", "factorized".
@@ -46,7 +46,7 @@ class DenseDelassus final : public DelassusMatrix {
 
 /// M = D S⁻¹ D from the Cholesky factor L of the contact Schur complement S = L Lᵀ (the
 /// trailing block of a factorization that ordered the contact DOFs last, in z order;
-/// fem::SparseCholesky::trailing_factor) and the signs D = diag(±1) of G (−1 tangential,
+/// linalg::SpdSolver::trailing_factor) and the signs D = diag(±1) of G (−1 tangential,
 /// +1 normal). An apply is two dense triangular solves (2m² flops), a block of k columns one
 /// triangular solve with k right-hand sides: no sparse solve and no m³ work.
 class SchurDelassus final : public DelassusMatrix {
@@ -68,10 +68,10 @@ class SchurDelassus final : public DelassusMatrix {
 };
 
 /// y = G A⁻¹ Gᵀ x with one sparse forward/back substitution per application (no extra memory).
-/// Lifetime: `cholesky` (factorized) and `boundary` must outlive this operator.
+/// Lifetime: `solver` (factorized) and `boundary` must outlive this operator.
 class FactorizedDelassus final : public DelassusMatrix {
  public:
-  FactorizedDelassus(const fem::SparseCholesky& cholesky, const ContactBoundary& boundary);
+  FactorizedDelassus(const linalg::SpdSolver& solver, const ContactBoundary& boundary);
   Eigen::Index size() const override { return boundary_.num_unknowns(); }
   void apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const override;
   /// Exact diagonal: costs dim·p solves (blocked); computed on the first call and cached.
@@ -81,14 +81,14 @@ class FactorizedDelassus final : public DelassusMatrix {
   const char* kind() const override { return "factorized"; }
 
  private:
-  const fem::SparseCholesky& cholesky_;
+  const linalg::SpdSolver& solver_;
   const ContactBoundary& boundary_;
   mutable Eigen::VectorXd diagonal_;
 };
 
 /// The dense M = G A⁻¹ Gᵀ (dim·p square), by solves with blocks of `block_columns` right-hand
 /// sides (BLAS-3 in CHOLMOD's supernodal solve). Symmetrized to remove round-off asymmetry.
-Eigen::MatrixXd dense_delassus(const fem::SparseCholesky& cholesky, const ContactBoundary& boundary,
+Eigen::MatrixXd dense_delassus(const linalg::SpdSolver& solver, const ContactBoundary& boundary,
                                int block_columns = 256);
 
 }  // namespace frictopt::contact

@@ -12,7 +12,7 @@
 
 #include "frictopt/contact/contact_state.hpp"
 #include "frictopt/contact/friction_law.hpp"
-#include "frictopt/contact/linear_operator.hpp"
+#include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/core/status.hpp"
 
 namespace frictopt::contact {
@@ -93,10 +93,10 @@ class TrescaSolver {
 
   /// One law for every node. Throws InvalidInput if M.size() is not a multiple of law.dim()
   /// or the options are invalid.
-  TrescaSolver(const LinearOperator& delassus, const FrictionLaw& law, Options options);
-  TrescaSolver(const LinearOperator& delassus, const FrictionLaw& law);
+  TrescaSolver(const linalg::LinearOperator& delassus, const FrictionLaw& law, Options options);
+  TrescaSolver(const linalg::LinearOperator& delassus, const FrictionLaw& law);
   /// One law per node (laws.size() = p = M.size()/dim), all of the same dimension.
-  TrescaSolver(const LinearOperator& delassus, std::vector<FrictionLaw> laws, Options options);
+  TrescaSolver(const linalg::LinearOperator& delassus, std::vector<FrictionLaw> laws, Options options);
 
   /// Solves the QP for linear term `c` (size dim·p) and slip bounds `slip_bound` (size p,
   /// >= 0; throws InvalidInput otherwise). Warm start: if state.z has size dim·p it is the
@@ -127,7 +127,7 @@ class TrescaSolver {
   Eigen::Index num_nodes() const { return num_nodes_; }
   const Options& options() const { return options_; }
   const std::vector<FrictionLaw>& laws() const { return laws_; }
-  const LinearOperator& delassus() const { return delassus_; }
+  const linalg::LinearOperator& delassus() const { return delassus_; }
   /// ‖M‖_est (with the safety factor) and ᾱ = step_length_factor/‖M‖_est.
   double operator_norm_estimate() const { return norm_estimate_; }
   double step_length() const { return alpha_bar_; }
@@ -137,7 +137,7 @@ class TrescaSolver {
                      const Eigen::Ref<const Eigen::VectorXd>& slip_bound, ContactState& state,
                      double relative_tolerance, int part) const;
 
-  const LinearOperator& delassus_;
+  const linalg::LinearOperator& delassus_;
   std::vector<FrictionLaw> laws_;
   Options options_;
   int dim_ = 3;

@@ -1,16 +1,17 @@
 // SPDX-License-Identifier: MIT
-// Linear elasticity on the morphed mesh: assembly with a fixed sparsity pattern, CHOLMOD
-// factorization with one symbolic analysis per mesh, and the shape-derivative kernel.
+// Linear elasticity on the morphed mesh: assembly with a fixed sparsity pattern, factorization
+// through linalg::SpdSolver with one symbolic analysis per mesh, and the shape-derivative kernel.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 #include "frictopt/core/status.hpp"
 #include "frictopt/fem/boundary_conditions.hpp"
 #include "frictopt/fem/material.hpp"
-#include "frictopt/fem/sparse_cholesky.hpp"
+#include "frictopt/linalg/spd_solver.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
 
 namespace frictopt::fem {
@@ -27,8 +28,10 @@ namespace frictopt::fem {
 class LinearElasticity {
  public:
   /// Throws InvalidInput for an invalid material or traction vectors of the wrong size.
+  /// `solver` chooses the SpdSolver backend that factorizes the stiffness.
   LinearElasticity(const mesh::StructuredMesh& mesh, const IsotropicMaterial& material,
-                   const PrescribedDofs& dirichlet, std::vector<FaceTraction> tractions);
+                   const PrescribedDofs& dirichlet, std::vector<FaceTraction> tractions,
+                   linalg::SpdSolver::Options solver = {});
 
   const mesh::StructuredMesh& mesh() const { return mesh_; }
   const DofMap& dofs() const { return dofs_; }
@@ -40,11 +43,13 @@ class LinearElasticity {
   const Eigen::VectorXd& load() const { return l_; }                   ///< free
   /// Orders these free-DOF indices last in the factorization (before the first factorize):
   /// the trailing block of L is then the Cholesky factor of the Schur complement onto them
-  /// (fem::SparseCholesky::trailing_factor), e.g. the contact DOFs for the Delassus matrix.
+  /// (linalg::SpdSolver::trailing_factor), e.g. the contact DOFs for the Delassus matrix.
+  /// Requires factorization().supports_trailing_factor().
   void set_trailing_dofs(std::vector<int> free_indices);
-  /// Factorizes the last assembled A (symbolic analysis on the first call only).
+  /// Factorizes the last assembled A (symbolic analysis on the first call, or after a failed
+  /// one). A failed analysis or factorization is a status; factorization().message() says why.
   [[nodiscard]] Status factorize();
-  const SparseCholesky& factorization() const { return cholesky_; }
+  const linalg::SpdSolver& factorization() const { return *solver_; }
   /// The full displacement for the assembled load: u_f = A⁻¹ l, u_d prescribed.
   Eigen::VectorXd solve() const;
 
@@ -93,7 +98,8 @@ class LinearElasticity {
   Eigen::SparseMatrix<double> A_;
   Eigen::VectorXd l_;
   std::vector<int> scatter_;  // per element, per (local i, local j): index into A_'s values or −1
-  SparseCholesky cholesky_;
+  linalg::SpdSolver::Options solver_options_;
+  std::unique_ptr<linalg::SpdSolver> solver_;
   std::vector<int> trailing_;
 };
 

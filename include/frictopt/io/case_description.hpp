@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -45,6 +46,12 @@ struct CaseDescription {
   optim::BundleTrust::Options optimization;
   OutputSpec output;
   std::optional<IdentificationSetup> identification;  ///< [identification], absent: no `identify`
+  /// The problem the case defines, normalized: every key of the file except the run controls
+  /// [optimization] and [output], as dotted key ("material.young", "load[0].traction") ->
+  /// canonical value text (numbers in shortest round-trip form, so 7e10 and 70000000000.0
+  /// agree; comments, layout and key order do not matter). A run's checkpoint stores it to
+  /// refuse resuming a different problem (io/checkpoint.hpp).
+  std::map<std::string, std::string> problem_settings;
 
   /// 2 or 3, the body's dimension.
   [[nodiscard]] int dim() const { return body.shape.dim(); }

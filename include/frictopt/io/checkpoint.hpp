@@ -1,22 +1,58 @@
 // SPDX-License-Identifier: MIT
-// The bundle trust method's state as JSON, so `frictopt optimize --resume` continues exactly
-// where an interrupted run stopped (at most the current iteration is lost).
+// The checkpoint of an optimization run as JSON: the bundle trust method's whole state, the
+// contact state the next state solve starts from, the run's counters and the fingerprint of
+// the case and mesh it belongs to. With it `frictopt optimize --resume` repeats the
+// uninterrupted run bit for bit (docs/case-format.md, "Run directories").
 #pragma once
 
+#include <Eigen/Core>
+#include <cstdint>
 #include <filesystem>
+#include <map>
+#include <string>
 
 #include "frictopt/io/json.hpp"
 #include "frictopt/optim/bundle_trust.hpp"
 
 namespace frictopt::io {
 
-/// Every field of the iteration summary (doubles round-trip exactly: JSON numbers are written
-/// with 17 significant digits).
-[[nodiscard]] JsonValue checkpoint_to_json(const optim::BundleTrust::IterationSummary& state);
-/// Inverse of checkpoint_to_json; throws InvalidInput naming the missing or malformed field.
-[[nodiscard]] optim::BundleTrust::IterationSummary checkpoint_from_json(const JsonValue& json);
+/// What identifies the problem a run solves: the normalized case (every setting except the
+/// run controls [optimization] and [output], as dotted key -> canonical value) and the mesh.
+struct CaseFingerprint {
+  int dim = 0;
+  std::map<std::string, std::string> settings;  ///< CaseDescription::problem_settings
+  std::uint64_t case_hash = 0;                  ///< FNV-1a 64 of the settings
+  std::int64_t num_nodes = 0;
+  std::uint64_t mesh_hash = 0;                  ///< FNV-1a 64 of the reference node coordinates
+  /// The differences from `other` ("material.young: 70000000000 -> 2.1e+11", "the mesh"),
+  /// empty when they are the same problem.
+  [[nodiscard]] std::vector<std::string> differences_from(const CaseFingerprint& other) const;
+};
+
+/// FNV-1a 64 of the settings (one "key=value\n" line each, in key order). For change
+/// detection, not for security.
+[[nodiscard]] std::uint64_t hash_settings(const std::map<std::string, std::string>& settings);
+/// FNV-1a 64 of raw bytes.
+[[nodiscard]] std::uint64_t fnv1a64(const void* data, std::size_t size, std::uint64_t seed = 14695981039346656037ull);
+
+struct RunCheckpoint {
+  optim::BundleTrust::IterationSummary method;  ///< after the last completed outer iteration
+  CaseFingerprint fingerprint;
+  /// The contact forces z the body's next state solve starts from (empty: a cold start).
+  Eigen::VectorXd warm_start;
+  int warm_start_dim = 0;
+  double initial_cost = kNaN;        ///< Θ(α⁰), for summary.json
+  double elapsed_seconds = 0.0;      ///< over all processes of the run so far
+  std::int64_t state_solves = 0;     ///< over all processes of the run so far
+};
+
+/// Every field (doubles round-trip exactly: JSON numbers are written with 17 significant digits).
+[[nodiscard]] JsonValue checkpoint_to_json(const RunCheckpoint& checkpoint);
+/// Inverse of checkpoint_to_json; throws InvalidInput naming a missing, malformed or
+/// out-of-range field (e.g. "checkpoint.json: iteration = -5; expected 0 <= iteration <= 1000000000").
+[[nodiscard]] RunCheckpoint checkpoint_from_json(const JsonValue& json, const std::string& origin = "checkpoint");
 
 /// Reads a checkpoint file written by write_json(checkpoint_to_json(...)).
-[[nodiscard]] optim::BundleTrust::IterationSummary read_checkpoint(const std::filesystem::path& path);
+[[nodiscard]] RunCheckpoint read_checkpoint(const std::filesystem::path& path);
 
 }  // namespace frictopt::io

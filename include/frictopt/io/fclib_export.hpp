@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "frictopt/study/elastic_body.hpp"
 
@@ -49,14 +50,22 @@ struct FclibExportOptions {
   /// Write the problem in the units force_unit = max(‖r‖_∞) and length_unit = max(‖u‖_∞,
   /// ‖q‖_∞) of our solution (each 1 when that scale is 0), so W, q, r and u are O(1) and the
   /// tolerances of other solvers (and FCLIB's merit function) read as relative ones. The units
-  /// used are recorded in the description. Default: SI.
-  bool normalize_units = false;
+  /// used are recorded in the description ("Units: normalized ..."). Default: normalized —
+  /// in SI units W is ~1e-10 m/N and other solvers' standard (absolute) tolerances break down;
+  /// false writes SI units.
+  bool normalize_units = true;
   /// Largest m = spacedim·p written: W is stored densely (m² doubles and ints, compressed
   /// column), and FCLIB indexes with int. > 0.
   Eigen::Index max_unknowns = 12000;
 };
 
-/// Builds the local FCLIB problem of `body` at `state` (no file I/O).
+/// Throws InvalidInput (as make_fclib_local would, naming `case_name`) when `law` cannot be
+/// written to FCLIB: a command checks this before it solves anything.
+void require_fclib_exportable(const contact::FrictionLaw& law, std::string_view case_name);
+
+/// Builds the local FCLIB problem of `body` at `state` (no file I/O). M is the state's own
+/// Delassus operator (its dense copy or the dense M of its Schur factor), not a second
+/// factorization.
 ///
 /// `state` must be the result of the most recent `body.solve(…)`: W is assembled through the
 /// factorization `body` holds (spec 02, §9.2: M = G A⁻¹ Gᵀ), and the gradient stored in the
@@ -73,7 +82,8 @@ struct FclibExportOptions {
 /// Writes `problem` to `path` (HDF5, replacing an existing file): /fclib_local (W as a dense
 /// compressed-column matrix, q, μ, spacedim, info), and with `include_solution` our (r, u) as
 /// /solution (exact) or /guesses/1. Throws InvalidInput naming the path if it cannot be written.
-/// The file is written as a sibling `path.partial` and renamed. Caveat: fclib terminates the
+/// The file is written as a uniquely named sibling and renamed over `path`, which must be absent
+/// or a regular file (links and devices are refused, see docs/contact.md). Caveat: fclib terminates the
 /// process (exit) when an HDF5 call fails in the middle of a write (e.g. a full disk); what can
 /// be checked beforehand (sizes, the directory) is checked and reported as InvalidInput.
 void write_fclib_local(const std::filesystem::path& path, const FclibLocalProblem& problem,

@@ -14,6 +14,7 @@
 #include "frictopt/cost/cost_kind.hpp"
 #include "frictopt/fem/boundary_conditions.hpp"
 #include "frictopt/fem/material.hpp"
+#include "frictopt/linalg/spd_solver.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
 #include "frictopt/shape/admissible_set.hpp"
 #include "frictopt/shape/bezier_shape.hpp"
@@ -63,6 +64,7 @@ struct BodyDefinition {
   shape::AdmissibleSetParameters admissible;  ///< Υ
   Eigen::VectorXd initial_design;             ///< α⁰
   std::optional<ContactDefinition> contact;   ///< absent: no foundation (pure elasticity)
+  linalg::SpdSolver::Options linear_solver;   ///< the backend that factorizes the stiffness
 };
 
 }  // namespace frictopt::study

@@ -77,6 +77,12 @@ class ElasticBody {
   [[nodiscard]] BodyState solve(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                 const std::string& design_label = "design");
 
+  /// The contact state the next solve starts from (the last converged one; only its z is
+  /// read). A run's checkpoint stores it so that a resumed run repeats the uninterrupted one
+  /// bit for bit (io::RunCheckpoint).
+  const std::optional<contact::ContactState>& warm_start() const { return warm_start_; }
+  void set_warm_start(std::optional<contact::ContactState> state) { warm_start_ = std::move(state); }
+
  private:
   BodyDefinition definition_;
   std::unique_ptr<mesh::StructuredMesh> mesh_;

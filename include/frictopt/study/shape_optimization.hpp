@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <optional>
+#include <string_view>
 
 #include "frictopt/optim/bundle_trust.hpp"
 #include "frictopt/optim/linear_constraints.hpp"
@@ -27,6 +28,12 @@ struct OptimizationProgress {
   int state_solves = 0;                                ///< state problems solved so far
 };
 using ProgressCallback = std::function<CallbackResult(const OptimizationProgress&)>;
+
+/// The one admissibility check of a given design (certify, check-gradient, optimize's start):
+/// throws InvalidInput "<who>: ..." when α does not have one entry per control point or
+/// violates Υ by more than `tolerance`·max(1, ‖α‖∞), naming the violated rows.
+void require_admissible_design(const ElasticBody& body, const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                               double tolerance, std::string_view who);
 
 /// Bundle trust options for shape studies: the objective is scaled by |Θ(α⁰)| so that ε is a
 /// relative stationarity tolerance whatever the cost's units (spec 04 §7 "robustness"), and the

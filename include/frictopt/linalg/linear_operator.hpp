@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
-// The abstract SPD operator the contact QP solvers are written against: the Delassus operator
-// M = G A⁻¹ Gᵀ of spec 02, §7 / §9.2, applied either as a dense matrix (small problems, tests)
-// or through the sparse Cholesky factorization of the stiffness matrix (the FEM glue).
+// The abstract SPD operator that iterative solvers are written against (the contact QP solvers
+// apply the Delassus operator M = G A⁻¹ Gᵀ of spec 02, §7 / §9.2 through it), with a dense and
+// a scaled implementation. Operators are applied, never formed, as in MFEM's linalg/operator.hpp.
 #pragma once
 
 #include <Eigen/Core>
 
-namespace frictopt::contact {
+namespace frictopt::linalg {
 
-/// SPD operator on Rⁿ (the Delassus operator); `apply` may be expensive (one sparse solve).
+/// SPD operator on Rⁿ (e.g. the Delassus operator); `apply` may be expensive (one sparse solve).
 /// Implementations must be usable from a const reference and deterministic.
 class LinearOperator {
  public:
@@ -55,4 +55,4 @@ class ScaledOperator final : public LinearOperator {
   double factor_;
 };
 
-}  // namespace frictopt::contact
+}  // namespace frictopt::linalg

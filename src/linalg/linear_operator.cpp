@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
-#include "frictopt/contact/linear_operator.hpp"
+#include "frictopt/linalg/linear_operator.hpp"
 
 #include <string>
 #include <utility>
 
 #include "frictopt/core/error.hpp"
 
-namespace frictopt::contact {
+namespace frictopt::linalg {
 
 DenseOperator::DenseOperator(Eigen::MatrixXd matrix) : matrix_(std::move(matrix)) {
   if (matrix_.rows() != matrix_.cols())
@@ -23,4 +23,4 @@ void DenseOperator::apply(const Eigen::Ref<const Eigen::VectorXd>& x,
   y.noalias() = matrix_ * x;
 }
 
-}  // namespace frictopt::contact
+}  // namespace frictopt::linalg

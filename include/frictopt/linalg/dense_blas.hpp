@@ -7,7 +7,7 @@
 
 #include <Eigen/Core>
 
-namespace frictopt::contact::blas {
+namespace frictopt::linalg::blas {
 
 /// B ← L⁻¹ B for a lower-triangular L (dtrsm).
 void lower_solve_in_place(const Eigen::MatrixXd& L, Eigen::MatrixXd& B);
@@ -28,4 +28,4 @@ Eigen::VectorXd singular_values(const Eigen::MatrixXd& A);
 /// singular. `reciprocal_condition` gets LAPACK's 1-norm estimate (dgecon).
 bool lu_solve(Eigen::MatrixXd K, const Eigen::VectorXd& r, Eigen::VectorXd& x, double& reciprocal_condition);
 
-}  // namespace frictopt::contact::blas
+}  // namespace frictopt::linalg::blas

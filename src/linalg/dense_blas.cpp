@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "frictopt/contact/dense_blas.hpp"
+#include "frictopt/linalg/dense_blas.hpp"
 
 #include <Eigen/SVD>
 
@@ -29,7 +29,7 @@ void dgecon_(const char* norm, const int* n, const double* a, const int* lda, co
              double* work, int* iwork, int* info);
 }
 
-namespace frictopt::contact::blas {
+namespace frictopt::linalg::blas {
 
 void lower_solve_in_place(const Eigen::MatrixXd& L, Eigen::MatrixXd& B) {
   const int m = static_cast<int>(L.rows()), n = static_cast<int>(B.cols());
@@ -125,4 +125,4 @@ bool lu_solve(Eigen::MatrixXd K, const Eigen::VectorXd& r, Eigen::VectorXd& x, d
   return true;
 }
 
-}  // namespace frictopt::contact::blas
+}  // namespace frictopt::linalg::blas

@@ -1,19 +1,18 @@
 // SPDX-License-Identifier: MIT
-#include "frictopt/fem/sparse_cholesky.hpp"
+#include "cholmod_solver.hpp"
 
 #include <cholmod.h>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 #include "frictopt/core/error.hpp"
 
-namespace frictopt::fem {
+namespace frictopt::linalg {
 
-// CHOLMOD is called directly (not through Eigen's CholmodSupernodalLLT) because the trailing
-// block needs a user ordering (cholmod_analyze_p) and access to the supernodal factor.
-struct SparseCholesky::Impl {
+struct CholmodSolver::Impl {
   cholmod_common common;
   cholmod_factor* factor = nullptr;
   std::vector<int> trailing;
@@ -66,30 +65,49 @@ cholmod_dense dense_view(const double* data, Eigen::Index rows, Eigen::Index col
 }
 }  // namespace
 
-SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
-SparseCholesky::~SparseCholesky() = default;
-SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
-SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
+CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
+CholmodSolver::~CholmodSolver() = default;
 
-bool SparseCholesky::analyzed() const { return impl_->factor != nullptr; }
-Eigen::Index SparseCholesky::trailing_size() const { return static_cast<Eigen::Index>(impl_->trailing.size()); }
+bool CholmodSolver::analyzed() const { return impl_->factor != nullptr; }
+Eigen::Index CholmodSolver::trailing_size() const { return static_cast<Eigen::Index>(impl_->trailing.size()); }
 
-void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A) {
+Status CholmodSolver::analysis_failed(const char* what) {
+  // Checked in every build (not an assert): a NULL analysis dereferenced later was a SIGSEGV.
+  message_ = fmt::format("symbolic analysis failed: {} returned no factor (CHOLMOD status {}{})", what,
+                         impl_->common.status, impl_->common.status == CHOLMOD_OUT_OF_MEMORY ? ", out of memory" : "");
+  return Status::kNumericalFailure;
+}
+
+Status CholmodSolver::no_unknowns() {
+  message_ = "symbolic analysis failed: the system has no unknowns (every degree of freedom is prescribed)";
+  return Status::kNumericalFailure;
+}
+
+Status CholmodSolver::analyze(const Eigen::SparseMatrix<double>& A) {
   impl_->reset();
   impl_->trailing.clear();
+  message_ = "not factorized";
+  if (A.rows() == 0) return no_unknowns();
   impl_->common.supernodal = CHOLMOD_SUPERNODAL;
   cholmod_sparse a = view(A);
   impl_->factor = cholmod_analyze(&a, &impl_->common);
-  FRICTOPT_ASSERT(impl_->factor != nullptr, "cholmod_analyze failed");
+  if (impl_->factor == nullptr) return analysis_failed("cholmod_analyze");
+  return Status::kConverged;
 }
 
-void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A, const std::vector<int>& trailing) {
+Status CholmodSolver::analyze(const Eigen::SparseMatrix<double>& A, const std::vector<int>& trailing) {
+  impl_->reset();
+  impl_->trailing.clear();
+  message_ = "not factorized";
   const int n = static_cast<int>(A.rows());
   std::vector<char> is_trailing(static_cast<std::size_t>(n), 0);
-  for (int t : trailing) {
-    FRICTOPT_ASSERT(t >= 0 && t < n && !is_trailing[static_cast<std::size_t>(t)], "trailing indices distinct, in range");
+  for (std::size_t k = 0; k < trailing.size(); ++k) {
+    const int t = trailing[k];
+    if (t < 0 || t >= n || is_trailing[static_cast<std::size_t>(t)])
+      throw InvalidInput(fmt::format("SpdSolver::analyze: trailing[{}] = {}; expected distinct indices in [0, {})", k, t, n));
     is_trailing[static_cast<std::size_t>(t)] = 1;
   }
+  if (n == 0) return no_unknowns();
   std::vector<int> leading, local(static_cast<std::size_t>(n), -1);
   for (int i = 0; i < n; ++i)
     if (!is_trailing[static_cast<std::size_t>(i)]) {
@@ -106,27 +124,31 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A, const std::ve
       const int row = local[static_cast<std::size_t>(it.row())];
       if (row >= 0) entries.emplace_back(row, local[static_cast<std::size_t>(col)], 1.0);
     }
-  Eigen::SparseMatrix<double> A_ff(static_cast<Eigen::Index>(leading.size()), static_cast<Eigen::Index>(leading.size()));
-  A_ff.setFromTriplets(entries.begin(), entries.end());
-  A_ff.makeCompressed();
-  cholmod_sparse a_ff = view(A_ff);
-  impl_->reset();
-  impl_->common.supernodal = CHOLMOD_SUPERNODAL;
-  const int saved_nmethods = impl_->common.nmethods, saved_ordering0 = impl_->common.method[0].ordering,
-            saved_ordering1 = impl_->common.method[1].ordering;
-  impl_->common.nmethods = 2;
-  impl_->common.method[0].ordering = CHOLMOD_AMD;
-  impl_->common.method[1].ordering = CHOLMOD_METIS;
-  cholmod_factor* leading_analysis = cholmod_analyze(&a_ff, &impl_->common);
-  impl_->common.nmethods = saved_nmethods;
-  impl_->common.method[0].ordering = saved_ordering0;
-  impl_->common.method[1].ordering = saved_ordering1;
-  FRICTOPT_ASSERT(leading_analysis != nullptr, "cholmod_analyze of the leading block failed");
   std::vector<int> perm;
   perm.reserve(static_cast<std::size_t>(n));
-  const int* p_ff = static_cast<const int*>(leading_analysis->Perm);
-  for (std::size_t k = 0; k < leading.size(); ++k) perm.push_back(leading[static_cast<std::size_t>(p_ff[k])]);
-  cholmod_free_factor(&leading_analysis, &impl_->common);
+  impl_->common.supernodal = CHOLMOD_SUPERNODAL;
+  // An empty leading block (every unknown is trailing, e.g. one cell layer under a fixed top:
+  // only the contact DOFs are free) needs no ordering; CHOLMOD's analysis of a 0 × 0 matrix
+  // returns no factor, which was dereferenced here (issue 17, item 5).
+  if (!leading.empty()) {
+    Eigen::SparseMatrix<double> A_ff(static_cast<Eigen::Index>(leading.size()), static_cast<Eigen::Index>(leading.size()));
+    A_ff.setFromTriplets(entries.begin(), entries.end());
+    A_ff.makeCompressed();
+    cholmod_sparse a_ff = view(A_ff);
+    const int saved_nmethods = impl_->common.nmethods, saved_ordering0 = impl_->common.method[0].ordering,
+              saved_ordering1 = impl_->common.method[1].ordering;
+    impl_->common.nmethods = 2;
+    impl_->common.method[0].ordering = CHOLMOD_AMD;
+    impl_->common.method[1].ordering = CHOLMOD_METIS;
+    cholmod_factor* leading_analysis = cholmod_analyze(&a_ff, &impl_->common);
+    impl_->common.nmethods = saved_nmethods;
+    impl_->common.method[0].ordering = saved_ordering0;
+    impl_->common.method[1].ordering = saved_ordering1;
+    if (leading_analysis == nullptr) return analysis_failed("cholmod_analyze of the leading block");
+    const int* p_ff = static_cast<const int*>(leading_analysis->Perm);
+    for (std::size_t k = 0; k < leading.size(); ++k) perm.push_back(leading[static_cast<std::size_t>(p_ff[k])]);
+    cholmod_free_factor(&leading_analysis, &impl_->common);
+  }
   perm.insert(perm.end(), trailing.begin(), trailing.end());
 
   // Analyze with exactly this permutation: no other method, no postordering (which could move
@@ -141,14 +163,22 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A, const std::ve
   impl_->common.nmethods = nmethods;
   impl_->common.method[0].ordering = ordering;
   impl_->common.postorder = postorder;
-  FRICTOPT_ASSERT(impl_->factor != nullptr, "cholmod_analyze_p failed");
-  [[maybe_unused]] const int* used = static_cast<const int*>(impl_->factor->Perm);
-  FRICTOPT_ASSERT(std::equal(perm.begin(), perm.end(), used), "CHOLMOD changed the given ordering");
+  if (impl_->factor == nullptr) return analysis_failed("cholmod_analyze_p");
+  const int* used = static_cast<const int*>(impl_->factor->Perm);
+  if (!std::equal(perm.begin(), perm.end(), used)) {
+    impl_->reset();
+    message_ = "symbolic analysis failed: CHOLMOD changed the given ordering, so the trailing block is not last";
+    return Status::kNumericalFailure;
+  }
   impl_->trailing = trailing;
+  return Status::kConverged;
 }
 
-Status SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
-  FRICTOPT_ASSERT(analyzed(), "analyze() before factorize()");
+Status CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A) {
+  if (!analyzed()) {
+    if (message_.rfind("symbolic analysis failed", 0) != 0) message_ = "factorize() called without a successful analyze()";
+    return Status::kNumericalFailure;
+  }
   cholmod_sparse a = view(A);
   cholmod_factorize(&a, impl_->factor, &impl_->common);
   if (impl_->common.status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {
@@ -166,24 +196,23 @@ Status SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A) {
   return Status::kConverged;
 }
 
-Eigen::MatrixXd SparseCholesky::solve_many(const Eigen::Ref<const Eigen::MatrixXd>& B) const {
+Eigen::MatrixXd CholmodSolver::solve_many(const Eigen::Ref<const Eigen::MatrixXd>& B) const {
   const Eigen::MatrixXd b = B;  // contiguous column-major copy
   cholmod_dense bd = dense_view(b.data(), b.rows(), b.cols());
+  FRICTOPT_ASSERT(analyzed(), "solve after a successful factorize()");
   cholmod_dense* x = cholmod_solve(CHOLMOD_A, impl_->factor, &bd, &impl_->common);
-  FRICTOPT_ASSERT(x != nullptr, "cholmod_solve failed");
+  if (x == nullptr)  // only when CHOLMOD cannot allocate the solution
+    throw std::runtime_error(fmt::format("cholmod_solve failed (CHOLMOD status {})", impl_->common.status));
   Eigen::MatrixXd out = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(x->x), b.rows(), b.cols());
   cholmod_free_dense(&x, &impl_->common);
   return out;
 }
 
-Eigen::VectorXd SparseCholesky::solve(const Eigen::Ref<const Eigen::VectorXd>& b) const {
-  return solve_many(b);
-}
 
-double SparseCholesky::factor_nonzeros() const { return impl_->common.lnz; }
-double SparseCholesky::factor_flops() const { return impl_->common.fl; }
+double CholmodSolver::factor_nonzeros() const { return impl_->common.lnz; }
+double CholmodSolver::factor_flops() const { return impl_->common.fl; }
 
-Eigen::MatrixXd SparseCholesky::trailing_factor() const {
+Eigen::MatrixXd CholmodSolver::trailing_factor() const {
   const cholmod_factor* L = impl_->factor;
   FRICTOPT_ASSERT(L != nullptr && L->is_super && L->xtype != CHOLMOD_PATTERN, "numeric supernodal factor expected");
   const Eigen::Index m = trailing_size(), n = static_cast<Eigen::Index>(L->n), first = n - m;
@@ -207,4 +236,4 @@ Eigen::MatrixXd SparseCholesky::trailing_factor() const {
   return T;
 }
 
-}  // namespace frictopt::fem
+}  // namespace frictopt::linalg

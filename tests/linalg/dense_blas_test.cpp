@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: MIT
-// The LAPACK/BLAS wrappers of contact::blas against Eigen's own (slower) dense algorithms.
+// The LAPACK/BLAS wrappers of linalg::blas against Eigen's own (slower) dense algorithms.
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
-#include "frictopt/contact/dense_blas.hpp"
+#include "frictopt/linalg/dense_blas.hpp"
 
-namespace frictopt::contact::blas {
+namespace frictopt::linalg::blas {
 namespace {
 
 Eigen::MatrixXd spd(int n) {
@@ -48,4 +48,4 @@ TEST(DenseBlas, SingularValuesMatchEigenAndRevealRank) {
 }
 
 }  // namespace
-}  // namespace frictopt::contact::blas
+}  // namespace frictopt::linalg::blas

@@ -1,0 +1,38 @@
+# SPDX-License-Identifier: MIT
+# Every third-party package frictopt uses, found in one place (issue 10, item 5). Which module
+# links which package is said in that module's src/<module>/CMakeLists.txt; the installed
+# package config (cmake/frictoptConfig.cmake.in) finds again only what the requested
+# components need. The Debian packages behind these are listed in scripts/install-deps.sh.
+
+# Every module: dense linear algebra.
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+# shape, mesh, fem, sensitivity, cost, study, io, linalg, apps: message formatting (private).
+find_package(fmt REQUIRED)
+# linalg: the sparse Cholesky backend and the dense kernels (private). Debian's SuiteSparse 5.x
+# ships no CMake config; CHOLMOD is found through our small module cmake/FindCholmod.cmake.
+find_package(Cholmod REQUIRED)
+find_package(BLAS REQUIRED)
+find_package(LAPACK REQUIRED)
+# study: identification (least squares, covariance; issue 7).
+find_package(Ceres REQUIRED)
+# io: case files (TOML), VTK XML output, JSON.
+find_package(tomlplusplus REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(VTK REQUIRED COMPONENTS CommonCore CommonDataModel IOXML)
+# io: FCLIB export (HDF5, issue 3 item 6). Debian's libfclib-dev ships a CMake config
+# (FCLIB::fclib, which finds the HDF5 C and HL libraries itself). CMake's FindHDF5 (called by
+# fclib's config) probes the HDF5 compiler wrappers with a C try_compile, so C must be enabled;
+# no C source is compiled.
+enable_language(C)
+find_package(fclib 3 CONFIG REQUIRED)
+set_target_properties(FCLIB::fclib PROPERTIES IMPORTED_GLOBAL TRUE)  # tests/io reads files back
+
+if(FRICTOPT_BUILD_APPS)
+  find_package(CLI11 REQUIRED)  # the command line's argument parser
+endif()
+if(FRICTOPT_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(FRICTOPT_BUILD_BENCHMARKS)
+  find_package(benchmark REQUIRED)
+endif()

@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: MIT
+// JSON of every solver's Summary (STYLE.md §4: numerics stay JSON-free, JSON output lives in
+// io). Each function writes every field under its own name, NaN as null (json.hpp), enums
+// in their report spelling, so summary.json files and tests read the same names as the code.
+#pragma once
+
+#include "frictopt/contact/coulomb_solver.hpp"
+#include "frictopt/contact/tresca_solver.hpp"
+#include "frictopt/io/json.hpp"
+#include "frictopt/optim/bundle_trust.hpp"
+#include "frictopt/optim/dense_qp.hpp"
+#include "frictopt/optim/projected_subgradient.hpp"
+#include "frictopt/sensitivity/adjoint.hpp"
+#include "frictopt/study/certificate.hpp"
+#include "frictopt/study/elastic_body.hpp"
+#include "frictopt/study/identification.hpp"
+
+namespace frictopt::io {
+
+/// Adds (or replaces) every member of the object `members` in the object `into`.
+void add_members(JsonValue& into, const JsonValue& members);
+
+[[nodiscard]] JsonValue to_json(const study::StateSummary& summary);
+[[nodiscard]] JsonValue to_json(const contact::TrescaSolver::Summary& summary);
+[[nodiscard]] JsonValue to_json(const contact::CoulombSolver::Summary& summary);
+[[nodiscard]] JsonValue to_json(const sensitivity::AdjointSensitivity::Summary& summary);
+/// Without the per-iteration history (history.csv holds it) and the last state (checkpoint.json).
+[[nodiscard]] JsonValue to_json(const optim::BundleTrust::Summary& summary);
+[[nodiscard]] JsonValue to_json(const optim::ProjectedSubgradient::Summary& summary);
+[[nodiscard]] JsonValue to_json(const optim::DenseQpSolver::Summary& summary);
+/// Estimates, covariance, correlation and Ceres' brief report (the full report has its own file).
+[[nodiscard]] JsonValue to_json(const study::Identification::Summary& summary);
+/// The whole certificate: index sets, pieces with ξ_i and weights, Clarke distance, (MF1) rank,
+/// Mordukhovich check; `options` for the tolerances used.
+[[nodiscard]] JsonValue to_json(const study::Certificate& certificate, const study::CertifyOptions& options);
+
+}  // namespace frictopt::io

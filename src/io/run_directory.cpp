@@ -1,0 +1,344 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/io/run_directory.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "atomic_file.hpp"
+#include "frictopt/core/error.hpp"
+#include "frictopt/io/case_file.hpp"
+
+namespace frictopt::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Fixed names of the files frictopt's commands write into their directories.
+constexpr std::string_view kFixedNames[] = {
+    RunDirectory::kLockFile, RunDirectory::kCaseCopy, RunDirectory::kCheckpoint, RunDirectory::kHistory,
+    RunDirectory::kSummary,  RunDirectory::kFinalDesign, RunDirectory::kCertificate, "fit.csv",
+    "ceres_report.txt",      "measurements.csv"};
+
+// K of "<name>_iterK.vtu" (four or more digits), or nullopt.
+std::optional<int> series_index(std::string_view file, std::string_view name) {
+  const std::string prefix = std::string(name) + "_iter";
+  if (!file.starts_with(prefix) || !file.ends_with(".vtu")) return std::nullopt;
+  const std::string_view digits = file.substr(prefix.size(), file.size() - prefix.size() - 4);
+  if (digits.size() < 4 || digits.find_first_not_of("0123456789") != std::string_view::npos) return std::nullopt;
+  int k = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), k);
+  if (ec != std::errc() || end != digits.data() + digits.size()) return std::nullopt;
+  return k;
+}
+
+bool is_output_name(std::string_view file, const std::vector<std::string>& names) {
+  for (std::string_view fixed : kFixedNames)
+    if (file == fixed) return true;
+  for (const std::string& n : names) {
+    if (n.empty()) continue;
+    if (file == n + ".pvd" || file == n + ".vtu" || file == n + "_contact.csv") return true;
+    if (series_index(file, n)) return true;
+  }
+  return false;
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  return !a.empty() && !b.empty() && fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec);
+}
+
+std::string list_entries(const std::vector<std::string>& entries) {
+  std::string out;
+  const std::size_t shown = std::min<std::size_t>(entries.size(), 10);
+  for (std::size_t i = 0; i < shown; ++i) out += (i ? ", " : "") + entries[i];
+  if (entries.size() > shown) out += fmt::format(" and {} more", entries.size() - shown);
+  return out;
+}
+
+// output.name of a case file, or empty when it cannot be parsed (then only the fixed names
+// and the other names count as ours).
+std::string output_name_of(const fs::path& case_path) {
+  try {
+    return load_case(case_path).output.name;
+  } catch (const InvalidInput&) {
+    return {};
+  }
+}
+
+}  // namespace
+
+bool RunDirectory::is_frictopt_output(const fs::path& entry, const std::vector<std::string>& names) {
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(entry, ec);
+  const std::string file = entry.filename().string();
+  if (status.type() == fs::file_type::directory) {
+    if (file != "pictures") return false;
+    for (const auto& inner : fs::directory_iterator(entry, ec))
+      if (inner.path().extension() != ".png" || !inner.is_regular_file() || inner.is_symlink()) return false;
+    return !ec;
+  }
+  if (status.type() != fs::file_type::regular) return false;
+  // ".<output>.XXXXXX.tmp": a temporary of ours left by an interrupted write (atomic_file.hpp).
+  if (file.size() > 12 && file.front() == '.' && file.ends_with(".tmp")) {
+    const std::string inner = file.substr(1, file.size() - 1 - 4);
+    const auto dot = inner.rfind('.');
+    if (dot != std::string::npos && inner.size() - dot - 1 == 6 && is_output_name(inner.substr(0, dot), names))
+      return true;
+  }
+  return is_output_name(file, names);
+}
+
+RunDirectory::RunDirectory(fs::path path, RunOpening opening, fs::path case_argument)
+    : path_(std::move(path)), opening_(opening), case_argument_(std::move(case_argument)) {
+  if (path_.empty()) path_ = ".";
+  std::error_code ec;
+  const fs::file_status status = fs::status(path_, ec);
+  const bool exists = status.type() != fs::file_type::not_found && !ec;
+  if (exists && status.type() != fs::file_type::directory)
+    throw InvalidInput(fmt::format("{}: exists and is not a directory; expected an output directory", path_.string()));
+  if (!case_argument_.empty() && opening_ != RunOpening::kExisting && !fs::is_regular_file(case_argument_, ec))
+    throw InvalidInput(fmt::format("{}: the case file does not exist (or is not a regular file)",
+                                   case_argument_.string()));
+  const bool has_run = exists && (fs::exists(file(kCheckpoint), ec) || fs::exists(file(kHistory), ec));
+  switch (opening_) {
+    case RunOpening::kResume:
+      if (!exists || !fs::exists(file(kCheckpoint), ec))
+        throw InvalidInput(fmt::format("--resume: {} holds no run to resume (no {})", path_.string(), kCheckpoint));
+      if (!fs::is_regular_file(file(kCaseCopy), ec))
+        throw InvalidInput(fmt::format("--resume: {} is missing; it is the case the run solves", file(kCaseCopy).string()));
+      break;
+    case RunOpening::kExisting:
+      if (!exists) throw InvalidInput(path_.string() + ": the run directory does not exist");
+      for (std::string_view name : {kCaseCopy, kFinalDesign})
+        if (!fs::is_regular_file(file(name), ec))
+          throw InvalidInput(fmt::format("{}: missing; expected a run directory written by `frictopt optimize`",
+                                         file(name).string()));
+      break;
+    case RunOpening::kNewRun:
+      if (has_run)
+        throw InvalidInput(fmt::format("{} already holds a run; pass --resume to continue it or --force to replace it",
+                                       path_.string()));
+      break;
+    case RunOpening::kForce:
+    case RunOpening::kOutput:
+      break;
+  }
+  fs::create_directories(path_);
+  lock();
+  if (opening_ == RunOpening::kForce) clear_previous_run();
+}
+
+RunDirectory::~RunDirectory() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock; the file stays (harmless, ours)
+}
+
+void RunDirectory::lock() {
+  const fs::path lock_path = file(kLockFile);
+  detail::require_regular_output(lock_path);
+  lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+  if (lock_fd_ < 0)
+    throw InvalidInput(fmt::format("{}: cannot create the lock file: {}", lock_path.string(), std::strerror(errno)));
+  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    char pid[32] = {};
+    const ssize_t n = ::pread(lock_fd_, pid, sizeof pid - 1, 0);
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    if (error == EWOULDBLOCK)
+      throw InvalidInput(fmt::format("{} is in use by another frictopt process{} (lock {}); wait for it to end or "
+                                     "choose another output directory",
+                                     path_.string(), n > 0 ? fmt::format(" (pid {})", std::string(pid, static_cast<std::size_t>(n))) : "",
+                                     lock_path.string()));
+    throw InvalidInput(fmt::format("{}: cannot lock: {}", lock_path.string(), std::strerror(error)));
+  }
+  const std::string pid = std::to_string(::getpid());
+  if (::ftruncate(lock_fd_, 0) == 0 && ::pwrite(lock_fd_, pid.data(), pid.size(), 0) < 0) {
+    // the pid is only for the message of a second process
+  }
+}
+
+std::vector<std::string> RunDirectory::known_names() const {
+  std::vector<std::string> names;
+  if (!case_argument_.empty()) names.push_back(output_name_of(case_argument_));
+  std::error_code ec;
+  if (fs::is_regular_file(file(kCaseCopy), ec)) names.push_back(output_name_of(file(kCaseCopy)));
+  return names;
+}
+
+void RunDirectory::clear_previous_run() {
+  const std::vector<std::string> names = known_names();
+  std::vector<fs::path> ours;
+  std::vector<std::string> foreign;
+  for (const auto& entry : fs::directory_iterator(path_)) {
+    const std::string file_name = entry.path().filename().string();
+    if (file_name == kLockFile || same_file(entry.path(), case_argument_)) continue;
+    if (is_frictopt_output(entry.path(), names))
+      ours.push_back(entry.path());
+    else
+      foreign.push_back(file_name + (entry.is_directory() && !entry.is_symlink() ? "/" : ""));
+  }
+  std::sort(foreign.begin(), foreign.end());
+  if (!foreign.empty())
+    throw InvalidInput(fmt::format("--force: {} holds {} entr{} frictopt did not write ({}); --force removes only "
+                                   "frictopt's own outputs, so nothing was removed: choose an empty or new directory, "
+                                   "or move those entries away",
+                                   path_.string(), foreign.size(), foreign.size() == 1 ? "y" : "ies",
+                                   list_entries(foreign)));
+  for (const fs::path& p : ours) fs::remove_all(p);
+}
+
+fs::path RunDirectory::store_case() {
+  const fs::path copy = file(kCaseCopy);
+  if (opening_ == RunOpening::kResume || opening_ == RunOpening::kExisting) return copy;
+  if (case_argument_.empty()) throw InvalidInput("RunDirectory::store_case: no case argument");
+  if (same_file(case_argument_, copy)) return copy;  // the case already lives there
+  std::ifstream in(case_argument_, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  detail::write_file_atomically(copy, text.str());
+  return copy;
+}
+
+void RunDirectory::check_resume(const CaseDescription& run_case, const RunCheckpoint& checkpoint,
+                                const CaseFingerprint& current) const {
+  if (!case_argument_.empty() && !same_file(case_argument_, file(kCaseCopy))) {
+    const CaseDescription argument = load_case(case_argument_);
+    CaseFingerprint given, run;
+    given.dim = argument.dim();
+    given.settings = argument.problem_settings;
+    run.dim = run_case.dim();
+    run.settings = run_case.problem_settings;
+    given.case_hash = run.case_hash = 0;
+    const std::vector<std::string> changes = given.differences_from(run);
+    if (!changes.empty())
+      throw InvalidInput(fmt::format("--resume: the case argument {} is not the case of the run in {} ({}): {}; "
+                                     "resume with the run's case (its copy is {}) or start a new run",
+                                     case_argument_.string(), path_.string(), file(kCaseCopy).string(),
+                                     list_entries(changes), file(kCaseCopy).string()));
+  }
+  const std::vector<std::string> changes = current.differences_from(checkpoint.fingerprint);
+  if (!changes.empty())
+    throw InvalidInput(fmt::format("--resume: {} no longer defines the problem of the checkpoint {} (checkpoint -> "
+                                   "now): {}; a run continues one problem only (only [optimization] and [output] "
+                                   "may change): undo the edit or start a new run",
+                                   file(kCaseCopy).string(), file(kCheckpoint).string(), list_entries(changes)));
+}
+
+CsvWriter RunDirectory::open_history(std::vector<std::string> header, int keep_through_iteration,
+                                     std::vector<std::string>& notes) {
+  const fs::path history = file(kHistory);
+  if (opening_ != RunOpening::kResume) return CsvWriter(history, std::move(header), CsvWriter::Mode::kTruncate);
+  detail::require_regular_output(history);
+  std::ifstream in(history, std::ios::binary);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  std::string kept;
+  if (!lines.empty()) {
+    kept = lines[0] + "\n";
+    std::size_t last = lines.size();
+    while (last > 1 && lines[last - 1].empty()) --last;
+    int dropped = 0;
+    for (std::size_t i = 1; i < last; ++i) {
+      const std::string& row = lines[i];
+      const std::string first = row.substr(0, row.find(','));
+      int iteration = -1;
+      const auto [end, ec] = std::from_chars(first.data(), first.data() + first.size(), iteration);
+      const bool complete = ec == std::errc() && end == first.data() + first.size() && !in.bad() &&
+                            static_cast<std::size_t>(std::count(row.begin(), row.end(), ',')) + 1 == header.size();
+      if (!complete) {
+        if (i + 1 == last) {
+          notes.push_back(fmt::format("{}:{}: the last row is incomplete (an interrupted write); dropped",
+                                      history.string(), i + 1));
+          continue;
+        }
+        throw InvalidInput(fmt::format("{}:{}: a damaged row \"{}\" before the last one; expected {} fields starting "
+                                       "with the iteration (repair or remove the row to resume)",
+                                       history.string(), i + 1, row.substr(0, 60), header.size()));
+      }
+      if (iteration > keep_through_iteration) {
+        ++dropped;
+        continue;
+      }
+      kept += row + "\n";
+    }
+    if (dropped > 0)
+      notes.push_back(fmt::format("{}: {} row(s) after the checkpoint's iteration {} dropped (that work is redone)",
+                                  history.string(), dropped, keep_through_iteration));
+  }
+  detail::write_file_atomically(history, kept);
+  return CsvWriter(history, std::move(header), CsvWriter::Mode::kAppend);
+}
+
+RunCheckpoint RunDirectory::read_checkpoint() const { return io::read_checkpoint(file(kCheckpoint)); }
+
+void RunDirectory::write_checkpoint(const RunCheckpoint& checkpoint) const {
+  write_json(file(kCheckpoint), checkpoint_to_json(checkpoint));
+}
+
+void RunDirectory::start_series(const std::string& name, int through_iteration, std::vector<std::string>& notes) {
+  series_name_ = name;
+  series_.clear();
+  if (opening_ != RunOpening::kResume) return;
+  std::vector<std::string> ignored;
+  for (const auto& entry : fs::directory_iterator(path_)) {
+    const std::string file_name = entry.path().filename().string();
+    if (!file_name.starts_with(name + "_iter") || entry.path().extension() != ".vtu") continue;
+    const std::optional<int> k = series_index(file_name, name);
+    if (!k || !entry.is_regular_file() || entry.is_symlink()) {
+      ignored.push_back(file_name);
+    } else if (*k <= through_iteration) {
+      series_.push_back({static_cast<double>(*k), entry.path().filename()});
+    }
+  }
+  std::sort(series_.begin(), series_.end(), [](const PvdEntry& a, const PvdEntry& b) { return a.time < b.time; });
+  std::sort(ignored.begin(), ignored.end());
+  if (!ignored.empty())
+    notes.push_back(fmt::format("{}: not part of the VTK series and left alone: {}", path_.string(),
+                                list_entries(ignored)));
+}
+
+bool RunDirectory::series_has(int iteration) const {
+  return std::any_of(series_.begin(), series_.end(),
+                     [&](const PvdEntry& e) { return e.time == static_cast<double>(iteration); });
+}
+
+void RunDirectory::add_to_series(int iteration, const std::function<void(const fs::path&)>& write_vtu) {
+  const fs::path vtu = fmt::format("{}_iter{:04d}.vtu", series_name_, iteration);
+  write_vtu(path_ / vtu);
+  series_.erase(std::remove_if(series_.begin(), series_.end(),
+                               [&](const PvdEntry& e) { return e.time == static_cast<double>(iteration); }),
+                series_.end());
+  series_.push_back({static_cast<double>(iteration), vtu});
+  std::sort(series_.begin(), series_.end(), [](const PvdEntry& a, const PvdEntry& b) { return a.time < b.time; });
+  write_pvd(path_ / (series_name_ + ".pvd"), series_);
+}
+
+void RunDirectory::write_json_file(std::string_view name, const JsonValue& json) const { write_json(file(name), json); }
+
+void RunDirectory::write_text_file(std::string_view name, std::string_view text) const {
+  detail::write_file_atomically(file(name), text);
+}
+
+CaseFingerprint fingerprint_of(const CaseDescription& description, const study::ElasticBody& body) {
+  CaseFingerprint f;
+  f.dim = description.dim();
+  f.settings = description.problem_settings;
+  f.case_hash = hash_settings(f.settings);
+  // The reference mesh X_ref = X(0): the case determines it, but a change of the mesh
+  // generator between versions would otherwise go unnoticed.
+  const Eigen::MatrixXd reference = body.mesh().positions(Eigen::VectorXd::Zero(body.definition().shape.num_controls()));
+  f.num_nodes = reference.rows();
+  f.mesh_hash = fnv1a64(reference.data(), static_cast<std::size_t>(reference.size()) * sizeof(double));
+  return f;
+}
+
+}  // namespace frictopt::io

@@ -1,0 +1,252 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/io/summary_json.hpp"
+
+#include <string>
+
+namespace frictopt::io {
+namespace {
+
+JsonValue status_fields(Status status, const std::string& message) {
+  JsonValue j = JsonValue::object();
+  j["status"] = std::string(to_string(status));
+  j["message"] = message;
+  return j;
+}
+
+JsonValue rows_of(const Eigen::MatrixXd& m) {
+  JsonValue rows = JsonValue::array();
+  for (Eigen::Index a = 0; a < m.rows(); ++a) rows.push_back(JsonValue(Eigen::VectorXd(m.row(a).transpose())));
+  return rows;
+}
+
+JsonValue strings(const std::vector<std::string>& list) {
+  JsonValue out = JsonValue::array();
+  for (const std::string& s : list) out.push_back(s);
+  return out;
+}
+
+JsonValue integers(const std::vector<int>& list) {
+  JsonValue out = JsonValue::array();
+  for (int i : list) out.push_back(i);
+  return out;
+}
+
+}  // namespace
+
+void add_members(JsonValue& into, const JsonValue& members) {
+  for (const auto& [key, value] : members.as_object()) into[key] = value;
+}
+
+JsonValue to_json(const study::StateSummary& s) {
+  JsonValue j = status_fields(s.status, s.message);
+  j["relative_residual"] = s.relative_residual;
+  j["assembly_seconds"] = s.assembly_seconds;
+  j["factorization_seconds"] = s.factorization_seconds;
+  j["solve_seconds"] = s.solve_seconds;
+  return j;
+}
+
+JsonValue to_json(const contact::TrescaSolver::Summary& s) {
+  JsonValue j = status_fields(s.status, s.message);
+  j["iterations"] = s.iterations;
+  j["cg_steps"] = s.cg_steps;
+  j["expansion_steps"] = s.expansion_steps;
+  j["proportioning_steps"] = s.proportioning_steps;
+  j["split_sweeps"] = s.split_sweeps;
+  j["operator_applications"] = s.operator_applications;
+  j["relative_projected_gradient"] = s.relative_projected_gradient;
+  j["kkt_residual"] = s.kkt_residual;
+  j["complementarity_gap"] = s.complementarity_gap;
+  j["objective"] = s.objective;
+  j["time_seconds"] = s.time_seconds;
+  j["algorithm_given"] = std::string(contact::to_string(s.algorithm_given));
+  j["algorithm_used"] = std::string(contact::to_string(s.algorithm_used));
+  return j;
+}
+
+JsonValue to_json(const contact::CoulombSolver::Summary& s) {
+  JsonValue j = status_fields(s.status, s.message);
+  j["fixed_point_iterations"] = s.iterations;
+  j["qp_iterations"] = s.qp_iterations;
+  j["operator_applications"] = s.operator_applications;
+  j["inner_not_converged"] = s.inner_not_converged;
+  j["last_relative_increment"] = s.last_relative_increment;
+  j["kkt_residual"] = s.kkt_residual;
+  j["complementarity_gap"] = s.complementarity_gap;
+  j["time_seconds"] = s.time_seconds;
+  j["method_given"] = std::string(contact::to_string(s.method_given));
+  j["method_used"] = std::string(contact::to_string(s.method_used));
+  return j;
+}
+
+JsonValue to_json(const sensitivity::AdjointSensitivity::Summary& s) {
+  JsonValue j = status_fields(s.status, s.message);
+  j["reciprocal_condition"] = s.reciprocal_condition;
+  j["relative_residual"] = s.relative_residual;
+  j["piece_residual"] = s.piece_residual;
+  j["time_seconds"] = s.time_seconds;
+  return j;
+}
+
+JsonValue to_json(const optim::BundleTrust::Summary& s) {
+  JsonValue j = status_fields(s.status, s.message);
+  // Status kMaxIterations covers both limits (core::Status); this names the one that stopped.
+  j["stopped_by"] = s.status == Status::kMaxIterations
+                        ? std::string(s.evaluation_limit ? "max_evaluations" : "max_iterations")
+                        : std::string(to_string(s.status));
+  j["x"] = s.x;
+  j["f"] = s.f;
+  j["iterations"] = s.iterations;
+  j["serious_steps"] = s.serious_steps;
+  j["null_steps"] = s.null_steps;
+  j["line_searches"] = s.line_searches;
+  j["evaluations"] = s.evaluations;
+  j["failed_evaluations"] = s.failed_evaluations;
+  j["qp_solves"] = s.qp_solves;
+  j["stationarity"] = s.stationarity;
+  j["aggregate_error"] = s.aggregate_error;
+  j["t"] = s.t;
+  j["t_max_given"] = s.t_max_given;
+  j["t_max_used"] = s.t_max_used;
+  j["bundle_size_given"] = s.bundle_size_given;
+  j["bundle_size_used"] = s.bundle_size_used;
+  j["start_projected"] = s.start_projected;
+  j["projection_distance"] = s.projection_distance;
+  j["objective_scale"] = s.objective_scale;
+  j["time_seconds"] = s.time_seconds;
+  return j;
+}
+
+JsonValue to_json(const optim::ProjectedSubgradient::Summary& s) {
+  JsonValue j = status_fields(s.status, s.message);
+  j["x"] = s.x;
+  j["f"] = s.f;
+  j["evaluations"] = s.evaluations;
+  j["failed_evaluations"] = s.failed_evaluations;
+  j["time_seconds"] = s.time_seconds;
+  return j;
+}
+
+JsonValue to_json(const optim::DenseQpSolver::Summary& s) {
+  JsonValue j = status_fields(s.status, s.message);
+  j["outcome"] = std::string(optim::to_string(s.outcome));
+  j["x"] = s.x;
+  j["multipliers_eq"] = s.multipliers_eq;
+  j["multipliers_in"] = s.multipliers_in;
+  j["active_inequalities"] = integers(s.active_inequalities);
+  j["objective"] = s.objective;
+  j["primal_infeasibility"] = s.primal_infeasibility;
+  j["stationarity_residual"] = s.stationarity_residual;
+  j["iterations"] = s.iterations;
+  j["used_phase_one"] = s.used_phase_one;
+  return j;
+}
+
+JsonValue to_json(const study::Identification::Summary& s) {
+  JsonValue j = status_fields(s.status, s.message);
+  j["ceres_brief_report"] = s.ceres_brief_report;
+  j["iterations"] = s.iterations;
+  j["state_solves"] = s.state_solves;
+  j["jacobian_evaluations"] = s.jacobian_evaluations;
+  j["initial_cost"] = s.initial_cost;
+  j["final_cost"] = s.final_cost;
+  j["chi_square"] = s.chi_square;
+  j["degrees_of_freedom"] = s.degrees_of_freedom;
+  j["time_seconds"] = s.time_seconds;
+  j["index_sets"] = s.index_sets;
+  JsonValue estimates = JsonValue::array();
+  for (const auto& e : s.estimates) {
+    JsonValue item = JsonValue::object();
+    item["name"] = e.name;
+    item["initial"] = e.initial;
+    item["value"] = e.value;
+    item["lower"] = e.lower;
+    item["upper"] = e.upper;
+    item["standard_deviation"] = e.standard_deviation;
+    item["identifiability"] = std::string(study::to_string(e.identifiability));
+    item["note"] = e.note;
+    estimates.push_back(item);
+  }
+  j["estimates"] = estimates;
+  j["covariance"] = rows_of(s.covariance);
+  j["correlation"] = rows_of(s.correlation);
+  j["singular_values"] = s.singular_values;
+  return j;
+}
+
+JsonValue to_json(const study::Certificate& c, const study::CertifyOptions& options) {
+  JsonValue json = status_fields(c.status, c.message);
+  json["alpha"] = c.alpha;
+  json["value"] = c.value;
+  JsonValue sets = JsonValue::object();
+  sets["summary"] = c.index_sets.summary();
+  sets["weak_nodes"] = c.index_sets.num_weak_nodes();
+  for (auto n : {sensitivity::NormalSet::kStrongContact, sensitivity::NormalSet::kNoContact,
+                 sensitivity::NormalSet::kWeakContact})
+    sets[sensitivity::to_string(n)] = c.index_sets.count(n);
+  JsonValue tangential = JsonValue::object();
+  for (int t = 0; t <= static_cast<int>(sensitivity::TangentialSet::kZeroForce); ++t) {
+    const auto set = static_cast<sensitivity::TangentialSet>(t);
+    if (c.index_sets.count(set)) tangential[sensitivity::to_string(set)] = c.index_sets.count(set);
+  }
+  sets["tangential"] = tangential;
+  sets["force_tolerance"] = c.index_sets.force_tolerance;
+  sets["displacement_tolerance"] = c.index_sets.displacement_tolerance;
+  json["index_sets"] = sets;
+  json["cardinality_L"] = c.cardinality;
+  json["sampled"] = c.sampled;
+  json["cap"] = options.cap;
+  JsonValue pieces = JsonValue::array();
+  for (Eigen::Index j = 0; j < c.subgradients.cols(); ++j) {
+    JsonValue piece = JsonValue::object();
+    piece["summary"] = c.piece_summaries[static_cast<std::size_t>(j)];
+    piece["xi"] = Eigen::VectorXd(c.subgradients.col(j));
+    piece["weight"] = c.clarke.weights.size() ? c.clarke.weights(j) : 0.0;
+    pieces.push_back(piece);
+  }
+  json["pieces"] = pieces;
+  json["default_piece_column"] = c.default_piece_column;
+  json["scale_max_xi_norm"] = c.scale;
+  JsonValue clarke = JsonValue::object();
+  clarke["distance"] = c.clarke.distance;
+  clarke["relative_distance"] = c.relative_distance;
+  clarke["stationary"] = c.clarke_stationary;
+  clarke["stationary_tolerance_relative"] = options.stationary_tolerance;
+  clarke["distinct_subgradients"] = c.clarke.num_distinct_subgradients;
+  if (c.clarke.subgradient_part.size()) {
+    clarke["subgradient_part"] = c.clarke.subgradient_part;
+    clarke["normal_cone_part"] = c.clarke.normal_part;
+  }
+  clarke["active_constraints"] = strings(c.active_constraints);
+  json["clarke"] = clarke;
+  JsonValue single = JsonValue::object();
+  single["distance"] = c.default_piece.distance;
+  single["relative_distance"] = c.default_relative_distance;
+  json["default_piece"] = single;
+  JsonValue mf1 = JsonValue::object();
+  mf1["computed"] = c.mf1.computed;
+  mf1["rows"] = c.mf1.rows;
+  mf1["cols"] = c.mf1.cols;
+  mf1["extra_conditions_m0"] = c.mf1.extra_conditions;
+  mf1["rank"] = c.mf1.rank;
+  mf1["full_row_rank"] = c.mf1.full_row_rank;
+  mf1["sigma_min_over_max"] = c.mf1.sigma_min / c.mf1.sigma_max;
+  mf1["rank_tolerance_relative"] = options.rank_tolerance;
+  mf1["spec_table_rows"] = c.mf1.spec_rows;
+  mf1["spec_table_rank"] = c.mf1.spec_rank;
+  mf1["spec_table_full_row_rank"] = c.mf1.spec_full_row_rank;
+  json["mf1"] = mf1;
+  JsonValue m = JsonValue::object();
+  m["computed"] = c.mordukhovich.computed;
+  m["message"] = c.mordukhovich.message;
+  m["num_extreme_points"] = static_cast<std::int64_t>(c.mordukhovich.extreme.size());
+  m["distance_delta_M"] = c.mordukhovich.distance;
+  m["attaining_column"] = c.mordukhovich.attaining;
+  m["clarke_minimizer_is_extreme"] = c.mordukhovich.clarke_minimizer_is_extreme;
+  m["stationary"] = c.mordukhovich.stationary;
+  json["mordukhovich"] = m;
+  json["time_seconds"] = c.time_seconds;
+  return json;
+}
+
+}  // namespace frictopt::io
