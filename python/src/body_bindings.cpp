@@ -11,6 +11,7 @@
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/fclib_export.hpp"
 #include "frictopt/io/state_output.hpp"
+#include "frictopt/io/summary_json.hpp"
 
 namespace frictopt::python {
 
@@ -20,34 +21,24 @@ io::JsonValue solve_summary_json(const Case& source, const study::ElasticBody& b
   io::JsonValue summary = io::JsonValue::object();
   summary["case"] = source.description.origin;
   summary["command"] = "solve";
-  summary["status"] = std::string(to_string(state.summary.status));
-  summary["message"] = state.summary.message;
+  io::add_members(summary, io::to_json(state.summary));
   summary["dim"] = mesh.dim();
-  summary["num_nodes"] = mesh.num_nodes();
-  summary["num_unknowns"] = body.elasticity().dofs().num_free();
+  summary["num_nodes"] = static_cast<std::int64_t>(mesh.num_nodes());
+  summary["num_unknowns"] = static_cast<std::int64_t>(body.elasticity().dofs().num_free());
   summary["alpha"] = state.alpha;
-  summary["relative_residual"] = state.summary.relative_residual;
-  summary["strain_energy"] = state.strain_energy;
-  summary["external_work"] = state.external_work;
-  summary["volume"] = state.volume;
   if (state.contact) {
     const auto& c = *state.contact;
-    io::JsonValue contact = io::JsonValue::object();
-    contact["status"] = std::string(to_string(c.summary.status));
-    contact["message"] = c.summary.message;
-    contact["fixed_point_iterations"] = c.summary.iterations;
-    contact["qp_iterations"] = c.summary.qp_iterations;
-    contact["kkt_residual"] = c.summary.kkt_residual;
-    contact["complementarity_gap"] = c.summary.complementarity_gap;
-    contact["num_contact_nodes"] = static_cast<int>(c.state.num_nodes());
+    io::JsonValue contact = io::to_json(c.summary);
+    contact["num_contact_nodes"] = static_cast<std::int64_t>(c.state.num_nodes());
     contact["dense_delassus"] = c.dense_delassus;
     contact["total_normal_force"] = c.state.normal_forces().sum();
     summary["contact"] = contact;
   }
-  summary["max_von_mises"] = state.stress.nodal_von_mises.size() ? state.stress.nodal_von_mises.maxCoeff() : kNaN;
-  summary["assembly_seconds"] = state.summary.assembly_seconds;
-  summary["factorization_seconds"] = state.summary.factorization_seconds;
-  summary["solve_seconds"] = state.summary.solve_seconds;
+  if (state.summary.status != Status::kConverged) return summary;  // as the CLI: no energies
+  summary["strain_energy"] = state.strain_energy;
+  summary["external_work"] = state.external_work;
+  summary["volume"] = state.volume;
+  summary["max_von_mises"] = state.stress.nodal_von_mises.maxCoeff();
   return summary;
 }
 

@@ -11,6 +11,7 @@
 #include "bindings.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/measurements.hpp"
+#include "frictopt/io/summary_json.hpp"
 #include "frictopt/study/identification.hpp"
 
 namespace frictopt::python {
@@ -108,36 +109,7 @@ Forces and tractions are those the foundation exerts on the body.
         io::JsonValue summary = io::JsonValue::object();
         summary["case"] = source->description.origin;
         summary["command"] = "identify";
-        summary["status"] = std::string(to_string(s.status));
-        summary["message"] = s.message;
-        summary["ceres_brief_report"] = s.ceres_brief_report;
-        summary["iterations"] = s.iterations;
-        summary["state_solves"] = s.state_solves;
-        summary["initial_cost"] = s.initial_cost;
-        summary["final_cost"] = s.final_cost;
-        summary["chi_square"] = s.chi_square;
-        summary["degrees_of_freedom"] = s.degrees_of_freedom;
-        summary["time_seconds"] = s.time_seconds;
-        summary["index_sets"] = s.index_sets;
-        io::JsonValue estimates = io::JsonValue::array();
-        for (const auto& e : s.estimates) {
-          io::JsonValue j = io::JsonValue::object();
-          j["name"] = e.name;
-          j["initial"] = e.initial;
-          j["value"] = e.value;
-          j["lower"] = e.lower;
-          j["upper"] = e.upper;
-          j["standard_deviation"] = e.standard_deviation;
-          j["identifiability"] = std::string(study::to_string(e.identifiability));
-          j["note"] = e.note;
-          estimates.push_back(j);
-        }
-        summary["estimates"] = estimates;
-        io::JsonValue correlation = io::JsonValue::array();
-        for (Eigen::Index a = 0; a < s.correlation.rows(); ++a)
-          correlation.push_back(io::JsonValue(Eigen::VectorXd(s.correlation.row(a).transpose())));
-        summary["correlation"] = correlation;
-        summary["singular_values"] = s.singular_values;
+        io::add_members(summary, io::to_json(s));
         py::object result = to_python(summary);
         result.attr("__setitem__")("predictions", to_numpy(s.predictions));
         result.attr("__setitem__")("residuals", to_numpy(s.residuals));

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // frictopt.optimize: the bundle trust method on Θ over Υ (study::optimize) with a Python
-// callback per outer iteration, Ctrl-C handling and an optional run directory (run_directory.hpp).
+// callback per outer iteration, Ctrl-C handling and an optional run directory
+// (io::RunDirectory, the CLI's layout and rules: `frictopt optimize` and this function write
+// the same files, and either can resume or certify the other's runs).
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -11,20 +13,40 @@
 #include "bindings.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/cost/cost_kind.hpp"
+#include "frictopt/io/case_file.hpp"
+#include "frictopt/io/checkpoint.hpp"
+#include "frictopt/io/run_directory.hpp"
+#include "frictopt/io/state_output.hpp"
+#include "frictopt/io/summary_json.hpp"
 #include "frictopt/study/shape_optimization.hpp"
-#include "run_directory.hpp"
 
 namespace frictopt::python {
 
 namespace {
 
-// The progress object given to callbacks: the history.csv row (same column names) plus α.
-py::object progress_to_python(const study::OptimizationProgress& p, std::int64_t solves_offset, double elapsed_offset) {
-  const auto row = RunDirectory::history_row(p, solves_offset, elapsed_offset);
-  const auto& columns = RunDirectory::history_columns();
+// The columns of history.csv, as apps/frictopt/optimize_command.cpp writes them; also the
+// fields of the progress object a callback receives.
+const std::vector<std::string> kHistoryColumns = {
+    "iteration",    "evaluations",        "step",          "theta",      "t",           "stationarity_relative",
+    "aggregate_error_relative", "bundle_size", "serious_steps", "null_steps", "state_solves", "coulomb_iterations",
+    "qp_iterations", "weak_nodes",        "state_seconds", "subgradient_seconds", "elapsed_seconds"};
+
+std::vector<io::CsvValue> history_row(const study::OptimizationProgress& p, std::int64_t solves, double elapsed) {
+  const auto& m = p.method;
+  return {static_cast<std::int64_t>(m.iteration), static_cast<std::int64_t>(m.evaluations),
+          std::string(optim::to_string(m.step)), m.f, m.t, m.stationarity, m.aggregate_error,
+          static_cast<std::int64_t>(m.bundle.size()), static_cast<std::int64_t>(m.serious_steps),
+          static_cast<std::int64_t>(m.null_steps), solves, static_cast<std::int64_t>(p.center.contact.iterations),
+          static_cast<std::int64_t>(p.center.contact.qp_iterations),
+          static_cast<std::int64_t>(p.center.index_sets.num_weak_nodes()), p.center.state_seconds,
+          p.center.subgradient_seconds, elapsed};
+}
+
+// The progress object given to callbacks: the history.csv row (same names) plus α.
+py::object progress_to_python(const std::vector<io::CsvValue>& row, const study::OptimizationProgress& p) {
   py::dict d;
-  for (std::size_t k = 0; k < columns.size(); ++k)
-    std::visit([&](const auto& v) { d[py::str(columns[k])] = py::cast(v); }, row[k]);
+  for (std::size_t k = 0; k < kHistoryColumns.size(); ++k)
+    std::visit([&](const auto& v) { d[py::str(kHistoryColumns[k])] = py::cast(v); }, row[k]);
   d["alpha"] = to_numpy(p.method.x);
   d["objective_scale"] = p.method.objective_scale;
   return py::module_::import("frictopt._summary").attr("Summary")(d);
@@ -44,19 +66,36 @@ void bind_optimize(py::module_& m) {
          bool force, const py::object& max_iterations, const py::object& max_evaluations, const py::object& epsilon) {
         namespace fs = std::filesystem;
         // The run directory (optional) decides which case is solved: on resume its stored copy.
-        std::optional<RunDirectory> run;
+        std::optional<io::RunDirectory> run;
+        if (!run_directory.is_none())
+          run.emplace(run_directory.cast<fs::path>(),
+                      resume ? io::RunOpening::kResume : force ? io::RunOpening::kForce : io::RunOpening::kNewRun);
+        else if (resume)
+          throw InvalidInput("resume=True needs a run_directory");
         std::shared_ptr<const Case> source;
-        if (!run_directory.is_none()) run.emplace(run_directory.cast<fs::path>(), resume, force);
-        else if (resume) throw InvalidInput("resume=True needs a run_directory");
-        if (run && resume)
-          source = py::module_::import("frictopt").attr("load_case")(run->case_path()).cast<std::shared_ptr<Case>>();
-        else if (case_object.is_none())
+        if (run && resume) {
+          source = py::module_::import("frictopt").attr("load_case")(run->store_case()).cast<std::shared_ptr<Case>>();
+          if (!case_object.is_none()) {  // a case given on resume must be the run's problem
+            const auto& given = case_object.cast<const Case&>().description;
+            io::CaseFingerprint a, b;
+            a.dim = given.dim();
+            a.settings = given.problem_settings;
+            b.dim = source->description.dim();
+            b.settings = source->description.problem_settings;
+            if (const auto changes = a.differences_from(b); !changes.empty())
+              throw InvalidInput(fmt::format("resume: the case {} is not the case of the run in {}: {}; pass case=None",
+                                             given.origin, run->path().string(), fmt::join(changes, "; ")));
+          }
+        } else if (case_object.is_none()) {
           throw InvalidInput("optimize: pass a case (or a run_directory with resume=True)");
-        else
+        } else {
           source = case_object.cast<std::shared_ptr<Case>>();
+          if (run) run->write_text_file(io::RunDirectory::kCaseCopy, source->toml);
+        }
         const io::CaseDescription& description = source->description;
+        const std::string case_name = run ? run->file(io::RunDirectory::kCaseCopy).string() : description.origin;
         const study::BodyDefinition& definition = description.body;
-        if (!definition.contact) throw InvalidInput(description.origin + ": optimize needs a [contact] table");
+        if (!definition.contact) throw InvalidInput(case_name + ": optimize needs a [contact] table");
 
         optim::BundleTrust::Options options = description.optimization;
         override_option(options.max_iterations, max_iterations);
@@ -70,23 +109,60 @@ void bind_optimize(py::module_& m) {
           py::gil_scoped_release release;
           body = std::make_unique<study::ElasticBody>(definition);
         }
-        const std::string violation = body->admissible_set().describe_violation(definition.initial_design, 1e-9);
-        if (!violation.empty())
-          throw InvalidInput(
-              fmt::format("{}: the initial design is outside the admissible set: {}", description.origin, violation));
+        study::require_admissible_design(*body, definition.initial_design, 1e-9, case_name + ": design.initial");
+        const io::CaseFingerprint fingerprint = io::fingerprint_of(description, *body);
+        std::optional<io::RunCheckpoint> checkpoint;
+        if (resume) {
+          checkpoint = run->read_checkpoint();
+          run->check_resume(description, *checkpoint, fingerprint);
+        }
         {
           py::gil_scoped_release release;
           oracle = std::make_unique<study::ShapeOracle>(*body, description.required_cost());
         }
-        if (run) run->start(source->toml, definition.name, description.output.vtk, description.output.every);
-        const std::int64_t solves_offset = run ? run->solves_offset() : 0;
-        const double elapsed_offset = run ? run->elapsed_offset() : 0.0;
+        std::vector<std::string> notes;
+        std::optional<io::CsvWriter> history;
+        const int start_iteration = checkpoint ? checkpoint->method.iteration : 0;
+        if (run) {
+          history.emplace(run->open_history(kHistoryColumns, start_iteration, notes));
+          run->start_series(definition.name, start_iteration, notes);
+        }
+        const auto write_design_vtu = [&](int iteration, const Eigen::VectorXd& alpha) {
+          if (!run || !description.output.vtk) return;
+          // Output must not change the numbers: restore the warm start a picture's solve moves.
+          const auto warm_start = body->warm_start();
+          run->add_to_series(iteration, [&](const fs::path& vtu) { io::write_state_vtu(vtu, *body, oracle->state(alpha)); });
+          body->set_warm_start(warm_start);
+        };
+        // The run's counters continue over resumes.
+        const double elapsed_offset = checkpoint ? checkpoint->elapsed_seconds : 0.0;
+        const std::int64_t solves_offset = checkpoint ? checkpoint->state_solves : 0;
+        double initial_value = kNaN;
 
         // A Python exception (from the callback, or KeyboardInterrupt from Ctrl-C) stops the run
         // at the end of the iteration; it is raised again once the run directory is complete.
         std::optional<py::error_already_set> pending;
         const auto on_progress = [&](const study::OptimizationProgress& p) {
-          if (run) run->record(p, *body, *oracle);
+          const auto& method = p.method;
+          const double elapsed = elapsed_offset + p.elapsed_seconds;
+          const std::int64_t solves = solves_offset + p.state_solves;
+          const auto row = history_row(p, solves, elapsed);
+          if (run) {
+            history->write_row(row);
+            if (method.iteration % description.output.every == 0) write_design_vtu(method.iteration, method.x);
+            // Last, so that the checkpoint holds the state the next iteration starts from.
+            io::RunCheckpoint c;
+            c.method = method;
+            c.fingerprint = fingerprint;
+            if (const auto& warm = body->warm_start()) {
+              c.warm_start = warm->z;
+              c.warm_start_dim = warm->dim;
+            }
+            c.initial_cost = initial_value;
+            c.elapsed_seconds = elapsed;
+            c.state_solves = solves;
+            run->write_checkpoint(c);
+          }
           py::gil_scoped_acquire acquire;
           if (PyErr_CheckSignals() != 0) {  // Ctrl-C arrived while C++ was working
             pending.emplace();
@@ -94,7 +170,7 @@ void bind_optimize(py::module_& m) {
           }
           if (callback.is_none()) return CallbackResult::kContinue;
           try {
-            const py::object result = callback(progress_to_python(p, solves_offset, elapsed_offset));
+            const py::object result = callback(progress_to_python(row, p));
             if (result.is(py::bool_(false))) return CallbackResult::kStop;
           } catch (py::error_already_set& e) {
             if (!e.matches(PyExc_StopIteration)) pending.emplace(std::move(e));
@@ -105,24 +181,35 @@ void bind_optimize(py::module_& m) {
 
         optim::BundleTrust::Summary summary;
         study::Evaluation final;
-        double initial_value = kNaN;
         {
           py::gil_scoped_release release;
-          if (run && !run->resuming()) run->write_design_vtu(0, definition.initial_design, *body, *oracle);
-          initial_value = oracle->evaluate_design(definition.initial_design, !resume).value;
-          summary = study::optimize(*oracle, options, on_progress, run ? run->checkpoint() : nullptr);
+          if (checkpoint) {
+            initial_value = checkpoint->initial_cost;
+            if (checkpoint->warm_start.size() > 0) {
+              contact::ContactState warm(checkpoint->warm_start_dim,
+                                         checkpoint->warm_start.size() / checkpoint->warm_start_dim);
+              warm.z = checkpoint->warm_start;
+              body->set_warm_start(std::move(warm));
+            } else {
+              body->set_warm_start(std::nullopt);
+            }
+          } else {
+            // Θ(α⁰) for the summary, now: the method's first evaluation then hits the cache.
+            initial_value = oracle->evaluate_design(definition.initial_design, true).value;
+            write_design_vtu(0, definition.initial_design);
+          }
+          summary = study::optimize(*oracle, options, on_progress, checkpoint ? &checkpoint->method : nullptr);
           final = oracle->evaluate_design(summary.x, true);
+          if (run && !run->series_has(summary.iterations)) write_design_vtu(summary.iterations, summary.x);
         }
         // The summary.json of `frictopt optimize` (same keys).
         io::JsonValue json = io::JsonValue::object();
-        json["case"] = run ? run->case_path().string() : description.origin;
+        json["case"] = case_name;
         json["command"] = "optimize";
         json["cost"] = oracle->cost().name();
         json["status"] = std::string(to_string(summary.status));
         json["message"] = summary.message;
-        json["stopped_by"] = summary.status == Status::kMaxIterations
-                                 ? std::string(summary.evaluation_limit ? "max_evaluations" : "max_iterations")
-                                 : std::string(to_string(summary.status));
+        json["stopped_by"] = io::to_json(summary).at("stopped_by");
         json["initial_cost"] = initial_value;
         json["final_cost"] = final.value;
         json["alpha"] = summary.x;
@@ -142,27 +229,32 @@ void bind_optimize(py::module_& m) {
         json["elapsed_seconds"] = elapsed_offset + summary.time_seconds;
         json["final_index_sets"] = final.index_sets.summary();
         json["final_contact"] = final.contact.brief_report();
+        json["final_contact_solve"] = io::to_json(final.contact);
+        json["optimizer"] = io::to_json(summary);
         if (run) {
-          py::gil_scoped_release release;
-          run->finish(summary, json, *body, *oracle);
+          io::JsonValue design = io::JsonValue::object();
+          design["alpha"] = summary.x;
+          run->write_json_file(io::RunDirectory::kFinalDesign, design);
+          run->write_json_file(io::RunDirectory::kSummary, json);
         }
         if (pending) throw std::move(*pending);
 
         py::object result = to_python(json);
         // The per-iteration history of this process as numpy columns.
-        py::dict history;
+        py::dict columns;
         const auto column = [&](auto field) {
           Eigen::VectorXd v(static_cast<Eigen::Index>(summary.history.size()));
           for (std::size_t k = 0; k < summary.history.size(); ++k) v(static_cast<Eigen::Index>(k)) = field(summary.history[k]);
           return to_numpy(v);
         };
-        history["iteration"] = column([](const auto& h) { return static_cast<double>(h.iteration); });
-        history["evaluations"] = column([](const auto& h) { return static_cast<double>(h.evaluations); });
-        history["theta"] = column([](const auto& h) { return h.f; });
-        history["t"] = column([](const auto& h) { return h.t; });
-        history["stationarity_relative"] = column([](const auto& h) { return h.stationarity; });
-        result.attr("__setitem__")("history", py::module_::import("frictopt._summary").attr("Summary")(history));
+        columns["iteration"] = column([](const auto& h) { return static_cast<double>(h.iteration); });
+        columns["evaluations"] = column([](const auto& h) { return static_cast<double>(h.evaluations); });
+        columns["theta"] = column([](const auto& h) { return h.f; });
+        columns["t"] = column([](const auto& h) { return h.t; });
+        columns["stationarity_relative"] = column([](const auto& h) { return h.stationarity; });
+        result.attr("__setitem__")("history", py::module_::import("frictopt._summary").attr("Summary")(columns));
         result.attr("__setitem__")("run_directory", run ? py::cast(run->path()) : py::none());
+        result.attr("__setitem__")("notes", py::cast(notes));
         return result;
       },
       py::arg("case") = py::none(), py::arg("run_directory") = py::none(), py::kw_only(),
@@ -178,15 +270,18 @@ or raising StopIteration stops the run cleanly (status 'stopped_by_callback'); a
 exception stops it and is re-raised after the run directory is complete. Ctrl-C
 (KeyboardInterrupt) is honoured at the next iteration the same way.
 
-run_directory: when given, writes the CLI's layout there (case.toml, history.csv,
-checkpoint.json, VTK series every [output].every iterations, final_design.json, summary.json);
-resume=True continues the run it holds from its checkpoint (using its case.toml; ``case`` may
-be None); force=True replaces a previous run's files. max_iterations, max_evaluations and
-epsilon override the case's [optimization] values.
+run_directory: when given, the CLI's run directory (docs/case-format.md, "Run directories"):
+case.toml, history.csv, checkpoint.json, a VTK series every [output].every iterations,
+final_design.json, summary.json, locked against a second process. A directory holding a run is
+refused unless resume=True (continue from its checkpoint with its case.toml, bit for bit; a
+``case`` given then must be the same problem) or force=True (remove that run's files; a foreign
+file is refused). max_iterations, max_evaluations and epsilon override the case's
+[optimization] values.
 
 Returns a Summary with the fields of the CLI's summary.json (status, message, stopped_by,
-initial_cost, final_cost, alpha, iterations, evaluations, stationarity, ...) plus history
-(numpy columns) and run_directory. Non-convergence is a status, not an exception.)doc");
+initial_cost, final_cost, alpha, iterations, evaluations, stationarity, optimizer, ...) plus
+history (numpy columns), run_directory and notes (what the run directory reported on resume).
+Non-convergence is a status, not an exception.)doc");
 }
 
 }  // namespace frictopt::python

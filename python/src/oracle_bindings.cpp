@@ -14,7 +14,11 @@
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
 #include "frictopt/io/design_file.hpp"
+#include "frictopt/io/run_directory.hpp"
+#include "frictopt/io/summary_json.hpp"
 #include "frictopt/sensitivity/friction_parameters.hpp"
+#include "frictopt/study/derivative_accuracy.hpp"
+#include "frictopt/study/shape_optimization.hpp"
 #include "frictopt/study/certificate.hpp"
 
 namespace frictopt::python {
@@ -33,91 +37,6 @@ std::shared_ptr<Oracle> make_oracle(std::shared_ptr<const Case> source, const st
 }
 
 const Eigen::VectorXd& initial_design(const Oracle& o) { return o.body->definition().initial_design; }
-
-// The certificate.json of apps/frictopt/certify_command.cpp (same keys and values).
-io::JsonValue certificate_json(const study::Certificate& c, const study::CertifyOptions& options,
-                               const std::string& case_name, const std::string& design_name, const std::string& cost) {
-  io::JsonValue json = io::JsonValue::object();
-  json["command"] = "certify";
-  json["case"] = case_name;
-  json["design"] = design_name;
-  json["cost"] = cost;
-  json["status"] = std::string(to_string(c.status));
-  json["message"] = c.message;
-  json["alpha"] = c.alpha;
-  json["value"] = c.value;
-  io::JsonValue sets = io::JsonValue::object();
-  sets["summary"] = c.index_sets.summary();
-  sets["weak_nodes"] = c.index_sets.num_weak_nodes();
-  for (auto n : {sensitivity::NormalSet::kStrongContact, sensitivity::NormalSet::kNoContact,
-                 sensitivity::NormalSet::kWeakContact})
-    sets[sensitivity::to_string(n)] = c.index_sets.count(n);
-  io::JsonValue tangential = io::JsonValue::object();
-  for (int t = 0; t <= static_cast<int>(sensitivity::TangentialSet::kZeroForce); ++t) {
-    const auto set = static_cast<sensitivity::TangentialSet>(t);
-    if (c.index_sets.count(set)) tangential[sensitivity::to_string(set)] = c.index_sets.count(set);
-  }
-  sets["tangential"] = tangential;
-  sets["force_tolerance"] = c.index_sets.force_tolerance;
-  sets["displacement_tolerance"] = c.index_sets.displacement_tolerance;
-  json["index_sets"] = sets;
-  json["cardinality_L"] = c.cardinality;
-  json["sampled"] = c.sampled;
-  json["cap"] = options.cap;
-  io::JsonValue pieces = io::JsonValue::array();
-  for (Eigen::Index j = 0; j < c.subgradients.cols(); ++j) {
-    io::JsonValue piece = io::JsonValue::object();
-    piece["summary"] = c.piece_summaries[static_cast<std::size_t>(j)];
-    piece["xi"] = Eigen::VectorXd(c.subgradients.col(j));
-    piece["weight"] = c.clarke.weights.size() ? c.clarke.weights(j) : 0.0;
-    pieces.push_back(piece);
-  }
-  json["pieces"] = pieces;
-  json["default_piece_column"] = c.default_piece_column;
-  json["scale_max_xi_norm"] = c.scale;
-  io::JsonValue clarke = io::JsonValue::object();
-  clarke["distance"] = c.clarke.distance;
-  clarke["relative_distance"] = c.relative_distance;
-  clarke["stationary"] = c.clarke_stationary;
-  clarke["stationary_tolerance_relative"] = options.stationary_tolerance;
-  clarke["distinct_subgradients"] = c.clarke.num_distinct_subgradients;
-  if (c.clarke.subgradient_part.size()) {
-    clarke["subgradient_part"] = c.clarke.subgradient_part;
-    clarke["normal_cone_part"] = c.clarke.normal_part;
-  }
-  io::JsonValue active = io::JsonValue::array();
-  for (const std::string& name : c.active_constraints) active.push_back(name);
-  clarke["active_constraints"] = active;
-  json["clarke"] = clarke;
-  io::JsonValue single = io::JsonValue::object();
-  single["distance"] = c.default_piece.distance;
-  single["relative_distance"] = c.default_relative_distance;
-  json["default_piece"] = single;
-  io::JsonValue mf1 = io::JsonValue::object();
-  mf1["computed"] = c.mf1.computed;
-  mf1["rows"] = c.mf1.rows;
-  mf1["cols"] = c.mf1.cols;
-  mf1["extra_conditions_m0"] = c.mf1.extra_conditions;
-  mf1["rank"] = c.mf1.rank;
-  mf1["full_row_rank"] = c.mf1.full_row_rank;
-  mf1["sigma_min_over_max"] = c.mf1.sigma_min / c.mf1.sigma_max;
-  mf1["rank_tolerance_relative"] = options.rank_tolerance;
-  mf1["spec_table_rows"] = c.mf1.spec_rows;
-  mf1["spec_table_rank"] = c.mf1.spec_rank;
-  mf1["spec_table_full_row_rank"] = c.mf1.spec_full_row_rank;
-  json["mf1"] = mf1;
-  io::JsonValue mk = io::JsonValue::object();
-  mk["computed"] = c.mordukhovich.computed;
-  mk["message"] = c.mordukhovich.message;
-  mk["num_extreme_points"] = static_cast<std::int64_t>(c.mordukhovich.extreme.size());
-  mk["distance_delta_M"] = c.mordukhovich.distance;
-  mk["attaining_column"] = c.mordukhovich.attaining;
-  mk["clarke_minimizer_is_extreme"] = c.mordukhovich.clarke_minimizer_is_extreme;
-  mk["stationary"] = c.mordukhovich.stationary;
-  json["mordukhovich"] = mk;
-  json["time_seconds"] = c.time_seconds;
-  return json;
-}
 
 }  // namespace
 
@@ -212,14 +131,13 @@ Example::
         // As `frictopt check-gradient`: tighter solver tolerances so that differences resolve ξ.
         study::BodyDefinition definition = source->description.body;
         if (!definition.contact) throw InvalidInput(source->description.origin + ": check_gradient needs a [contact] table");
-        auto& coulomb = definition.contact->coulomb;
-        coulomb.relative_tolerance = std::min(coulomb.relative_tolerance, 1e-13);
-        coulomb.tresca.relative_tolerance = std::min(coulomb.tresca.relative_tolerance, 1e-13);
-        coulomb.max_iterations = std::max(coulomb.max_iterations, 200);
-        coulomb.tresca.max_iterations = std::max(coulomb.tresca.max_iterations, 200000);
+        study::tighten_for_derivatives(definition.contact->coulomb);
         if (!(relative_step > 0.0)) throw InvalidInput(fmt::format("relative_step = {}; expected > 0", relative_step));
         auto o = make_oracle(source, definition);
         const Eigen::VectorXd alpha = design_from_python(design, definition.initial_design, "design");
+        // The same admissibility check as certify: Θ and ξ are defined on Υ only.
+        study::require_admissible_design(*o->body, alpha, study::CertifyOptions{}.active_tolerance,
+                                         source->description.origin + (design.is_none() ? ": design.initial" : ": design"));
         io::JsonValue json = io::JsonValue::object();
         json["command"] = "check-gradient";
         json["case"] = source->description.origin;
@@ -278,16 +196,11 @@ cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the
         Eigen::VectorXd alpha;
         std::string design_name = "python";
         namespace fs = std::filesystem;
-        std::optional<fs::path> run;
+        std::optional<io::RunDirectory> run;
         if (!run_directory.is_none()) {
-          run = run_directory.cast<fs::path>();
-          const fs::path case_path = *run / "case.toml", design_path = *run / "final_design.json";
-          if (!fs::is_directory(*run)) throw InvalidInput(run->string() + ": the run directory does not exist");
-          for (const fs::path& file : {case_path, design_path})
-            if (!fs::exists(file))
-              throw InvalidInput(fmt::format("{}: missing; expected a run directory written by `frictopt optimize`",
-                                             file.string()));
-          source = py::module_::import("frictopt").attr("load_case")(case_path).cast<std::shared_ptr<Case>>();
+          run.emplace(run_directory.cast<fs::path>(), io::RunOpening::kExisting);
+          source = py::module_::import("frictopt").attr("load_case")(run->store_case()).cast<std::shared_ptr<Case>>();
+          const fs::path design_path = run->file(io::RunDirectory::kFinalDesign);
           alpha = io::read_design_file(design_path, source->description.body.shape.num_controls());
           design_name = design_path.string();
         } else {
@@ -304,9 +217,14 @@ cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the
           py::gil_scoped_release release;
           c = study::certify(*o->oracle, alpha, options);
         }
-        const io::JsonValue json =
-            certificate_json(c, options, source->description.origin, design_name, o->oracle->cost().name());
-        if (run) io::write_json(*run / "certificate.json", json);
+        // The certificate.json of `frictopt certify` (same keys).
+        io::JsonValue json = io::JsonValue::object();
+        json["command"] = "certify";
+        json["case"] = run ? run->file(io::RunDirectory::kCaseCopy).string() : source->description.origin;
+        json["design"] = design_name;
+        json["cost"] = o->oracle->cost().name();
+        io::add_members(json, io::to_json(c, options));
+        if (run) run->write_json_file(io::RunDirectory::kCertificate, json);
         py::object result = to_python(json);
         result.attr("__setitem__")("report", c.report());
         return result;

@@ -3,16 +3,13 @@
 from __future__ import annotations
 
 import json
-import math
 import subprocess
 
 import numpy as np
 import pytest
 
 import frictopt
-
-TIMINGS = {"assembly_seconds", "factorization_seconds", "solve_seconds", "time_seconds", "elapsed_seconds"}
-
+from compare import assert_same
 
 def read_vtu(path) -> dict[str, np.ndarray]:
     from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -22,25 +19,6 @@ def read_vtu(path) -> dict[str, np.ndarray]:
     reader.Update()
     data = reader.GetOutput().GetPointData()
     return {data.GetArrayName(k): vtk_to_numpy(data.GetArray(k)) for k in range(data.GetNumberOfArrays())}
-
-
-def assert_same(cli, py, path: str = "") -> None:
-    """Every field of the CLI's JSON is in the Python summary, equal to 1e-12 (timings excepted)."""
-    if isinstance(cli, dict):
-        for key, value in cli.items():
-            assert key in py, f"{path}{key} missing from the Python summary"
-            if key not in TIMINGS:
-                assert_same(value, py[key], f"{path}{key}.")
-    elif isinstance(cli, list):
-        np.testing.assert_allclose(np.asarray(py, dtype=float), np.asarray(cli, dtype=float), rtol=1e-12, atol=0,
-                                   err_msg=path)
-    elif isinstance(cli, float) or (cli is None and isinstance(py, float)):
-        if cli is None:
-            assert math.isnan(py), path
-        else:
-            assert py == pytest.approx(cli, rel=1e-12, abs=0), path
-    else:
-        assert py == cli, path
 
 
 @pytest.mark.parametrize("case_path", ["cases3d/punch-anisotropic/case.toml", "cases2d/ex521-target-pressure/case.toml"])
