@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""The Python side of the call-overhead comparison (run_overhead.sh): the same call sequence as
-overhead_bench.cpp through the frictopt module, then medians and ratios against the C++ times.
+"""The Python side of the call-overhead comparison (run_overhead.sh): the call sequence of
+overhead_bench.cpp through the frictopt module, alternating one C++ call (served by that
+program) and the same call from Python, so both see the same machine load; then medians of
+each side and of the per-pair ratios.
 
-    python3 bench/python/overhead.py CASE.toml REPETITIONS CPP_BENCH_BINARY ROUNDS
-Rounds alternate the C++ program and the Python calls so that both see the same machine load.
+    python3 bench/python/overhead.py CASE.toml REPETITIONS CPP_BENCH_BINARY
 """
 from __future__ import annotations
 
@@ -14,59 +15,74 @@ import subprocess
 import sys
 import time
 
-import numpy as np
-
 import frictopt
 
 
-def python_round(case: frictopt.Case, repetitions: int) -> dict[str, list[float]]:
+def main() -> None:
+    case_path, repetitions, binary = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+    case = frictopt.load_case(case_path)
+    cpp = subprocess.Popen([binary, case_path], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    assert cpp.stdout.readline().strip() == "ready"
+
+    def cpp_call(request: str) -> tuple[float, float]:
+        cpp.stdin.write(request + "\n")
+        cpp.stdin.flush()
+        wall, cpu = cpp.stdout.readline().split()
+        return float(wall), float(cpu)
+
+    def timed(call):
+        """(wall, process CPU) seconds of call(); CPU time is robust to the machine's load."""
+        wall, cpu = time.perf_counter(), time.process_time()
+        result = call()
+        return time.perf_counter() - wall, time.process_time() - cpu, result
+
     alpha0 = case.initial_design
     body = frictopt.Body(case)
-    body.solve(alpha0)
-    solve = []
-    for k in range(repetitions):
-        alpha = 1.001 * alpha0 if k % 2 else alpha0
-        start = time.perf_counter()
-        state = body.solve(alpha)
-        solve.append(time.perf_counter() - start)
-        assert state.converged
+    body.solve(alpha0)  # warm-up, as the C++ side
     oracle = frictopt.Oracle(case)
     oracle.evaluate(alpha0)
-    evaluations = []
-    for k in range(1, repetitions + 1):
+
+    def py_solve(k: int) -> tuple[float, float]:
+        alpha = 1.001 * alpha0 if k % 2 else alpha0
+        wall, cpu, state = timed(lambda: body.solve(alpha))
+        assert state.converged
+        return wall, cpu
+
+    def py_oracle(k: int) -> tuple[float, float]:
         alpha = (1.0 + 1e-4 * k) * alpha0
-        start = time.perf_counter()
-        e = oracle.evaluate(alpha)
-        evaluations.append(time.perf_counter() - start)
+        wall, cpu, e = timed(lambda: oracle.evaluate(alpha))
         assert e.ok
-    cached = []
-    for _ in range(1000):
-        start = time.perf_counter()
-        oracle.evaluate(alpha0)
-        cached.append(time.perf_counter() - start)
-    return {"solve_seconds": solve, "oracle_seconds": evaluations, "cached_oracle_seconds": cached}
+        return wall, cpu
 
+    def py_cached(_: int) -> tuple[float, float]:
+        wall, cpu, _ = timed(lambda: oracle.evaluate(alpha0))
+        return wall, cpu
 
-def main() -> None:
-    case_path, repetitions, binary, rounds = sys.argv[1], int(sys.argv[2]), sys.argv[3], int(sys.argv[4])
-    case = frictopt.load_case(case_path)
-    cpp: dict[str, list[float]] = {}
-    py: dict[str, list[float]] = {}
-    for _ in range(rounds):
-        out = subprocess.run([binary, case_path, str(repetitions)], check=True, capture_output=True, text=True)
-        for key, values in json.loads(out.stdout).items():
-            cpp.setdefault(key, []).extend(values)
-        for key, values in python_round(case, repetitions).items():
-            py.setdefault(key, []).extend(values)
-    print(f"case {case_path}: {rounds} rounds × {repetitions} calls (cached: × 1000); medians")
-    print(f"{'call':<28} {'C++ [ms]':>12} {'Python [ms]':>12} {'ratio':>8} {'overhead [µs]':>14}")
-    report = {}
-    for key, label in (("solve_seconds", "Body.solve"), ("oracle_seconds", "Oracle.evaluate (Θ and ξ)"),
-                       ("cached_oracle_seconds", "Oracle.evaluate, cached")):
-        c, p = statistics.median(cpp[key]), statistics.median(py[key])
-        report[key] = {"cpp_median": c, "python_median": p, "ratio": p / c}
-        print(f"{label:<28} {1e3 * c:>12.4f} {1e3 * p:>12.4f} {p / c:>8.4f} {1e6 * (p - c):>14.1f}")
-    print(json.dumps(report))
+    rows = {}
+    for key, label, count, python_call in (("solve", "Body.solve", repetitions, py_solve),
+                                           ("oracle", "Oracle.evaluate (Θ and ξ)", repetitions, py_oracle),
+                                           ("cached", "Oracle.evaluate, cached", 2000, py_cached)):
+        pairs = [(cpp_call(f"{key} {k}"), python_call(k)) for k in range(1, count + 1)]
+        row = {"label": label, "calls": count}
+        for clock, index in (("wall", 0), ("cpu", 1)):
+            row[f"cpp_{clock}_median"] = statistics.median(c[index] for c, _ in pairs)
+            row[f"python_{clock}_median"] = statistics.median(p[index] for _, p in pairs)
+            row[f"{clock}_ratio"] = row[f"python_{clock}_median"] / row[f"cpp_{clock}_median"]
+        rows[key] = row
+    cpp.stdin.close()
+    cpp.wait()
+
+    print(f"case {case_path}: C++ and Python calls alternated; medians (wall time / process CPU time)")
+    print(f"{'call':<28} {'calls':>6} {'C++ wall [ms]':>14} {'Py wall [ms]':>13} {'ratio':>7} "
+          f"{'C++ CPU [ms]':>13} {'Py CPU [ms]':>12} {'ratio':>7}")
+    for r in list(rows.values())[:2]:
+        print(f"{r['label']:<28} {r['calls']:>6} {1e3 * r['cpp_wall_median']:>14.2f} {1e3 * r['python_wall_median']:>13.2f} "
+              f"{r['wall_ratio']:>7.4f} {1e3 * r['cpp_cpu_median']:>13.2f} {1e3 * r['python_cpu_median']:>12.2f} "
+              f"{r['cpu_ratio']:>7.4f}")
+    cached = rows["cached"]
+    print(f"fixed cost of one call (cached evaluation, {cached['calls']} calls, wall): C++ "
+          f"{1e6 * cached['cpp_wall_median']:.2f} µs, Python {1e6 * cached['python_wall_median']:.2f} µs")
+    print(json.dumps(rows))
 
 
 if __name__ == "__main__":
