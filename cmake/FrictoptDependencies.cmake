@@ -36,3 +36,18 @@ endif()
 if(FRICTOPT_BUILD_BENCHMARKS)
   find_package(benchmark REQUIRED)
 endif()
+
+# What an installed frictopt must find again for each third-party target its modules link
+# (find_dependency arguments; read by cmake/FrictoptInstall.cmake).
+set(FRICTOPT_PACKAGE_OF_Eigen3::Eigen "Eigen3;3.4;NO_MODULE")
+set(FRICTOPT_PACKAGE_OF_fmt::fmt "fmt")
+set(FRICTOPT_PACKAGE_OF_SuiteSparse::cholmod "Cholmod")
+set(FRICTOPT_PACKAGE_OF_BLAS::BLAS "BLAS")
+set(FRICTOPT_PACKAGE_OF_LAPACK::LAPACK "LAPACK")
+set(FRICTOPT_PACKAGE_OF_Ceres::ceres "Ceres")
+set(FRICTOPT_PACKAGE_OF_tomlplusplus::tomlplusplus "tomlplusplus")
+set(FRICTOPT_PACKAGE_OF_nlohmann_json::nlohmann_json "nlohmann_json;3")
+set(FRICTOPT_PACKAGE_OF_FCLIB::fclib "fclib;3;CONFIG")
+foreach(_vtk_module CommonCore CommonDataModel IOXML)
+  set(FRICTOPT_PACKAGE_OF_VTK::${_vtk_module} "VTK;COMPONENTS;CommonCore;CommonDataModel;IOXML")
+endforeach()

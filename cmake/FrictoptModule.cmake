@@ -1,4 +1,6 @@
 # SPDX-License-Identifier: MIT
+include(GNUInstallDirs)
+
 # One helper per kind of target, so each module's CMake is a few lines and the layering of
 # DESIGN.md (a module links only modules above it) is a link-time fact.
 
@@ -29,17 +31,23 @@ function(frictopt_add_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;LIBS;PRIVATE_LIBS" ${ARGN})
   if(ARG_SOURCES)
     add_library(frictopt_${name} STATIC ${ARG_SOURCES})
-    target_include_directories(frictopt_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include
+    target_include_directories(frictopt_${name}
+                               PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+                                      $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>
                                PRIVATE ${PROJECT_SOURCE_DIR}/src)
     target_link_libraries(frictopt_${name} PUBLIC ${ARG_DEPENDS} ${ARG_LIBS}
                           PRIVATE ${ARG_PRIVATE_LIBS})
     frictopt_target_defaults(frictopt_${name})
   else()
     add_library(frictopt_${name} INTERFACE)
-    target_include_directories(frictopt_${name} INTERFACE ${PROJECT_SOURCE_DIR}/include)
+    target_include_directories(frictopt_${name} INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+                                                          $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
     target_link_libraries(frictopt_${name} INTERFACE ${ARG_DEPENDS} ${ARG_LIBS})
   endif()
+  # Installed and imported as frictopt::<name>, the same name as the alias used in the build.
+  set_target_properties(frictopt_${name} PROPERTIES EXPORT_NAME ${name})
   add_library(frictopt::${name} ALIAS frictopt_${name})
+  set_property(GLOBAL APPEND PROPERTY FRICTOPT_MODULES ${name})
 endfunction()
 
 # frictopt_add_test(module SOURCES x_test.cpp ... [LABELS slow] [DEPENDS extra])

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "frictopt/fem/linear_elasticity.hpp"
+#include "frictopt/mesh/structured_mesh.hpp"
 
 namespace {
 
@@ -28,7 +29,7 @@ void BM_ElasticityPhases(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const bool contact_last = state.range(1) != 0;  // order the bottom (contact) DOFs last
   const auto surface = shape::BezierShape::surface(1.0, 1.0, 4, 4);
-  mesh::StructuredMesh mesh(surface, 1.0, {{n, n, n}, 1.5});
+  const mesh::Mesh mesh = mesh::StructuredMesh(surface, 1.0, {{n, n, n}, 1.5}).take_mesh();
   Eigen::VectorXd alpha(16);
   for (int k = 0; k < 16; ++k) alpha(k) = 0.05 + 0.03 * std::sin(1.3 * k);
   const Eigen::MatrixXd X = mesh.positions(alpha);
@@ -37,8 +38,8 @@ void BM_ElasticityPhases(benchmark::State& state) {
   double factor_nnz = 0, factor_flops = 0;
   int unknowns = 0;
   for (auto _ : state) {
-    fem::LinearElasticity problem(mesh, steel, fem::expand_dirichlet(mesh, {{mesh::Face::kLeft, {}, {}}}),
-                                  {{mesh::Face::kTop, Eigen::Vector3d(0, 0, -1e7)}});
+    fem::LinearElasticity problem(mesh, steel, fem::expand_dirichlet(mesh, {{"left", {}, {}}}),
+                                  {{"top", Eigen::Vector3d(0, 0, -1e7)}});
     unknowns = problem.dofs().num_free();
     auto t0 = Clock::now();
     problem.assemble(X);
@@ -47,7 +48,7 @@ void BM_ElasticityPhases(benchmark::State& state) {
     Status analyzed = Status::kNotRun;
     if (contact_last) {
       std::vector<int> trailing;
-      for (int node : mesh.bottom_nodes())
+      for (int node : mesh.boundary("bottom").nodes)
         for (int c = 0; c < 3; ++c)
           if (problem.dofs().is_free(node * 3 + c)) trailing.push_back(problem.dofs().free_index(node * 3 + c));
       analyzed = solver->analyze(problem.stiffness(), trailing);

@@ -31,7 +31,7 @@ frictopt::study::BodyDefinition punch(int n, int layers) {
   b.height = 0.5;
   b.resolution = {{n, n, layers}, 1.5};
   b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{mesh::Face::kTop, {}, Eigen::Vector3d(1e-4, 0.0, -1.2e-3)}};
+  b.dirichlet = {{"top", {}, Eigen::Vector3d(1e-4, 0.0, -1.2e-3)}};
   b.admissible.upper_bound = 5e-3;
   b.admissible.height = 0.5;
   b.initial_design.resize(16);

@@ -6,9 +6,13 @@
 
 namespace frictopt::contact {
 
-ContactBoundary::ContactBoundary(const mesh::StructuredMesh& mesh, const fem::DofMap& dofs) : dim_(mesh.dim()), num_free_(dofs.num_free()) {
-  const std::vector<int> bottom = mesh.bottom_nodes();
-  const Eigen::MatrixXd plane = mesh.bottom_plane_coordinates();
+ContactBoundary::ContactBoundary(const mesh::Mesh& mesh, const fem::DofMap& dofs, std::string_view surface)
+    : dim_(mesh.dim()), num_free_(dofs.num_free()) {
+  const mesh::BoundarySet& contact_surface = mesh.boundary(surface);
+  const std::vector<int>& bottom = contact_surface.nodes;
+  Eigen::MatrixXd plane(static_cast<Eigen::Index>(bottom.size()), dim_ - 1);
+  for (std::size_t k = 0; k < bottom.size(); ++k)
+    plane.row(static_cast<Eigen::Index>(k)) = mesh.reference_positions().row(bottom[k]).head(dim_ - 1);
   std::vector<Eigen::Index> kept;
   for (std::size_t k = 0; k < bottom.size(); ++k) {
     bool all_free = true;
@@ -26,11 +30,14 @@ ContactBoundary::ContactBoundary(const mesh::StructuredMesh& mesh, const fem::Do
   std::map<int, Eigen::Index> bottom_row;
   for (std::size_t k = 0; k < bottom.size(); ++k) bottom_row[bottom[k]] = static_cast<Eigen::Index>(k);
   areas_ = Eigen::VectorXd::Zero(num_nodes());
-  const mesh::Connectivity facets = mesh.face_facets(mesh::Face::kBottom);
+  const mesh::Connectivity& facets = contact_surface.facets;
   for (Eigen::Index f = 0; f < facets.rows(); ++f) {
     const auto x = [&](Eigen::Index k) { return plane.row(bottom_row.at(facets(f, k))); };
+    // Projected length (2D) or parallelogram area |e1 × e3| (3D) of the facet in the x'-plane;
+    // for the grid's axis-parallel facets the second product is exactly zero.
     const double area = dim_ == 2 ? std::abs(x(1)(0) - x(0)(0))
-                                  : std::abs((x(1)(0) - x(0)(0)) * (x(3)(1) - x(0)(1)));
+                                  : std::abs((x(1)(0) - x(0)(0)) * (x(3)(1) - x(0)(1)) -
+                                             (x(1)(1) - x(0)(1)) * (x(3)(0) - x(0)(0)));
     for (Eigen::Index k = 0; k < facets.cols(); ++k) {
       const auto it = index.find(facets(f, k));
       if (it != index.end()) areas_(it->second) += area / static_cast<double>(facets.cols());

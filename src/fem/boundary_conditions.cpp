@@ -9,7 +9,7 @@
 
 namespace frictopt::fem {
 
-PrescribedDofs expand_dirichlet(const mesh::StructuredMesh& mesh,
+PrescribedDofs expand_dirichlet(const mesh::Mesh& mesh,
                                 const std::vector<FaceDirichlet>& conditions) {
   const int dim = mesh.dim();
   std::map<int, double> values;
@@ -24,7 +24,7 @@ PrescribedDofs expand_dirichlet(const mesh::StructuredMesh& mesh,
     for (int k : components)
       if (k < 0 || k >= dim)
         throw InvalidInput(fmt::format("dirichlet[{}].components contains {}; expected 0..{}", i, k, dim - 1));
-    for (int node : mesh.face_nodes(c.face))
+    for (int node : mesh.boundary(c.boundary).nodes)
       for (int k : components) values[node * dim + k] = c.displacement.size() ? c.displacement(k) : 0.0;
   }
   PrescribedDofs out;

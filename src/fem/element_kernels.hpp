@@ -1,19 +1,22 @@
 // SPDX-License-Identifier: MIT
-// Element-level kernels of Q1 linear elasticity (private to fem): stiffness, stresses, and the
-// derivative of pᵀK_e(X)u with respect to the element's node coordinates.
+// Element-level kernels of isoparametric linear elasticity (private to fem), templates over the
+// element class (mesh::Q1Element<2>, mesh::Q1Element<3>, ...): stiffness, stresses, the
+// derivative of pᵀK_e(X)u with respect to the element's node coordinates, and surface loads on
+// the element's facets. A new element needs no change here, only its class (mesh/elements.hpp).
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
-#include "frictopt/mesh/q1_element.hpp"
+#include "frictopt/mesh/elements.hpp"
 
 namespace frictopt::fem::detail {
 
-template <int Dim>
+template <class ElementType>
 struct ElasticityKernel {
-  using Element = mesh::Q1Element<Dim>;
+  using Element = ElementType;
+  static constexpr int Dim = Element::kDim;
   static constexpr int kNodes = Element::kNodes;
   static constexpr int kDofs = kNodes * Dim;
   using Coordinates = Eigen::Matrix<double, kNodes, Dim>;  ///< row a = node a
@@ -84,9 +87,10 @@ struct ElasticityKernel {
   }
 };
 
-template <int Dim>
+template <class Element>
 struct ElasticityDirectional {
-  using Kernel = ElasticityKernel<Dim>;
+  using Kernel = ElasticityKernel<Element>;
+  static constexpr int Dim = Element::kDim;
   /// d/dε [K_e(X + ε dX) u_e] (kDofs): the element force's derivative along a node motion dX.
   /// With Θ = ∇θ = Σ_b dX_b ⊗ ∇N_b: δ∇N_a = −Θᵀ∇N_a, δH_u = −H_u Θ, δ det J = det J tr Θ, so
   ///   δf_a = Σ_q w det J [tr(Θ) σ(H_u) − σ(H_u Θ) − σ(H_u) Θᵀ] ∇N_a.
@@ -109,32 +113,14 @@ struct ElasticityDirectional {
   }
 };
 
-/// Q1 facet (segment in 2D, quadrilateral in 3D) for tractions.
-template <int Dim>
+/// Surface loads on the element's boundary facets (Q1: segments in 2D, quadrilaterals in 3D).
+template <class Element>
 struct FacetKernel {
-  static constexpr int kNodes = Dim == 2 ? 2 : 4;
+  static constexpr int Dim = Element::kDim;
+  using Facet = typename Element::Facet;
+  static constexpr int kNodes = Facet::kNodes;
+  static constexpr int kPoints = Facet::kPoints;
   using Coordinates = Eigen::Matrix<double, kNodes, Dim>;
-
-  /// Facet shape functions and their ∂/∂(η1[, η2]) at Gauss point q of the 2^(Dim−1) rule.
-  static void shape(int q, Eigen::Matrix<double, kNodes, 1>& N, Eigen::Matrix<double, kNodes, Dim - 1>& dN,
-                    double& weight) {
-    const double g = 1.0 / std::sqrt(3.0);
-    weight = 1.0;
-    if constexpr (Dim == 2) {
-      const double eta = q == 0 ? -g : g;
-      N << 0.5 * (1 - eta), 0.5 * (1 + eta);
-      dN << -0.5, 0.5;
-    } else {
-      const double e1 = (q == 0 || q == 3) ? -g : g, e2 = q < 2 ? -g : g;
-      const double c[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-      for (int a = 0; a < 4; ++a) {
-        N(a) = 0.25 * (1 + c[a][0] * e1) * (1 + c[a][1] * e2);
-        dN(a, 0) = 0.25 * c[a][0] * (1 + c[a][1] * e2);
-        dN(a, 1) = 0.25 * c[a][1] * (1 + c[a][0] * e1);
-      }
-    }
-  }
-  static constexpr int kPoints = Dim == 2 ? 2 : 4;
 
   /// Gauss point q's shape functions, their parameter derivatives and weight (the loops below).
   struct Point {
@@ -144,7 +130,7 @@ struct FacetKernel {
   };
   static Point point(int q) {
     Point p;
-    shape(q, p.N, p.dN, p.w);
+    Facet::shape(q, p.N, p.dN, p.w);
     return p;
   }
 

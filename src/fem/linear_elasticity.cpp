@@ -6,11 +6,12 @@
 #include <algorithm>
 
 #include "element_kernels.hpp"
+#include "frictopt/mesh/elements.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::fem {
 
-LinearElasticity::LinearElasticity(const mesh::StructuredMesh& mesh, const IsotropicMaterial& material,
+LinearElasticity::LinearElasticity(const mesh::Mesh& mesh, const IsotropicMaterial& material,
                                    const PrescribedDofs& dirichlet, std::vector<FaceTraction> tractions,
                                    linalg::SpdSolver::Options solver)
     : mesh_(mesh),
@@ -24,7 +25,7 @@ LinearElasticity::LinearElasticity(const mesh::StructuredMesh& mesh, const Isotr
     if (tractions_[i].traction.size() != mesh.dim())
       throw InvalidInput(fmt::format("load[{}].traction has {} entries; expected {}", i,
                                      tractions_[i].traction.size(), mesh.dim()));
-    (void)mesh.face_facets(tractions_[i].face);  // throws for front/back in 2D
+    (void)mesh.boundary(tractions_[i].boundary);  // throws InvalidInput for an unknown name
   }
   build_pattern();
 }
@@ -80,36 +81,37 @@ void LinearElasticity::build_pattern() {
 }
 
 namespace {
-template <int Dim>
-typename detail::ElasticityKernel<Dim>::Coordinates element_coordinates(const mesh::Connectivity& elements,
-                                                                         Eigen::Index e,
-                                                                         const Eigen::Ref<const Eigen::MatrixXd>& X) {
-  typename detail::ElasticityKernel<Dim>::Coordinates Xe;
-  for (int a = 0; a < detail::ElasticityKernel<Dim>::kNodes; ++a) Xe.row(a) = X.row(elements(e, a));
+template <class Element>
+typename detail::ElasticityKernel<Element>::Coordinates element_coordinates(const mesh::Connectivity& elements,
+                                                                             Eigen::Index e,
+                                                                             const Eigen::Ref<const Eigen::MatrixXd>& X) {
+  typename detail::ElasticityKernel<Element>::Coordinates Xe;
+  for (int a = 0; a < Element::kNodes; ++a) Xe.row(a) = X.row(elements(e, a));
   return Xe;
 }
-template <int Dim>
-typename detail::ElasticityKernel<Dim>::Vector element_values(const mesh::Connectivity& elements, Eigen::Index e,
-                                                               const Eigen::Ref<const Eigen::VectorXd>& u) {
-  typename detail::ElasticityKernel<Dim>::Vector ue;
-  for (int a = 0; a < detail::ElasticityKernel<Dim>::kNodes; ++a)
-    ue.template segment<Dim>(a * Dim) = u.segment(elements(e, a) * Dim, Dim);
+template <class Element>
+typename detail::ElasticityKernel<Element>::Vector element_values(const mesh::Connectivity& elements, Eigen::Index e,
+                                                                   const Eigen::Ref<const Eigen::VectorXd>& u) {
+  constexpr int Dim = Element::kDim;
+  typename detail::ElasticityKernel<Element>::Vector ue;
+  for (int a = 0; a < Element::kNodes; ++a) ue.template segment<Dim>(a * Dim) = u.segment(elements(e, a) * Dim, Dim);
   return ue;
 }
 }  // namespace
 
-template <int Dim>
+template <class Element>
 void LinearElasticity::assemble_impl(const Eigen::Ref<const Eigen::MatrixXd>& X) {
-  using Kernel = detail::ElasticityKernel<Dim>;
+  constexpr int Dim = Element::kDim;
+  using Kernel = detail::ElasticityKernel<Element>;
   const Kernel kernel{material_.lame_lambda(Dim), material_.shear_modulus()};
   const auto& elements = mesh_.elements();
   std::fill(A_.valuePtr(), A_.valuePtr() + A_.nonZeros(), 0.0);
   const Eigen::VectorXd& ud = dofs_.prescribed_values();
-  const Eigen::VectorXd traction = traction_load_impl<Dim>(X);
+  const Eigen::VectorXd traction = traction_load_impl<Element>(X);
   l_ = dofs_.restrict(traction);
   double* values = A_.valuePtr();
   for (Eigen::Index e = 0; e < elements.rows(); ++e) {
-    const typename Kernel::Matrix K = kernel.stiffness(element_coordinates<Dim>(elements, e, X));
+    const typename Kernel::Matrix K = kernel.stiffness(element_coordinates<Element>(elements, e, X));
     const int* map = scatter_.data() + static_cast<std::size_t>(e) * Kernel::kDofs * Kernel::kDofs;
     for (int i = 0; i < Kernel::kDofs; ++i) {
       const int dof_i = elements(e, i / Dim) * Dim + i % Dim;
@@ -131,10 +133,7 @@ void LinearElasticity::assemble_impl(const Eigen::Ref<const Eigen::MatrixXd>& X)
 
 void LinearElasticity::assemble(const Eigen::Ref<const Eigen::MatrixXd>& X) {
   FRICTOPT_ASSERT(X.rows() == mesh_.num_nodes() && X.cols() == mesh_.dim(), "positions shape");
-  if (mesh_.dim() == 2)
-    assemble_impl<2>(X);
-  else
-    assemble_impl<3>(X);
+  mesh::with_element(mesh_.element_kind(), [&](auto element) { assemble_impl<decltype(element)>(X); });
 }
 
 void LinearElasticity::set_trailing_dofs(std::vector<int> free_indices) {
@@ -152,12 +151,13 @@ Status LinearElasticity::factorize() {
 
 Eigen::VectorXd LinearElasticity::solve() const { return dofs_.expand(solver_->solve(l_)); }
 
-template <int Dim>
+template <class Element>
 Eigen::VectorXd LinearElasticity::traction_load_impl(const Eigen::Ref<const Eigen::MatrixXd>& X) const {
-  using Facet = detail::FacetKernel<Dim>;
+  constexpr int Dim = Element::kDim;
+  using Facet = detail::FacetKernel<Element>;
   Eigen::VectorXd l = Eigen::VectorXd::Zero(mesh_.num_dofs());
   for (const FaceTraction& load : tractions_) {
-    const mesh::Connectivity facets = mesh_.face_facets(load.face);
+    const mesh::Connectivity& facets = mesh_.boundary(load.boundary).facets;
     const Eigen::Matrix<double, Dim, 1> t = load.traction;
     for (Eigen::Index f = 0; f < facets.rows(); ++f) {
       typename Facet::Coordinates Xf;
@@ -170,19 +170,20 @@ Eigen::VectorXd LinearElasticity::traction_load_impl(const Eigen::Ref<const Eige
 }
 
 Eigen::VectorXd LinearElasticity::traction_load(const Eigen::Ref<const Eigen::MatrixXd>& X) const {
-  return mesh_.dim() == 2 ? traction_load_impl<2>(X) : traction_load_impl<3>(X);
+  return mesh::with_element(mesh_.element_kind(), [&](auto element) { return traction_load_impl<decltype(element)>(X); });
 }
 
-template <int Dim>
+template <class Element>
 Eigen::VectorXd LinearElasticity::residual_impl(const Eigen::Ref<const Eigen::MatrixXd>& X,
                                                 const Eigen::Ref<const Eigen::VectorXd>& u) const {
-  using Kernel = detail::ElasticityKernel<Dim>;
+  constexpr int Dim = Element::kDim;
+  using Kernel = detail::ElasticityKernel<Element>;
   const Kernel kernel{material_.lame_lambda(Dim), material_.shear_modulus()};
   const auto& elements = mesh_.elements();
-  Eigen::VectorXd r = -traction_load_impl<Dim>(X);
+  Eigen::VectorXd r = -traction_load_impl<Element>(X);
   for (Eigen::Index e = 0; e < elements.rows(); ++e) {
-    const typename Kernel::Vector fe = kernel.stiffness(element_coordinates<Dim>(elements, e, X)) *
-                                       element_values<Dim>(elements, e, u);
+    const typename Kernel::Vector fe = kernel.stiffness(element_coordinates<Element>(elements, e, X)) *
+                                       element_values<Element>(elements, e, u);
     for (int a = 0; a < Kernel::kNodes; ++a) r.segment(elements(e, a) * Dim, Dim) += fe.template segment<Dim>(a * Dim);
   }
   return r;
@@ -190,26 +191,27 @@ Eigen::VectorXd LinearElasticity::residual_impl(const Eigen::Ref<const Eigen::Ma
 
 Eigen::VectorXd LinearElasticity::residual(const Eigen::Ref<const Eigen::MatrixXd>& X,
                                            const Eigen::Ref<const Eigen::VectorXd>& u) const {
-  return mesh_.dim() == 2 ? residual_impl<2>(X, u) : residual_impl<3>(X, u);
+  return mesh::with_element(mesh_.element_kind(), [&](auto element) { return residual_impl<decltype(element)>(X, u); });
 }
 
-template <int Dim>
+template <class Element>
 Eigen::VectorXd LinearElasticity::coordinate_derivative_impl(const Eigen::Ref<const Eigen::MatrixXd>& X,
                                                              const Eigen::Ref<const Eigen::VectorXd>& u,
                                                              const Eigen::Ref<const Eigen::VectorXd>& p) const {
-  using Kernel = detail::ElasticityKernel<Dim>;
-  using Facet = detail::FacetKernel<Dim>;
+  constexpr int Dim = Element::kDim;
+  using Kernel = detail::ElasticityKernel<Element>;
+  using Facet = detail::FacetKernel<Element>;
   const Kernel kernel{material_.lame_lambda(Dim), material_.shear_modulus()};
   const auto& elements = mesh_.elements();
   Eigen::VectorXd g = Eigen::VectorXd::Zero(mesh_.num_dofs());
   for (Eigen::Index e = 0; e < elements.rows(); ++e) {
     const typename Kernel::Coordinates ge = kernel.energy_coordinate_gradient(
-        element_coordinates<Dim>(elements, e, X), element_values<Dim>(elements, e, u),
-        element_values<Dim>(elements, e, p));
+        element_coordinates<Element>(elements, e, X), element_values<Element>(elements, e, u),
+        element_values<Element>(elements, e, p));
     for (int a = 0; a < Kernel::kNodes; ++a) g.segment(elements(e, a) * Dim, Dim) += ge.row(a).transpose();
   }
   for (const FaceTraction& load : tractions_) {
-    const mesh::Connectivity facets = mesh_.face_facets(load.face);
+    const mesh::Connectivity& facets = mesh_.boundary(load.boundary).facets;
     const Eigen::Matrix<double, Dim, 1> t = load.traction;
     for (Eigen::Index f = 0; f < facets.rows(); ++f) {
       typename Facet::Coordinates Xf, pf;
@@ -228,26 +230,28 @@ Eigen::VectorXd LinearElasticity::coordinate_derivative(const Eigen::Ref<const E
                                                         const Eigen::Ref<const Eigen::VectorXd>& u,
                                                         const Eigen::Ref<const Eigen::VectorXd>& p) const {
   FRICTOPT_ASSERT(u.size() == mesh_.num_dofs() && p.size() == mesh_.num_dofs(), "full vectors expected");
-  return mesh_.dim() == 2 ? coordinate_derivative_impl<2>(X, u, p) : coordinate_derivative_impl<3>(X, u, p);
+  return mesh::with_element(mesh_.element_kind(),
+                            [&](auto element) { return coordinate_derivative_impl<decltype(element)>(X, u, p); });
 }
 
-template <int Dim>
+template <class Element>
 Eigen::VectorXd LinearElasticity::residual_derivative_impl(const Eigen::Ref<const Eigen::MatrixXd>& X,
                                                            const Eigen::Ref<const Eigen::VectorXd>& u,
                                                            const Eigen::Ref<const Eigen::MatrixXd>& dX) const {
-  using Kernel = detail::ElasticityKernel<Dim>;
-  using Facet = detail::FacetKernel<Dim>;
+  constexpr int Dim = Element::kDim;
+  using Kernel = detail::ElasticityKernel<Element>;
+  using Facet = detail::FacetKernel<Element>;
   const Kernel kernel{material_.lame_lambda(Dim), material_.shear_modulus()};
   const auto& elements = mesh_.elements();
   Eigen::VectorXd r = Eigen::VectorXd::Zero(mesh_.num_dofs());
   for (Eigen::Index e = 0; e < elements.rows(); ++e) {
-    const typename Kernel::Vector df = detail::ElasticityDirectional<Dim>::force_derivative(
-        kernel, element_coordinates<Dim>(elements, e, X), element_values<Dim>(elements, e, u),
-        element_coordinates<Dim>(elements, e, dX));
+    const typename Kernel::Vector df = detail::ElasticityDirectional<Element>::force_derivative(
+        kernel, element_coordinates<Element>(elements, e, X), element_values<Element>(elements, e, u),
+        element_coordinates<Element>(elements, e, dX));
     for (int a = 0; a < Kernel::kNodes; ++a) r.segment(elements(e, a) * Dim, Dim) += df.template segment<Dim>(a * Dim);
   }
   for (const FaceTraction& load : tractions_) {
-    const mesh::Connectivity facets = mesh_.face_facets(load.face);
+    const mesh::Connectivity& facets = mesh_.boundary(load.boundary).facets;
     const Eigen::Matrix<double, Dim, 1> t = load.traction;
     for (Eigen::Index f = 0; f < facets.rows(); ++f) {
       typename Facet::Coordinates Xf, dXf;
@@ -266,7 +270,8 @@ Eigen::VectorXd LinearElasticity::residual_derivative(const Eigen::Ref<const Eig
                                                       const Eigen::Ref<const Eigen::VectorXd>& u,
                                                       const Eigen::Ref<const Eigen::MatrixXd>& dX) const {
   FRICTOPT_ASSERT(dX.rows() == X.rows() && dX.cols() == X.cols(), "node motion shape");
-  return mesh_.dim() == 2 ? residual_derivative_impl<2>(X, u, dX) : residual_derivative_impl<3>(X, u, dX);
+  return mesh::with_element(mesh_.element_kind(),
+                            [&](auto element) { return residual_derivative_impl<decltype(element)>(X, u, dX); });
 }
 
 Eigen::VectorXd LinearElasticity::shape_derivative(const Eigen::Ref<const Eigen::MatrixXd>& X,

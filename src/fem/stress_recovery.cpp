@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "element_kernels.hpp"
+#include "frictopt/mesh/elements.hpp"
 
 namespace frictopt::fem {
 
@@ -13,9 +14,9 @@ double von_mises(const Eigen::Ref<const Eigen::Matrix<double, 6, 1>>& s) {
 }
 
 namespace {
-template <int Dim>
+template <class Element, int Dim = Element::kDim>
 Eigen::Matrix<double, 6, 1> voigt6(const Eigen::Matrix<double, Dim, Dim>& H,
-                                   const detail::ElasticityKernel<Dim>& kernel, const IsotropicMaterial& material) {
+                                   const detail::ElasticityKernel<Element>& kernel, const IsotropicMaterial& material) {
   const Eigen::Matrix<double, Dim, Dim> s = kernel.stress(H);
   Eigen::Matrix<double, 6, 1> v = Eigen::Matrix<double, 6, 1>::Zero();
   if constexpr (Dim == 2) {
@@ -29,11 +30,11 @@ Eigen::Matrix<double, 6, 1> voigt6(const Eigen::Matrix<double, Dim, Dim>& H,
   return v;
 }
 
-template <int Dim>
-StressField recover(const mesh::StructuredMesh& mesh, const IsotropicMaterial& material,
+template <class Element>
+StressField recover(const mesh::Mesh& mesh, const IsotropicMaterial& material,
                     const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u) {
-  using Kernel = detail::ElasticityKernel<Dim>;
-  using Element = mesh::Q1Element<Dim>;
+  constexpr int Dim = Element::kDim;
+  using Kernel = detail::ElasticityKernel<Element>;
   const Kernel kernel{material.lame_lambda(Dim), material.shear_modulus()};
   const auto& elements = mesh.elements();
   const auto corners = Element::corners();
@@ -51,10 +52,10 @@ StressField recover(const mesh::StructuredMesh& mesh, const IsotropicMaterial& m
       ue.template segment<Dim>(a * Dim) = u.segment(elements(e, a) * Dim, Dim);
     }
     Kernel::physical_gradients(Xe, Element::Point::Zero(), G, det);
-    out.element.row(e) = voigt6<Dim>(Kernel::gradient(ue, G), kernel, material).transpose();
+    out.element.row(e) = voigt6<Element>(Kernel::gradient(ue, G), kernel, material).transpose();
     for (int a = 0; a < Kernel::kNodes; ++a) {
       Kernel::physical_gradients(Xe, corners.row(a).transpose(), G, det);
-      out.nodal.row(elements(e, a)) += voigt6<Dim>(Kernel::gradient(ue, G), kernel, material).transpose();
+      out.nodal.row(elements(e, a)) += voigt6<Element>(Kernel::gradient(ue, G), kernel, material).transpose();
       count(elements(e, a)) += 1.0;
     }
   }
@@ -67,9 +68,10 @@ StressField recover(const mesh::StructuredMesh& mesh, const IsotropicMaterial& m
 }
 }  // namespace
 
-StressField recover_stresses(const mesh::StructuredMesh& mesh, const IsotropicMaterial& material,
+StressField recover_stresses(const mesh::Mesh& mesh, const IsotropicMaterial& material,
                              const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u) {
-  return mesh.dim() == 2 ? recover<2>(mesh, material, X, u) : recover<3>(mesh, material, X, u);
+  return mesh::with_element(mesh.element_kind(),
+                            [&](auto element) { return recover<decltype(element)>(mesh, material, X, u); });
 }
 
 }  // namespace frictopt::fem

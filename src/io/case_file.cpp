@@ -98,7 +98,8 @@ struct Geometry {
 // ---------------------------------------------------------------------------------------
 // Shared readers
 
-mesh::Face read_face(const TableReader& r, int dim) {
+// A face of the structured box by its boundary-set name ("left", ..., "top"; the bottom is Γ_c).
+std::string read_face(const TableReader& r, int dim) {
   const std::string text = r.required_string("face", fmt::format("one of {}", faces_for(dim)));
   if (text == "bottom")
     r.fail_value("face", fmt::format("one of {}; the bottom is the contact surface and "
@@ -111,7 +112,7 @@ mesh::Face read_face(const TableReader& r, int dim) {
   }
   if (!face || (dim == 2 && (*face == mesh::Face::kFront || *face == mesh::Face::kBack)))
     r.fail_value("face", fmt::format("one of {} in {}", faces_for(dim), dim_name(dim)));
-  return *face;
+  return std::string(mesh::to_string(*face));
 }
 
 // A list of exactly `dim` numbers at `key`; `meaning` says what it is ("traction [N/m²]").
@@ -214,7 +215,7 @@ fem::IsotropicMaterial read_material(const TableReader& r, int dim) {
 // A traction above Young's modulus means a strain above 1: outside linear elasticity.
 fem::FaceTraction read_load(const TableReader& r, int dim, double young) {
   fem::FaceTraction load;
-  load.face = read_face(r, dim);
+  load.boundary = read_face(r, dim);
   load.traction = read_dim_vector(r, "traction", dim, "traction, N/m²");
   for (Eigen::Index i = 0; i < dim; ++i)
     if (!(std::abs(load.traction(i)) <= young))
@@ -228,7 +229,7 @@ fem::FaceTraction read_load(const TableReader& r, int dim, double young) {
 // A prescribed displacement larger than the body is outside small-strain elasticity.
 fem::FaceDirichlet read_dirichlet(const TableReader& r, int dim, double body_size) {
   fem::FaceDirichlet d;
-  d.face = read_face(r, dim);
+  d.boundary = read_face(r, dim);
   d.displacement = r.has("displacement")
                        ? read_dim_vector(r, "displacement", dim, "displacement, m")
                        : Eigen::VectorXd::Zero(dim);
@@ -722,18 +723,18 @@ IdentificationSetup read_identification(const TableReader& r, const CaseDescript
 // A traction component on a face that a [[dirichlet]] table fixes in that component does no
 // work (the reaction absorbs it): it is always a mistake in the case, so it is refused.
 void check_loads_on_fixed_faces(const CaseDescription& c, int dim,
-                                const std::map<std::pair<mesh::Face, int>, std::size_t>& fixed_by) {
+                                const std::map<std::pair<std::string, int>, std::size_t>& fixed_by) {
   const std::vector<fem::FaceTraction>& loads = c.body.tractions;
   for (std::size_t i = 0; i < loads.size(); ++i) {
     const fem::FaceTraction& load = loads[i];
     for (int comp = 0; comp < dim; ++comp) {
-      const auto it = fixed_by.find({load.face, comp});
+      const auto it = fixed_by.find({load.boundary, comp});
       if (load.traction(comp) != 0.0 && it != fixed_by.end())
         throw InvalidInput(fmt::format(
             "{}: load[{}].traction[{}] = {} acts on face \"{}\" in component {}, which dirichlet[{}] fixes on the "
             "same face, so the load does no work; expected a traction on free components only (remove the load, "
             "set that component to 0, or free it)",
-            c.origin, i, comp, load.traction(comp), mesh::to_string(load.face), comp, it->second));
+            c.origin, i, comp, load.traction(comp), load.boundary, comp, it->second));
     }
   }
 }
@@ -742,21 +743,22 @@ void check_loads_on_fixed_faces(const CaseDescription& c, int dim,
 // stiffness (contact unknowns are ordered last, docs/contact.md): with one cell layer and a
 // fully fixed top that block is empty and there is no elastic body left to solve for.
 void check_free_unknowns(const CaseDescription& c, int dim,
-                         const std::map<std::pair<mesh::Face, int>, std::size_t>& fixed_by) {
+                         const std::map<std::pair<std::string, int>, std::size_t>& fixed_by) {
   if (!c.body.contact) return;
   const auto& [n1, n2, nv] = c.body.resolution.cells;  // n2 = 0 in 2D
   std::int64_t free_unknowns = 0;
   for (int k = 1; k <= nv && free_unknowns == 0; ++k)
     for (int i2 = 0; i2 <= n2 && free_unknowns == 0; ++i2)
       for (int i1 = 0; i1 <= n1; ++i1) {
-        std::vector<mesh::Face> faces;
-        if (i1 == 0) faces.push_back(mesh::Face::kLeft);
-        if (i1 == n1) faces.push_back(mesh::Face::kRight);
-        if (dim == 3 && i2 == 0) faces.push_back(mesh::Face::kFront);
-        if (dim == 3 && i2 == n2) faces.push_back(mesh::Face::kBack);
-        if (k == nv) faces.push_back(mesh::Face::kTop);
+        std::vector<std::string> faces;  // the structured grid's boundary sets holding this node
+        if (i1 == 0) faces.push_back("left");
+        if (i1 == n1) faces.push_back("right");
+        if (dim == 3 && i2 == 0) faces.push_back("front");
+        if (dim == 3 && i2 == n2) faces.push_back("back");
+        if (k == nv) faces.push_back("top");
         for (int comp = 0; comp < dim; ++comp)
-          if (std::none_of(faces.begin(), faces.end(), [&](mesh::Face f) { return fixed_by.count({f, comp}) > 0; }))
+          if (std::none_of(faces.begin(), faces.end(),
+                           [&](const std::string& f) { return fixed_by.count({f, comp}) > 0; }))
             ++free_unknowns;
         if (free_unknowns > 0) break;
       }
@@ -856,19 +858,19 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                      "at least one [[dirichlet]] table (a body without a "
                      "Dirichlet part has rigid-body modes)");
   // (face, component) -> index of the [[dirichlet]] entry that fixes it first.
-  std::map<std::pair<mesh::Face, int>, std::size_t> fixed_by;
+  std::map<std::pair<std::string, int>, std::size_t> fixed_by;
   for (std::size_t i = 0; i < dirichlet->size(); ++i) {
     const TableReader r(*dirichlet->get(i)->as_table(), fmt::format("dirichlet[{}]", i), origin,
                         {"face", "displacement", "components"});
     fem::FaceDirichlet d =
         read_dirichlet(r, dim, std::max({geometry.a, geometry.b, geometry.height}));
     for (int comp : d.components) {
-      const auto [it, inserted] = fixed_by.emplace(std::pair{d.face, comp}, i);
+      const auto [it, inserted] = fixed_by.emplace(std::pair{d.boundary, comp}, i);
       if (!inserted)
         r.fail("face", fmt::format("{}.face = \"{}\" fixes component {}, which dirichlet[{}] "
                                    "already fixes on the same face; expected each component "
                                    "of a face fixed at most once",
-                                   r.path(), mesh::to_string(d.face), comp, it->second));
+                                   r.path(), d.boundary, comp, it->second));
     }
     body.dirichlet.push_back(std::move(d));
   }

@@ -13,7 +13,7 @@ Eigen::VectorXd contact_tributary_areas(const study::ElasticBody& body) {
 }
 
 void add_contact_fields(VtuGrid& grid, const study::ElasticBody& body, const study::ContactResult& result) {
-  const mesh::StructuredMesh& m = body.mesh();
+  const mesh::Mesh& m = body.mesh();
   const contact::ContactBoundary& boundary = *body.contact_boundary();
   const int dim = m.dim();
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -44,11 +44,12 @@ void add_contact_fields(VtuGrid& grid, const study::ElasticBody& body, const stu
 }
 
 VtuGrid make_state_grid(const study::ElasticBody& body, const study::BodyState& state) {
-  const mesh::StructuredMesh& m = body.mesh();
+  const mesh::Mesh& m = body.mesh();
   const int dim = m.dim();
   VtuGrid grid;
   grid.points = state.positions;
-  grid.cells.push_back({dim == 2 ? VtkCellType::kQuad : VtkCellType::kHexahedron, m.elements()});
+  grid.cells.push_back({m.element_kind() == mesh::ElementKind::kQuad4 ? VtkCellType::kQuad : VtkCellType::kHexahedron,
+                        m.elements()});
   Eigen::MatrixXd u(m.num_nodes(), dim);
   for (int n = 0; n < m.num_nodes(); ++n)
     u.row(n) = state.displacement.segment(n * dim, dim).transpose();
@@ -56,11 +57,11 @@ VtuGrid make_state_grid(const study::ElasticBody& body, const study::BodyState& 
   grid.point_data.push_back(DataArray::symmetric_tensors("stress", state.stress.nodal));
   grid.point_data.push_back(DataArray::scalars("von_mises", state.stress.nodal_von_mises));
   Eigen::VectorXi tags = Eigen::VectorXi::Zero(m.num_nodes());
-  for (int n : m.bottom_nodes()) tags(n) |= kContactTag;
+  for (int n : m.boundary(body.contact_surface()).nodes) tags(n) |= kContactTag;
   for (const auto& d : body.definition().dirichlet)
-    for (int n : m.face_nodes(d.face)) tags(n) |= kDirichletTag;
+    for (int n : m.boundary(d.boundary).nodes) tags(n) |= kDirichletTag;
   for (const auto& t : body.definition().tractions)
-    for (int n : m.face_nodes(t.face)) tags(n) |= kTractionTag;
+    for (int n : m.boundary(t.boundary).nodes) tags(n) |= kTractionTag;
   grid.point_data.push_back(DataArray::integers("boundary_tag", tags));
   if (state.contact && body.contact_boundary()) add_contact_fields(grid, body, *state.contact);
   grid.cell_data.push_back(DataArray::symmetric_tensors("stress", state.stress.element));

@@ -109,9 +109,16 @@ std::string AdjointSensitivity::Summary::brief_report() const {
                      to_string(status), message, reciprocal_condition, relative_residual, piece_residual, time_seconds);
 }
 
+void AdjointOptions::validate() const {
+  if (!(singular_reciprocal_condition >= 0.0 && singular_reciprocal_condition < 1.0))
+    throw InvalidInput(fmt::format("AdjointSensitivity::Options::singular_reciprocal_condition = {}; expected in [0, 1)",
+                                   singular_reciprocal_condition));
+}
+
 AdjointSensitivity::AdjointSensitivity(const fem::LinearElasticity& fem, const contact::ContactBoundary& boundary,
-                                       Eigen::MatrixXd gap_matrix, contact::FrictionLaw law)
-    : fem_(fem), boundary_(boundary), gap_matrix_(std::move(gap_matrix)), law_(std::move(law)) {
+                                       Eigen::MatrixXd gap_matrix, contact::FrictionLaw law, Options options)
+    : fem_(fem), boundary_(boundary), gap_matrix_(std::move(gap_matrix)), law_(std::move(law)), options_(options) {
+  options_.validate();
   if (gap_matrix_.rows() != boundary_.num_nodes())
     throw InvalidInput(fmt::format("AdjointSensitivity: gap matrix has {} rows; expected {} (one per contact node)",
                                    gap_matrix_.rows(), boundary_.num_nodes()));
@@ -233,7 +240,7 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   // ∂Θ/∂p = (∂ contact rows/∂p)ᵀ ψ_z: the costs do not depend on μ, the equilibrium rows neither.
   result.friction_gradient = friction_parameter_rows(piece, law_, state).transpose() * result.psi_z;
 
-  if (!(result.summary.reciprocal_condition > kSingularReciprocalCondition)) {
+  if (!(result.summary.reciprocal_condition > options_.singular_reciprocal_condition)) {
     result.summary.status = Status::kNumericalFailure;
     result.summary.message = "the piece's Jacobian is singular (is the friction coefficient too large for V4.4.1?)";
   } else {
@@ -276,7 +283,7 @@ AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
     if (!linalg::blas::lu_solve(K, r, dz, out.reciprocal_condition)) out.reciprocal_condition = 0.0;
     for (std::size_t i = 0; i < red.free_z.size(); ++i) out.contact(red.free_z[i]) = dz(static_cast<Eigen::Index>(i));
   }
-  out.status = out.reciprocal_condition > kSingularReciprocalCondition ? Status::kConverged : Status::kNumericalFailure;
+  out.status = out.reciprocal_condition > options_.singular_reciprocal_condition ? Status::kConverged : Status::kNumericalFailure;
   Eigen::VectorXd w = -ra;
   boundary_.add_transpose_times(out.contact, w);
   const Eigen::VectorXd du = cholesky.solve(w);

@@ -8,6 +8,7 @@
 #include "frictopt/contact/delassus.hpp"
 #include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/mesh/structured_mesh.hpp"
 
 namespace frictopt::study {
 namespace {
@@ -27,7 +28,8 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
     throw InvalidInput(
         "dirichlet: no Dirichlet condition; expected at least one face with prescribed displacement "
         "(otherwise rigid-body motions are free and the stiffness matrix is singular)");
-  mesh_ = std::make_unique<mesh::StructuredMesh>(definition_.shape, definition_.height, definition_.resolution);
+  mesh_ = std::make_unique<const mesh::Mesh>(
+      mesh::StructuredMesh(definition_.shape, definition_.height, definition_.resolution).take_mesh());
   fem_ = std::make_unique<fem::LinearElasticity>(*mesh_, definition_.material,
                                                  fem::expand_dirichlet(*mesh_, definition_.dirichlet),
                                                  definition_.tractions, definition_.linear_solver);
@@ -37,7 +39,7 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
       throw InvalidInput(fmt::format("contact.friction: a {}D friction law for a {}D body",
                                      definition_.contact->law.dim(), mesh_->dim()));
     definition_.contact->coulomb.validate();
-    boundary_ = std::make_unique<contact::ContactBoundary>(*mesh_, fem_->dofs());
+    boundary_ = std::make_unique<contact::ContactBoundary>(*mesh_, fem_->dofs(), definition_.contact_surface);
     // Contact DOFs last, in z order: the trailing factor gives the Delassus matrix (spec 02 §5).
     // A backend without that capability gets M by solves instead (solve()).
     if (fem_->factorization().supports_trailing_factor()) {

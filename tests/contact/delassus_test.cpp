@@ -21,9 +21,9 @@ namespace {
 class DelassusOperators : public ::testing::Test {
  protected:
   DelassusOperators()
-      : mesh_(shape::BezierShape::surface(1.0, 1.0, 3, 3), 0.5, {{5, 4, 3}, 1.0}),
+      : mesh_(mesh::StructuredMesh(shape::BezierShape::surface(1.0, 1.0, 3, 3), 0.5, {{5, 4, 3}, 1.0}).take_mesh()),
         fem_(mesh_, {2.1e11, 0.3, fem::PlaneModel::kPlaneStrain},
-             fem::expand_dirichlet(mesh_, {{mesh::Face::kTop, {}, {}}}), {}),
+             fem::expand_dirichlet(mesh_, {{"top", {}, {}}}), {}),
         boundary_(mesh_, fem_.dofs()) {
     Eigen::VectorXd alpha(9);
     for (int k = 0; k < 9; ++k) alpha(k) = 0.01 + 0.004 * k;
@@ -47,7 +47,7 @@ class DelassusOperators : public ::testing::Test {
     }
   }
 
-  mesh::StructuredMesh mesh_;
+  mesh::Mesh mesh_;
   fem::LinearElasticity fem_;
   ContactBoundary boundary_;
   Eigen::MatrixXd reference_;

@@ -22,9 +22,11 @@ namespace {
 struct Body {
   explicit Body(int dim)
       : shape(dim == 3 ? shape::BezierShape::surface(1.0, 1.0, 2, 2) : shape::BezierShape::curve(1.0, 4)),
-        mesh(shape, 0.5, dim == 3 ? mesh::GridResolution{{3, 3, 2}, 1.0} : mesh::GridResolution{{6, 0, 3}, 1.0}),
-        fem(mesh, {1e9, 0.3, fem::PlaneModel::kPlaneStrain}, fem::expand_dirichlet(mesh, {{mesh::Face::kLeft, {}, {}}}),
-            {{mesh::Face::kTop, dim == 3 ? Eigen::VectorXd(Eigen::Vector3d(1e6, -2e6, -5e6))
+        mesh(mesh::StructuredMesh(shape, 0.5,
+                                  dim == 3 ? mesh::GridResolution{{3, 3, 2}, 1.0} : mesh::GridResolution{{6, 0, 3}, 1.0})
+                 .take_mesh()),
+        fem(mesh, {1e9, 0.3, fem::PlaneModel::kPlaneStrain}, fem::expand_dirichlet(mesh, {{"left", {}, {}}}),
+            {{"top", dim == 3 ? Eigen::VectorXd(Eigen::Vector3d(1e6, -2e6, -5e6))
                                          : Eigen::VectorXd(Eigen::Vector2d(1e6, -5e6))}}),
         boundary(mesh, fem.dofs()) {
     std::mt19937 rng(dim);
@@ -44,7 +46,7 @@ struct Body {
   }
 
   shape::BezierShape shape;
-  mesh::StructuredMesh mesh;
+  mesh::Mesh mesh;
   fem::LinearElasticity fem;
   contact::ContactBoundary boundary;
   Eigen::VectorXd alpha, displacement;

@@ -13,6 +13,7 @@
 #include "common/finite_difference.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/fem/stress_recovery.hpp"
+#include "frictopt/mesh/structured_mesh.hpp"
 
 namespace frictopt::fem {
 namespace {
@@ -36,15 +37,10 @@ mesh::GridResolution resolution(int dim, int n) {
 
 // Prescribes the values of a vector field on every boundary node (all faces, bottom included).
 template <class Field>
-PrescribedDofs prescribe_on_boundary(const mesh::StructuredMesh& mesh, const Eigen::MatrixXd& X, Field field) {
-  std::vector<mesh::Face> faces{mesh::Face::kLeft, mesh::Face::kRight, mesh::Face::kBottom, mesh::Face::kTop};
-  if (mesh.dim() == 3) {
-    faces.push_back(mesh::Face::kFront);
-    faces.push_back(mesh::Face::kBack);
-  }
+PrescribedDofs prescribe_on_boundary(const mesh::Mesh& mesh, const Eigen::MatrixXd& X, Field field) {
   std::map<int, double> values;
-  for (mesh::Face f : faces)
-    for (int node : mesh.face_nodes(f)) {
+  for (const std::string& name : mesh.boundary_names())  // every face of the grid
+    for (int node : mesh.boundary(name).nodes) {
       const Eigen::VectorXd u = field(Eigen::VectorXd(X.row(node).transpose()));
       for (int c = 0; c < mesh.dim(); ++c) values[node * mesh.dim() + c] = u(c);
     }
@@ -63,7 +59,7 @@ class ElasticityByDimension : public ::testing::TestWithParam<int> {};
 TEST_P(ElasticityByDimension, PatchTestReproducesLinearFieldToRoundOff) {
   const int dim = GetParam();
   const auto s = make_shape(dim);
-  mesh::StructuredMesh mesh(s, 1.0, resolution(dim, 4));
+  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 4)).take_mesh();
   const Eigen::MatrixXd X = mesh.positions(curved_design(s.num_controls()));
   Eigen::MatrixXd B(dim, dim);
   B.setZero();
@@ -111,7 +107,7 @@ TEST_P(ElasticityByDimension, ManufacturedHarmonicSolutionConvergesAtSecondOrder
   std::vector<double> errors;
   const std::vector<int> levels = dim == 2 ? std::vector<int>{4, 8, 16} : std::vector<int>{2, 4, 8};
   for (int n : levels) {
-    mesh::StructuredMesh mesh(s, 1.0, resolution(dim, n));
+    const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, n)).take_mesh();
     const Eigen::MatrixXd X = mesh.positions(curved_design(s.num_controls()));
     LinearElasticity problem(mesh, kSteel, prescribe_on_boundary(mesh, X, exact), {});
     problem.assemble(X);
@@ -169,9 +165,9 @@ TEST_P(ElasticityByDimension, ManufacturedHarmonicSolutionConvergesAtSecondOrder
 TEST_P(ElasticityByDimension, StiffnessIsSymmetricPositiveDefiniteAfterDirichlet) {
   const int dim = GetParam();
   const auto s = make_shape(dim);
-  mesh::StructuredMesh mesh(s, 1.0, resolution(dim, 2));
+  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 2)).take_mesh();
   const Eigen::MatrixXd X = mesh.positions(curved_design(s.num_controls()));
-  LinearElasticity problem(mesh, kSteel, expand_dirichlet(mesh, {{mesh::Face::kLeft, {}, {}}}), {});
+  LinearElasticity problem(mesh, kSteel, expand_dirichlet(mesh, {{"left", {}, {}}}), {});
   problem.assemble(X);
   const Eigen::MatrixXd A = Eigen::MatrixXd(problem.stiffness());
   EXPECT_LE((A - A.transpose()).norm(), 20 * kEps * A.norm());
@@ -190,13 +186,13 @@ TEST_P(ElasticityByDimension, StiffnessIsSymmetricPositiveDefiniteAfterDirichlet
 TEST_P(ElasticityByDimension, TractionResultantAndClapeyronEnergyBalance) {
   const int dim = GetParam();
   const auto s = make_shape(dim);
-  mesh::StructuredMesh mesh(s, 1.0, resolution(dim, 3));
+  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 3)).take_mesh();
   const Eigen::MatrixXd X = mesh.positions(curved_design(s.num_controls()));
   Eigen::VectorXd t = Eigen::VectorXd::Zero(dim);
   t(0) = 2e6;
   t(dim - 1) = -5e6;
-  LinearElasticity problem(mesh, kSteel, expand_dirichlet(mesh, {{mesh::Face::kLeft, {}, {}}}),
-                           {{mesh::Face::kTop, t}});
+  LinearElasticity problem(mesh, kSteel, expand_dirichlet(mesh, {{"left", {}, {}}}),
+                           {{"top", t}});
   const Eigen::VectorXd l = problem.traction_load(X);
   Eigen::VectorXd resultant = Eigen::VectorXd::Zero(dim);
   for (int n = 0; n < mesh.num_nodes(); ++n) resultant += l.segment(n * dim, dim);
@@ -219,11 +215,11 @@ TEST_P(ElasticityByDimension, TractionResultantAndClapeyronEnergyBalance) {
 TEST_P(ElasticityByDimension, ShapeDerivativeKernelMatchesCentralDifferences) {
   const int dim = GetParam();
   const auto s = make_shape(dim);
-  mesh::StructuredMesh mesh(s, 1.0, resolution(dim, 3));
+  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 3)).take_mesh();
   // A traction on the right face, which moves with α, exercises ∂l/∂α as well as ∂A/∂α.
   Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(dim, -1e6, 3e6);
-  LinearElasticity problem(mesh, kSteel, expand_dirichlet(mesh, {{mesh::Face::kLeft, {}, {}}}),
-                           {{mesh::Face::kRight, t}, {mesh::Face::kTop, -t}});
+  LinearElasticity problem(mesh, kSteel, expand_dirichlet(mesh, {{"left", {}, {}}}),
+                           {{"right", t}, {"top", -t}});
   std::mt19937_64 rng{kSeed};
   std::normal_distribution<double> normal;
   Eigen::VectorXd u(mesh.num_dofs()), p(mesh.num_dofs());
@@ -245,10 +241,10 @@ TEST_P(ElasticityByDimension, ShapeDerivativeKernelMatchesCentralDifferences) {
 TEST_P(ElasticityByDimension, ResidualDirectionalDerivativeMatchesDifferencesAndTheKernel) {
   const int dim = GetParam();
   const auto s = make_shape(dim);
-  mesh::StructuredMesh mesh(s, 1.0, resolution(dim, 3));
+  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 3)).take_mesh();
   Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(dim, -1e6, 3e6);
-  LinearElasticity problem(mesh, kSteel, expand_dirichlet(mesh, {{mesh::Face::kLeft, {}, {}}}),
-                           {{mesh::Face::kRight, t}});
+  LinearElasticity problem(mesh, kSteel, expand_dirichlet(mesh, {{"left", {}, {}}}),
+                           {{"right", t}});
   std::mt19937_64 rng{kSeed};
   std::normal_distribution<double> normal;
   Eigen::VectorXd u(mesh.num_dofs()), p(mesh.num_dofs());

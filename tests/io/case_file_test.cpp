@@ -16,6 +16,7 @@
 
 #include "frictopt/contact/friction_law.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/mesh/face.hpp"
 #include "frictopt/study/shape_optimization.hpp"
 
 namespace frictopt::io {
@@ -158,13 +159,13 @@ TEST(ParseCase, Valid2dCaseGivesTheWrittenValuesAndDefaults) {
   EXPECT_EQ(body.material.poisson, 0.3);
   EXPECT_EQ(body.material.plane_model, PlaneModel::kPlaneStrain);
   ASSERT_EQ(body.tractions.size(), 1u);
-  EXPECT_EQ(body.tractions[0].face, Face::kTop);
+  EXPECT_EQ(body.tractions[0].boundary, "top");
   EXPECT_EQ(body.tractions[0].traction, Eigen::Vector2d(0.0, -2.0e7));
   ASSERT_EQ(body.dirichlet.size(), 2u);
-  EXPECT_EQ(body.dirichlet[0].face, Face::kLeft);
+  EXPECT_EQ(body.dirichlet[0].boundary, "left");
   EXPECT_EQ(body.dirichlet[0].displacement, Eigen::Vector2d::Zero());
   EXPECT_EQ(body.dirichlet[0].components, (std::vector<int>{0, 1}));
-  EXPECT_EQ(body.dirichlet[1].face, Face::kRight);
+  EXPECT_EQ(body.dirichlet[1].boundary, "right");
   EXPECT_EQ(body.dirichlet[1].displacement, Eigen::Vector2d(0.0, 1e-3));
   EXPECT_EQ(body.dirichlet[1].components, (std::vector<int>{1}));
   EXPECT_EQ(body.shape.num_controls(), 15);
@@ -199,7 +200,7 @@ TEST(ParseCase, Valid3dCaseGivesTheWrittenValuesAndDefaults) {
   EXPECT_EQ(body.resolution.grading, 1.0);
   ASSERT_EQ(body.tractions.size(), 2u);
   EXPECT_EQ(body.tractions[0].traction, Eigen::Vector3d(1e5, 0, -1e6));
-  EXPECT_EQ(body.tractions[1].face, Face::kFront);
+  EXPECT_EQ(body.tractions[1].boundary, "front");
   ASSERT_EQ(body.dirichlet.size(), 1u);
   EXPECT_EQ(body.dirichlet[0].components, (std::vector<int>{0, 2})) << "components are sorted";
   EXPECT_EQ(body.dirichlet[0].displacement, Eigen::Vector3d::Zero());

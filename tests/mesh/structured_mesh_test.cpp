@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
 #include <random>
 
 #include "common/finite_difference.hpp"
@@ -32,7 +35,7 @@ TEST(StructuredMesh, VolumeConvergesToLinearFormulaAtSecondOrder2D) {
   std::vector<double> errors;
   for (int n : {8, 16, 32, 64}) {
     StructuredMesh mesh(curve, 1.0, {{n, 0, 4}, 1.0});
-    errors.push_back(std::abs(mesh.volume(mesh.positions(alpha)) - exact));
+    errors.push_back(std::abs(mesh.mesh().volume(mesh.mesh().positions(alpha)) - exact));
   }
   for (std::size_t i = 0; i + 1 < errors.size(); ++i) {
     const double rate = std::log2(errors[i] / errors[i + 1]);
@@ -49,7 +52,7 @@ TEST(StructuredMesh, VolumeConvergesToLinearFormulaAtSecondOrder3D) {
   std::vector<double> errors;
   for (int n : {4, 8, 16}) {
     StructuredMesh mesh(surface, 1.0, {{n, n, 2}, 1.0});
-    errors.push_back(std::abs(mesh.volume(mesh.positions(alpha)) - exact));
+    errors.push_back(std::abs(mesh.mesh().volume(mesh.mesh().positions(alpha)) - exact));
   }
   for (std::size_t i = 0; i + 1 < errors.size(); ++i) {
     const double rate = std::log2(errors[i] / errors[i + 1]);
@@ -64,14 +67,14 @@ TEST(StructuredMesh, DesignJacobianMatchesCentralDifferences) {
   std::mt19937_64 rng{kSeed};
   const Eigen::VectorXd alpha = wavy_design(9, 0.2, 0.1);
   const auto positions = [&](const Eigen::VectorXd& a) {
-    const Eigen::MatrixXd X = mesh.positions(a);
+    const Eigen::MatrixXd X = mesh.mesh().positions(a);
     Eigen::VectorXd flat(X.size());
     for (int n = 0; n < X.rows(); ++n) flat.segment(n * 3, 3) = X.row(n).transpose();
     return flat;
   };
   const Eigen::MatrixXd fd =
       frictopt::testing::central_jacobian(positions, alpha, frictopt::testing::central_step(alpha));
-  const Eigen::MatrixXd V = Eigen::MatrixXd(mesh.design_jacobian());
+  const Eigen::MatrixXd V = Eigen::MatrixXd(mesh.mesh().design_jacobian());
   // X is affine in α: the central difference is exact up to round-off (~eps/h·|X|).
   EXPECT_LE((fd - V).norm(), 1e-9 * V.norm());
 }
@@ -80,10 +83,10 @@ TEST(StructuredMesh, BottomFollowsTheBezierSurfaceAndTopStaysFlat) {
   const auto curve = shape::BezierShape::curve(2.0, 5);
   StructuredMesh mesh(curve, 1.0, {{10, 0, 3}, 1.5});
   const Eigen::VectorXd alpha = wavy_design(5, 0.3, 0.1);
-  const Eigen::MatrixXd X = mesh.positions(alpha);
-  for (int node : mesh.bottom_nodes())
+  const Eigen::MatrixXd X = mesh.mesh().positions(alpha);
+  for (int node : mesh.face(Face::kBottom).nodes)
     EXPECT_NEAR(X(node, 1), curve.height(alpha, X.row(node).head(1).transpose()), 1e-15);
-  for (int node : mesh.face_nodes(Face::kTop)) EXPECT_NEAR(X(node, 1), 1.0, 1e-15);
+  for (int node : mesh.face(Face::kTop).nodes) EXPECT_NEAR(X(node, 1), 1.0, 1e-15);
 }
 
 TEST(StructuredMesh, FacesHaveTheExpectedSizes) {
@@ -91,14 +94,14 @@ TEST(StructuredMesh, FacesHaveTheExpectedSizes) {
   StructuredMesh mesh(surface, 1.0, {{4, 3, 2}, 1.0});
   EXPECT_EQ(mesh.num_nodes(), 5 * 4 * 3);
   EXPECT_EQ(mesh.num_elements(), 4 * 3 * 2);
-  EXPECT_EQ(mesh.face_nodes(Face::kLeft).size(), 4u * 3u);
-  EXPECT_EQ(mesh.face_nodes(Face::kFront).size(), 5u * 3u);
-  EXPECT_EQ(mesh.face_nodes(Face::kBottom).size(), 5u * 4u);
-  EXPECT_EQ(mesh.face_facets(Face::kTop).rows(), 12);
-  EXPECT_EQ(mesh.face_facets(Face::kRight).rows(), 6);
+  EXPECT_EQ(mesh.face(Face::kLeft).nodes.size(), 4u * 3u);
+  EXPECT_EQ(mesh.face(Face::kFront).nodes.size(), 5u * 3u);
+  EXPECT_EQ(mesh.face(Face::kBottom).nodes.size(), 5u * 4u);
+  EXPECT_EQ(mesh.face(Face::kTop).facets.rows(), 12);
+  EXPECT_EQ(mesh.face(Face::kRight).facets.rows(), 6);
   const auto curve = shape::BezierShape::curve(1.0, 3);
   StructuredMesh mesh2(curve, 1.0, {{4, 0, 2}, 1.0});
-  EXPECT_THROW((void)mesh2.face_nodes(Face::kFront), InvalidInput);
+  EXPECT_THROW((void)mesh2.face(Face::kFront), InvalidInput);
 }
 
 TEST(StructuredMesh, InvertedElementIsReportedWithElementAndDesign) {
@@ -107,16 +110,17 @@ TEST(StructuredMesh, InvertedElementIsReportedWithElementAndDesign) {
   Eigen::VectorXd alpha(3);
   alpha << 0.1, 3.0, 0.1;  // peak height 0.05 + 1.5 > 1: the bottom rises above the top
   try {
-    mesh.check_quality(mesh.positions(alpha), "design 12");
+    mesh.mesh().check_quality(mesh.mesh().positions(alpha), "design 12");
     FAIL() << "expected InvalidInput";
   } catch (const InvalidInput& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("element"), std::string::npos) << what;
     EXPECT_NE(what.find("inverted"), std::string::npos) << what;
     EXPECT_NE(what.find("design 12"), std::string::npos) << what;
+    EXPECT_NE(what.find("(column 0, layer 0)"), std::string::npos) << what;  // the grid's own location
   }
   alpha << 0.1, 0.5, 0.1;
-  EXPECT_NO_THROW(mesh.check_quality(mesh.positions(alpha), "design 13"));
+  EXPECT_NO_THROW(mesh.mesh().check_quality(mesh.mesh().positions(alpha), "design 13"));
 }
 
 TEST(StructuredMesh, RejectsBadResolution) {
@@ -124,6 +128,57 @@ TEST(StructuredMesh, RejectsBadResolution) {
   EXPECT_THROW(StructuredMesh(curve, 1.0, {{0, 0, 2}, 1.0}), InvalidInput);
   EXPECT_THROW(StructuredMesh(curve, 1.0, {{2, 0, 2}, 0.5}), InvalidInput);
   EXPECT_THROW((void)parse_face("bottomm"), InvalidInput);
+}
+
+TEST(StructuredMesh, FacesAreTheNamedBoundarySetsOfItsMesh) {
+  const auto surface = shape::BezierShape::surface(1.0, 1.0, 2, 2);
+  const StructuredMesh grid(surface, 1.0, {{2, 2, 2}, 1.0});
+  const Mesh& mesh = grid.mesh();
+  EXPECT_EQ(mesh.boundary_names(), (std::vector<std::string>{"back", "bottom", "front", "left", "right", "top"}));
+  EXPECT_EQ(mesh.element_kind(), ElementKind::kHex8);
+  EXPECT_EQ(mesh.vtk_cell_type(), 12);
+  // The bottom's nodes are layer 0 in column order, the grid's (i1, i2, 0).
+  const std::vector<int>& bottom = mesh.boundary("bottom").nodes;
+  ASSERT_EQ(bottom.size(), 9u);
+  EXPECT_EQ(bottom[4], grid.node(1, 1, 0));
+  const StructuredMesh grid2d(shape::BezierShape::curve(1.0, 3), 1.0, {{3, 0, 2}, 1.0});
+  EXPECT_EQ(grid2d.mesh().boundary_names(), (std::vector<std::string>{"bottom", "left", "right", "top"}));
+  EXPECT_EQ(grid2d.mesh().element_kind(), ElementKind::kQuad4);
+  try {
+    (void)grid2d.mesh().boundary("front");
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'front'"), std::string::npos) << what;
+    EXPECT_NE(what.find("bottom, left, right, top"), std::string::npos) << what;
+  }
+}
+
+// Issue 17, item 6: the column and node counts overflowed 32-bit int (UBSan) for large
+// resolutions. The counts are 64-bit and computed without allocating anything.
+TEST(StructuredMesh, CountsOfAHugeGridDoNotOverflow) {
+  const StructuredGridSizes sizes = structured_grid_sizes(3, {{100000, 100000, 100000}, 1.0});
+  const std::int64_t side = 100001;
+  EXPECT_EQ(sizes.columns, side * side);
+  EXPECT_EQ(sizes.nodes, side * side * side);
+  EXPECT_EQ(sizes.elements, std::int64_t{100000} * 100000 * 100000);
+  EXPECT_EQ(sizes.dofs, 3 * side * side * side);
+  const StructuredGridSizes flat = structured_grid_sizes(2, {{100000, 7, 100000}, 1.0});  // n2 ignored in 2D
+  EXPECT_EQ(flat.columns, side);
+  EXPECT_EQ(flat.nodes, side * side);
+  EXPECT_EQ(flat.elements, std::int64_t{100000} * 100000);
+}
+
+TEST(StructuredMesh, RefusesAGridWhoseIndicesDoNotFitBeforeAllocating) {
+  // 50,001² nodes × 2 = 5.0e9 unknowns > 2^31 − 1: refused with the counts, before any allocation.
+  try {
+    const StructuredMesh grid(shape::BezierShape::curve(1.0, 3), 1.0, {{50000, 0, 50000}, 1.0});
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("mesh.cells = [50000, 50000]"), std::string::npos) << what;
+    EXPECT_NE(what.find("5000200002 unknowns"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include "common/finite_difference.hpp"
 #include "common/test_bodies.hpp"
+#include "frictopt/core/error.hpp"
 #include "frictopt/cost/cost_functional.hpp"
 #include "frictopt/sensitivity/friction_parameters.hpp"
 #include "frictopt/study/shape_oracle.hpp"
@@ -32,7 +33,7 @@ study::BodyDefinition block_3d(const contact::FrictionLaw& law, Eigen::Vector2d 
   b.height = 0.5;
   b.resolution = {{8, 8, 4}, 1.0};
   b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{mesh::Face::kTop, {}, Eigen::Vector3d(shift(0), shift(1), -1.2e-3)}};
+  b.dirichlet = {{"top", {}, Eigen::Vector3d(shift(0), shift(1), -1.2e-3)}};
   b.admissible.upper_bound = 5e-3;
   b.admissible.height = 0.5;
   b.initial_design.resize(9);
@@ -153,6 +154,47 @@ Eigen::VectorXd flatten_derivative(study::ShapeOracle& oracle, const AdjointSens
   return y;
 }
 
+// AdjointSensitivity::Options (DESIGN.md: Options in, Summary out): validated at construction;
+// the default threshold is kSingularReciprocalCondition; a threshold above the piece's reciprocal
+// condition turns the same solve into a reported failure.
+TEST(AdjointOptions, AreValidatedAndTheSingularityThresholdIsApplied) {
+  study::ElasticBody body(thesis_body_2d(contact::FrictionLaw::interval(0.25, 0.25), 12, 4));
+  study::ShapeOracle oracle(body, cost::make_compliance());
+  const Eigen::VectorXd alpha = body.definition().initial_design;
+  const study::Evaluation e = oracle.evaluate_design(alpha);
+  ASSERT_TRUE(e.ok) << e.message;
+  const study::BodyState state = body.solve(alpha);  // the body's factorization is at α again
+  ASSERT_TRUE(state.contact.has_value());
+  const contact::ContactBoundary& boundary = *body.contact_boundary();
+  const Eigen::MatrixXd gap_matrix = body.definition().shape.gap_matrix(boundary.plane_coordinates());
+  const contact::FrictionLaw& law = body.definition().contact->law;
+  CostPartials partials;  // any ∇_u J will do: the adjoint system's matrix does not depend on it
+
+  partials.d_displacement = body.elasticity().traction_load(state.positions);
+
+  AdjointSensitivity::Options bad;
+  bad.singular_reciprocal_condition = -1e-3;
+  EXPECT_THROW(AdjointSensitivity(body.elasticity(), boundary, gap_matrix, law, bad), InvalidInput);
+  bad.singular_reciprocal_condition = 1.0;
+  EXPECT_THROW(AdjointSensitivity(body.elasticity(), boundary, gap_matrix, law, bad), InvalidInput);
+
+  const Piece piece = default_piece(e.index_sets);
+  const AdjointSensitivity by_default(body.elasticity(), boundary, gap_matrix, law);
+  EXPECT_EQ(by_default.options().singular_reciprocal_condition, kSingularReciprocalCondition);
+  const auto reference = by_default.subgradient(piece, *state.contact->delassus, state.positions, state.displacement,
+                                                state.contact->state, partials);
+  ASSERT_EQ(reference.summary.status, Status::kConverged) << reference.summary.message;
+  ASSERT_LT(reference.summary.reciprocal_condition, 0.5);
+
+  AdjointSensitivity::Options strict;
+  strict.singular_reciprocal_condition = 0.5;  // above this piece's rcond: "singular"
+  const AdjointSensitivity strict_adjoint(body.elasticity(), boundary, gap_matrix, law, strict);
+  const auto refused = strict_adjoint.subgradient(piece, *state.contact->delassus, state.positions, state.displacement,
+                                                  state.contact->state, partials);
+  EXPECT_EQ(refused.summary.status, Status::kNumericalFailure);
+  EXPECT_EQ(refused.summary.reciprocal_condition, reference.summary.reciprocal_condition);
+}
+
 TEST(PieceJacobian, ColumnsMatchCentralDifferencesOfTheStateAtStrictPoints) {
   for (const bool three_d : {false, true}) {
     study::ElasticBody body(three_d ? block_3d(contact::FrictionLaw::polygon({0.2, 0.45, 0.2, 0.45}))
@@ -210,7 +252,7 @@ study::BodyDefinition weak_contact_body(int dim) {
   if (dim == 3) {
     b.resolution = {{1, 1, 1}, 1.0};
     b.shape = shape::BezierShape::surface(1.0, 1.0, 2, 2);
-    b.dirichlet = {{mesh::Face::kLeft, {}, {}}};
+    b.dirichlet = {{"left", {}, {}}};
   }
   b.tractions.clear();
   b.initial_design = Eigen::VectorXd::Zero(b.shape.num_controls());

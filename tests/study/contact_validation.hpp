@@ -75,7 +75,7 @@ inline BodyDefinition block_definition(const BlockSpec& s) {
   def.material.young = s.young;
   def.material.poisson = s.poisson;
   def.material.plane_model = fem::PlaneModel::kPlaneStrain;
-  def.dirichlet.push_back({mesh::Face::kTop, {}, s.top_displacement});
+  def.dirichlet.push_back({"top", {}, s.top_displacement});
   def.admissible.upper_bound = s.height / 2;
   def.admissible.height = s.height;
   def.initial_design = paraboloid_design(s);
@@ -90,14 +90,14 @@ inline BodyDefinition block_definition(const BlockSpec& s) {
 /// Projected area of Γ_c per contact node (2D: length), lumped from the bottom facets (the
 /// same rule as io::contact_tributary_areas, kept here so the tests depend on study only).
 inline Eigen::VectorXd tributary_areas(const ElasticBody& body) {
-  const mesh::StructuredMesh& m = body.mesh();
+  const mesh::Mesh& m = body.mesh();
   const contact::ContactBoundary& boundary = *body.contact_boundary();
   std::vector<Eigen::Index> index(static_cast<std::size_t>(m.num_nodes()), -1);
   for (Eigen::Index i = 0; i < boundary.num_nodes(); ++i)
     index[static_cast<std::size_t>(boundary.nodes()[static_cast<std::size_t>(i)])] = i;
-  const Eigen::MatrixXd X = m.positions(Eigen::VectorXd::Zero(m.shape().num_controls()));
+  const Eigen::MatrixXd X = m.positions(Eigen::VectorXd::Zero(m.num_design_variables()));
   Eigen::VectorXd area = Eigen::VectorXd::Zero(boundary.num_nodes());
-  const mesh::Connectivity facets = m.face_facets(mesh::Face::kBottom);
+  const mesh::Connectivity facets = m.boundary("bottom").facets;
   for (Eigen::Index f = 0; f < facets.rows(); ++f) {
     const double a = m.dim() == 2 ? std::abs(X(facets(f, 1), 0) - X(facets(f, 0), 0))
                                   : std::abs((X(facets(f, 1), 0) - X(facets(f, 0), 0)) *

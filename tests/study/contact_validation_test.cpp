@@ -356,7 +356,7 @@ TEST(ElasticBodyInput, DirichletConditionsLeavingRigidModesReportNumericalFailur
     s.layers = 2;
     s.top_displacement = Eigen::Vector3d(0.0, 0.0, -0.01);
     BodyDefinition def = block_definition(s);
-    def.dirichlet = {{mesh::Face::kTop, {2}, Eigen::Vector3d(0.0, 0.0, -0.01)}};
+    def.dirichlet = {{"top", {2}, Eigen::Vector3d(0.0, 0.0, -0.01)}};
     if (!with_contact) def.contact.reset();
     ElasticBody body(def);
     const BodyState state = body.solve(def.initial_design);
@@ -406,9 +406,9 @@ TEST(ElasticBodySymmetry, BottomNodesWithAPrescribedComponentAreNotContactNodes)
   s.layers = 2;
   s.top_displacement = Eigen::Vector3d(0.0, 0.0, -0.01);
   BodyDefinition def = block_definition(s);
-  def.dirichlet = {{mesh::Face::kTop, {2}, Eigen::Vector3d(0.0, 0.0, -0.01)},
-                   {mesh::Face::kLeft, {0}, Eigen::Vector3d::Zero()},
-                   {mesh::Face::kFront, {1}, Eigen::Vector3d::Zero()}};
+  def.dirichlet = {{"top", {2}, Eigen::Vector3d(0.0, 0.0, -0.01)},
+                   {"left", {0}, Eigen::Vector3d::Zero()},
+                   {"front", {1}, Eigen::Vector3d::Zero()}};
   ElasticBody body(def);
   const Eigen::Index all = (s.cells + 1) * (s.cells + 1);
   const Eigen::Index on_planes = 2 * (s.cells + 1) - 1;  // the x1 = 0 and x2 = 0 rows of the bottom

@@ -20,13 +20,13 @@ BodyDefinition one_layer_body(int dim) {
   if (dim == 2) {
     b.shape = shape::BezierShape::curve(1.0, 4);
     b.resolution = {{29, 0, 1}, 1.0};
-    b.dirichlet = {{mesh::Face::kTop, {}, Eigen::Vector2d(1e-4, -1.2e-3)}};
+    b.dirichlet = {{"top", {}, Eigen::Vector2d(1e-4, -1.2e-3)}};
     b.contact = ContactDefinition{};
     b.contact->law = contact::FrictionLaw::interval(0.3, 0.3);
   } else {
     b.shape = shape::BezierShape::surface(1.0, 1.0, 2, 2);
     b.resolution = {{4, 4, 1}, 1.0};
-    b.dirichlet = {{mesh::Face::kTop, {}, Eigen::Vector3d(1e-4, 0.0, -1.2e-3)}};
+    b.dirichlet = {{"top", {}, Eigen::Vector3d(1e-4, 0.0, -1.2e-3)}};
     b.contact = ContactDefinition{};
     b.contact->law = contact::FrictionLaw::disc(0.3);
   }

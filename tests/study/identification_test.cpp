@@ -38,7 +38,7 @@ BodyDefinition block(const contact::FrictionLaw& law, Eigen::Vector2d shift = Ei
   b.height = 0.5;
   b.resolution = {{cells, cells, 3}, 1.0};
   b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{mesh::Face::kTop, {}, Eigen::Vector3d(shift(0), shift(1), -1.2e-3)}};
+  b.dirichlet = {{"top", {}, Eigen::Vector3d(shift(0), shift(1), -1.2e-3)}};
   b.admissible.upper_bound = 5e-3;
   b.admissible.height = 0.5;
   b.initial_design.resize(9);
@@ -56,8 +56,8 @@ BodyDefinition body_2d(const contact::FrictionLaw& law) {
   b.height = 1.0;
   b.resolution = {{20, 0, 6}, 1.0};
   b.material = {1e9, 0.3, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{mesh::Face::kLeft, {}, {}}};
-  b.tractions = {{mesh::Face::kTop, Eigen::Vector2d(-8e7, -5e7)}};
+  b.dirichlet = {{"left", {}, {}}};
+  b.tractions = {{"top", Eigen::Vector2d(-8e7, -5e7)}};
   b.admissible.upper_bound = 0.75;
   b.admissible.height = 1.0;
   b.initial_design = Eigen::VectorXd::Constant(15, 0.05);

@@ -5,16 +5,18 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <string_view>
 #include <vector>
 
 #include "frictopt/fem/boundary_conditions.hpp"
-#include "frictopt/mesh/structured_mesh.hpp"
+#include "frictopt/mesh/mesh.hpp"
 
 namespace frictopt::contact {
 
-/// Contact nodes are the bottom nodes (layer 0, on the Bézier surface) whose DOFs are all free:
-/// a bottom node on Γ_u is not a contact node (spec 01, A-BC). Frame = global axes: tangential
-/// components x1 (, x2), normal x_dim upward (DESIGN.md).
+/// Contact nodes are the nodes of the mesh's contact surface (a named boundary set; "bottom", the
+/// Bézier surface, for the structured grid) whose DOFs are all free: a node of Γ_c on Γ_u is not
+/// a contact node (spec 01, A-BC). Frame = global axes: tangential components x1 (, x2), normal
+/// x_dim upward (docs/architecture.md).
 ///
 /// The dual variable z has per-node blocks z_i = (q_i, λ_i) (dim−1 tangential, then normal),
 /// where q_i = −τ_i is the friction resistance and λ_i ≥ 0 the normal force. The operator
@@ -24,7 +26,10 @@ namespace frictopt::contact {
 /// Lifetime: keeps no reference; built from the mesh and DOF map once.
 class ContactBoundary {
  public:
-  ContactBoundary(const mesh::StructuredMesh& mesh, const fem::DofMap& dofs);
+  /// `surface` names the boundary set of `mesh` that is Γ_c (throws InvalidInput if absent).
+  ContactBoundary(const mesh::Mesh& mesh, const fem::DofMap& dofs, std::string_view surface = kDefaultSurface);
+  /// The contact surface's name in meshes of the structured grid (its Bézier bottom).
+  static constexpr std::string_view kDefaultSurface = "bottom";
 
   int dim() const { return dim_; }
   Eigen::Index num_nodes() const { return static_cast<Eigen::Index>(nodes_.size()); }
@@ -37,7 +42,8 @@ class ContactBoundary {
   const Eigen::MatrixXd& plane_coordinates() const { return plane_; }
   /// Projected (x'-plane) area of Γ_c attributed to each contact node [m²; 2D: m per metre of
   /// thickness]: a quarter (3D) or half (2D) of each adjacent bottom facet. The foundation
-  /// normal is e_dim, so the pressure at node i is λ_i / area_i. Constant in α.
+  /// normal is e_dim, so the pressure at node i is λ_i / area_i. Constant in α. Facets are taken
+  /// as parallelograms spanned by their first edges (exact for the structured grid's facets).
   const Eigen::VectorXd& tributary_areas() const { return areas_; }
   /// Initial gaps g_i = G_α(x'_i) = X(node_i, dim−1) (spec 01, §2.4).
   Eigen::VectorXd gaps(const Eigen::Ref<const Eigen::MatrixXd>& X) const;

@@ -87,7 +87,7 @@ class FactorizedDelassus final : public DelassusMatrix {
 };
 
 /// The dense M = G A⁻¹ Gᵀ (dim·p square), by solves with blocks of `block_columns` right-hand
-/// sides (BLAS-3 in CHOLMOD's supernodal solve). Symmetrized to remove round-off asymmetry.
+/// sides (BLAS-3 in a supernodal backend's solve). Symmetrized to remove round-off asymmetry.
 Eigen::MatrixXd dense_delassus(const linalg::SpdSolver& solver, const ContactBoundary& boundary,
                                int block_columns = 256);
 

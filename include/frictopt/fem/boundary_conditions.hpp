@@ -3,22 +3,24 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
-#include "frictopt/mesh/structured_mesh.hpp"
+#include "frictopt/mesh/mesh.hpp"
 
 namespace frictopt::fem {
 
-/// u_c = value_c on every node of `face` for each listed component c (spec 01, §2.3).
+/// u_c = value_c on every node of the boundary set `boundary` for each listed component c
+/// (spec 01, §2.3).
 struct FaceDirichlet {
-  mesh::Face face = mesh::Face::kLeft;
+  std::string boundary = "left";  ///< name of a mesh::BoundarySet
   std::vector<int> components;   ///< empty = all components
   Eigen::VectorXd displacement;  ///< size dim; empty = zero [m]
 };
 
-/// A dead surface traction (force per current area, [Pa]) on a face (Γ_p).
+/// A dead surface traction (force per current area, [Pa]) on a boundary set (Γ_p).
 struct FaceTraction {
-  mesh::Face face = mesh::Face::kTop;
+  std::string boundary = "top";  ///< name of a mesh::BoundarySet
   Eigen::VectorXd traction;  ///< size dim
 };
 
@@ -28,10 +30,10 @@ struct PrescribedDofs {
   std::vector<double> values;
 };
 
-/// Expands face conditions into prescribed DOFs (later conditions overwrite earlier ones at
-/// shared nodes). Throws InvalidInput for a component outside [0, dim) or a displacement of
-/// the wrong size.
-PrescribedDofs expand_dirichlet(const mesh::StructuredMesh& mesh, const std::vector<FaceDirichlet>& conditions);
+/// Expands boundary conditions into prescribed DOFs (later conditions overwrite earlier ones at
+/// shared nodes). Throws InvalidInput for a component outside [0, dim), a displacement of the
+/// wrong size or a boundary name the mesh does not have.
+PrescribedDofs expand_dirichlet(const mesh::Mesh& mesh, const std::vector<FaceDirichlet>& conditions);
 
 /// Numbering of the free DOFs: free(dof) is the row in the reduced system or −1.
 class DofMap {

@@ -12,12 +12,13 @@
 #include "frictopt/fem/boundary_conditions.hpp"
 #include "frictopt/fem/material.hpp"
 #include "frictopt/linalg/spd_solver.hpp"
-#include "frictopt/mesh/structured_mesh.hpp"
+#include "frictopt/mesh/mesh.hpp"
 
 namespace frictopt::fem {
 
-/// A(α) u = l(α) on the free DOFs of a StructuredMesh (Q1, 2×2(×2) Gauss), 2D plane strain or
-/// stress per unit thickness, or 3D.
+/// A(α) u = l(α) on the free DOFs of a Mesh (element kernels are templates over the mesh's
+/// element class; Q1 with 2×2(×2) Gauss today), 2D plane strain or stress per unit thickness,
+/// or 3D.
 ///
 /// Conventions: full vectors have mesh.num_dofs() entries, node-major (node·dim + component);
 /// "free" vectors follow dofs().free_dofs(). The reduced load contains the tractions on Γ_p and
@@ -29,11 +30,11 @@ class LinearElasticity {
  public:
   /// Throws InvalidInput for an invalid material or traction vectors of the wrong size.
   /// `solver` chooses the SpdSolver backend that factorizes the stiffness.
-  LinearElasticity(const mesh::StructuredMesh& mesh, const IsotropicMaterial& material,
+  LinearElasticity(const mesh::Mesh& mesh, const IsotropicMaterial& material,
                    const PrescribedDofs& dirichlet, std::vector<FaceTraction> tractions,
                    linalg::SpdSolver::Options solver = {});
 
-  const mesh::StructuredMesh& mesh() const { return mesh_; }
+  const mesh::Mesh& mesh() const { return mesh_; }
   const DofMap& dofs() const { return dofs_; }
   const IsotropicMaterial& material() const { return material_; }
 
@@ -80,18 +81,18 @@ class LinearElasticity {
   double external_work(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u) const;
 
  private:
-  template <int Dim> void assemble_impl(const Eigen::Ref<const Eigen::MatrixXd>& X);
-  template <int Dim> Eigen::VectorXd residual_impl(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u) const;
-  template <int Dim> Eigen::VectorXd coordinate_derivative_impl(const Eigen::Ref<const Eigen::MatrixXd>& X,
+  template <class Element> void assemble_impl(const Eigen::Ref<const Eigen::MatrixXd>& X);
+  template <class Element> Eigen::VectorXd residual_impl(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u) const;
+  template <class Element> Eigen::VectorXd coordinate_derivative_impl(const Eigen::Ref<const Eigen::MatrixXd>& X,
                                                                 const Eigen::Ref<const Eigen::VectorXd>& u,
                                                                 const Eigen::Ref<const Eigen::VectorXd>& p) const;
-  template <int Dim> Eigen::VectorXd residual_derivative_impl(const Eigen::Ref<const Eigen::MatrixXd>& X,
+  template <class Element> Eigen::VectorXd residual_derivative_impl(const Eigen::Ref<const Eigen::MatrixXd>& X,
                                                               const Eigen::Ref<const Eigen::VectorXd>& u,
                                                               const Eigen::Ref<const Eigen::MatrixXd>& dX) const;
-  template <int Dim> Eigen::VectorXd traction_load_impl(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
+  template <class Element> Eigen::VectorXd traction_load_impl(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
   void build_pattern();
 
-  const mesh::StructuredMesh& mesh_;
+  const mesh::Mesh& mesh_;
   IsotropicMaterial material_;
   DofMap dofs_;
   std::vector<FaceTraction> tractions_;

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 
 #include "frictopt/fem/material.hpp"
-#include "frictopt/mesh/structured_mesh.hpp"
+#include "frictopt/mesh/mesh.hpp"
 
 namespace frictopt::fem {
 
@@ -19,7 +19,7 @@ struct StressField {
 };
 
 /// Recovers stresses for positions X (num_nodes × dim) and full displacement u (num_dofs).
-StressField recover_stresses(const mesh::StructuredMesh& mesh, const IsotropicMaterial& material,
+StressField recover_stresses(const mesh::Mesh& mesh, const IsotropicMaterial& material,
                              const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u);
 
 /// von Mises stress of a 6-component tensor (xx, yy, zz, xy, yz, xz).

@@ -1,17 +1,52 @@
 // SPDX-License-Identifier: MIT
 // Reference Q1 element (bilinear quad / trilinear hex) in VTK node order, with tensor Gauss
-// rules. Shared by mesh (volume, quality) and fem (kernels).
+// rules, and its boundary facet (segment / bilinear quad). Shared by mesh (volume, quality) and
+// fem (kernels): what every element class provides (docs/architecture.md, "a new element").
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
 
+#include "frictopt/mesh/element_kind.hpp"
+
 namespace frictopt::mesh {
 
+/// The boundary facet of a Q1 cell: a 2-node segment (2D) or a bilinear 4-node quadrilateral
+/// (3D, cyclic order), with the 2^(Dim−1)-point Gauss rule, for surface loads.
+template <int Dim>
+struct Q1Facet {
+  static constexpr int kNodes = Dim == 2 ? 2 : 4;
+  static constexpr int kPoints = Dim == 2 ? 2 : 4;
+
+  /// Facet shape functions and their ∂/∂(η1[, η2]) at Gauss point q, and its weight.
+  static void shape(int q, Eigen::Matrix<double, kNodes, 1>& N, Eigen::Matrix<double, kNodes, Dim - 1>& dN,
+                    double& weight) {
+    const double g = 1.0 / std::sqrt(3.0);
+    weight = 1.0;
+    if constexpr (Dim == 2) {
+      const double eta = q == 0 ? -g : g;
+      N << 0.5 * (1 - eta), 0.5 * (1 + eta);
+      dN << -0.5, 0.5;
+    } else {
+      const double e1 = (q == 0 || q == 3) ? -g : g, e2 = q < 2 ? -g : g;
+      const double c[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+      for (int a = 0; a < 4; ++a) {
+        N(a) = 0.25 * (1 + c[a][0] * e1) * (1 + c[a][1] * e2);
+        dN(a, 0) = 0.25 * c[a][0] * (1 + c[a][1] * e2);
+        dN(a, 1) = 0.25 * c[a][1] * (1 + c[a][0] * e1);
+      }
+    }
+  }
+};
+
+/// The Q1 cell: 4-node bilinear quadrilateral (Dim = 2) or 8-node trilinear hexahedron (Dim = 3).
 template <int Dim>
 struct Q1Element {
+  static constexpr int kDim = Dim;
+  static constexpr ElementKind kKind = Dim == 2 ? ElementKind::kQuad4 : ElementKind::kHex8;
   static constexpr int kNodes = Dim == 2 ? 4 : 8;
+  using Facet = Q1Facet<Dim>;
   using Point = Eigen::Matrix<double, Dim, 1>;
   using Values = Eigen::Matrix<double, kNodes, 1>;
   using Gradients = Eigen::Matrix<double, kNodes, Dim>;  ///< row a = ∇_ξ N_a

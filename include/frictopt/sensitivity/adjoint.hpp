@@ -50,6 +50,17 @@ struct PieceLinearization {
 PieceLinearization linearize_piece(const Piece& piece, const contact::FrictionLaw& law,
                                    const contact::ContactState& state);
 
+/// Lifetime choices of an AdjointSensitivity (AdjointSensitivity::Options; a namespace-level
+/// struct so that `= {}` default arguments can use it).
+struct AdjointOptions {
+  /// A piece's contact-sized matrix (S M + C_z, reduced) whose reciprocal condition (LAPACK's
+  /// 1-norm estimate) is at or below this counts as singular: the adjoint or forward solve is
+  /// then reported as kNumericalFailure instead of returning a meaningless ξ. In [0, 1).
+  double singular_reciprocal_condition = kSingularReciprocalCondition;
+  /// Throws InvalidInput naming the field, value and range.
+  void validate() const;
+};
+
 /// The adjoint sensitivity on a fixed body and design. With J_piece = [[A, −Gᵀ], [S G, C_z]],
 /// the adjoint (Π_iᵀ ψ = −∇_state J of T4.4.1, on the full system) is reduced by the
 /// factorization of A to the contact-sized system
@@ -64,6 +75,7 @@ PieceLinearization linearize_piece(const Piece& piece, const contact::FrictionLa
 /// Lifetime: `fem` (factorized at the design) and `boundary` must outlive this object.
 class AdjointSensitivity {
  public:
+  using Options = AdjointOptions;
   struct Summary {
     Status status = Status::kNotRun;
     std::string message = "not computed";
@@ -99,9 +111,11 @@ class AdjointSensitivity {
                                                  const contact::ContactState& state,
                                                  const Eigen::Ref<const Eigen::VectorXd>& h) const;
 
-  /// `gap_matrix` is B̃ at the contact nodes (p × d): g = B̃α.
+  /// `gap_matrix` is B̃ at the contact nodes (p × d): g = B̃α. Validates `options` and the
+  /// gap matrix's size (InvalidInput).
   AdjointSensitivity(const fem::LinearElasticity& fem, const contact::ContactBoundary& boundary,
-                     Eigen::MatrixXd gap_matrix, contact::FrictionLaw law);
+                     Eigen::MatrixXd gap_matrix, contact::FrictionLaw law, Options options = {});
+  const Options& options() const { return options_; }
 
   /// ξ for `piece` at the state (positions X, full displacement u, contact state) with the
   /// cost's partials. `delassus` is M = G A⁻¹ Gᵀ at this design (only a block is read).
@@ -115,6 +129,7 @@ class AdjointSensitivity {
   const contact::ContactBoundary& boundary_;
   Eigen::MatrixXd gap_matrix_;
   contact::FrictionLaw law_;
+  Options options_;
 };
 
 }  // namespace frictopt::sensitivity

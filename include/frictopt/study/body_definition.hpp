@@ -15,7 +15,7 @@
 #include "frictopt/fem/boundary_conditions.hpp"
 #include "frictopt/fem/material.hpp"
 #include "frictopt/linalg/spd_solver.hpp"
-#include "frictopt/mesh/structured_mesh.hpp"
+#include "frictopt/mesh/grid_resolution.hpp"
 #include "frictopt/shape/admissible_set.hpp"
 #include "frictopt/shape/bezier_shape.hpp"
 
@@ -57,8 +57,10 @@ struct BodyDefinition {
   std::string name = "body";                 ///< used in output file names
   shape::BezierShape shape = shape::BezierShape::curve(1.0, 2);
   double height = 1.0;                       ///< C4 [m]
-  mesh::GridResolution resolution;
+  mesh::GridResolution resolution;          ///< of the structured grid that produces the mesh
+  /// The boundary set that is Γ_c: the Bézier surface is the grid's "bottom".
   fem::IsotropicMaterial material;
+  std::string contact_surface = "bottom";
   std::vector<fem::FaceDirichlet> dirichlet;  ///< Γ_u
   std::vector<fem::FaceTraction> tractions;   ///< Γ_p
   shape::AdmissibleSetParameters admissible;  ///< Υ

@@ -15,7 +15,7 @@
 #include "frictopt/core/status.hpp"
 #include "frictopt/fem/linear_elasticity.hpp"
 #include "frictopt/fem/stress_recovery.hpp"
-#include "frictopt/mesh/structured_mesh.hpp"
+#include "frictopt/mesh/mesh.hpp"
 #include "frictopt/shape/admissible_set.hpp"
 #include "frictopt/study/body_definition.hpp"
 
@@ -64,7 +64,10 @@ class ElasticBody {
   explicit ElasticBody(BodyDefinition definition);
 
   const BodyDefinition& definition() const { return definition_; }
-  const mesh::StructuredMesh& mesh() const { return *mesh_; }
+  /// The body's mesh (from the structured grid of the definition's shape, height and resolution).
+  const mesh::Mesh& mesh() const { return *mesh_; }
+  /// The name of the mesh's boundary set that is the contact surface Γ_c.
+  const std::string& contact_surface() const { return definition_.contact_surface; }
   const fem::LinearElasticity& elasticity() const { return *fem_; }
   const shape::LinearConstraints& admissible_set() const { return admissible_; }
   /// The contact nodes (null without a foundation).
@@ -85,7 +88,7 @@ class ElasticBody {
 
  private:
   BodyDefinition definition_;
-  std::unique_ptr<mesh::StructuredMesh> mesh_;
+  std::unique_ptr<const mesh::Mesh> mesh_;  // heap: fem_ and boundary_ keep references to it
   std::unique_ptr<fem::LinearElasticity> fem_;
   shape::LinearConstraints admissible_;
   std::unique_ptr<contact::ContactBoundary> boundary_;
