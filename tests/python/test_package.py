@@ -42,6 +42,8 @@ def test_help_of_body_reads_well() -> None:
 def test_the_stub_ships_with_the_package_and_covers_the_api() -> None:
     package = pathlib.Path(frictopt.__file__).parent
     stub = (package / "_frictopt.pyi").read_text()
+    import ast
+    ast.parse(stub)  # a syntactically valid stub
     assert (package / "py.typed").exists()
     for name, obj in public_objects():
         if obj.__module__ == "frictopt._frictopt":
