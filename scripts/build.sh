@@ -8,3 +8,5 @@ build="${FRICTOPT_BUILD_DIR:-$root/build}"
 jobs="${FRICTOPT_JOBS:-$(nproc)}"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
 cmake --build "$build" -j "$jobs"
+# `import frictopt` for Debian's python3 without PYTHONPATH (a .pth naming $build/python; docs/python.md).
+if grep -q '^FRICTOPT_BUILD_PYTHON:BOOL=ON' "$build/CMakeCache.txt"; then cmake --build "$build" --target python_user_path; fi

@@ -11,6 +11,7 @@ packages=(
   libfclib-dev libhdf5-dev
   python3 python3-numpy python3-matplotlib python3-vtk9 xvfb xauth
   python3-siconos python3-h5py python3-scipy
+  pybind11-dev python3-dev python3-pytest
 )
 
 missing=()

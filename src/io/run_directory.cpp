@@ -134,7 +134,17 @@ RunDirectory::RunDirectory(fs::path path, RunOpening opening, fs::path case_argu
   }
   fs::create_directories(path_);
   lock();
-  if (opening_ == RunOpening::kForce) clear_previous_run();
+  if (opening_ == RunOpening::kForce) {
+    // A refused --force must release the lock: the destructor does not run for a throwing
+    // constructor, and a process that goes on (the Python module) would keep the directory locked.
+    try {
+      clear_previous_run();
+    } catch (...) {
+      ::close(lock_fd_);
+      lock_fd_ = -1;
+      throw;
+    }
+  }
 }
 
 RunDirectory::~RunDirectory() {

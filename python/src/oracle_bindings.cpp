@@ -1,0 +1,243 @@
+// SPDX-License-Identifier: MIT
+// frictopt.Oracle (study::ShapeOracle: Θ(α) and a Clarke subgradient ξ by one adjoint solve),
+// frictopt.check_gradient (ξ against central differences, as `frictopt check-gradient`) and
+// frictopt.certify (study::certify, the fields of `frictopt certify`'s certificate.json).
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <fmt/format.h>
+#include <algorithm>
+#include <cmath>
+
+#include "bindings.hpp"
+#include "frictopt/core/error.hpp"
+#include "frictopt/io/case_file.hpp"
+#include "frictopt/io/design_file.hpp"
+#include "frictopt/io/run_directory.hpp"
+#include "frictopt/io/summary_json.hpp"
+#include "frictopt/sensitivity/friction_parameters.hpp"
+#include "frictopt/study/derivative_accuracy.hpp"
+#include "frictopt/study/shape_optimization.hpp"
+#include "frictopt/study/certificate.hpp"
+
+namespace frictopt::python {
+
+namespace {
+
+std::shared_ptr<Oracle> make_oracle(std::shared_ptr<const Case> source, const study::BodyDefinition& definition) {
+  auto o = std::make_shared<Oracle>();
+  o->source = source;
+  if (!definition.contact) throw InvalidInput(source->description.origin + ": the oracle needs a [contact] table");
+  const study::CostDefinition& cost = source->description.required_cost();
+  py::gil_scoped_release release;
+  o->body = std::make_unique<study::ElasticBody>(definition);
+  o->oracle = std::make_unique<study::ShapeOracle>(*o->body, cost);
+  return o;
+}
+
+const Eigen::VectorXd& initial_design(const Oracle& o) { return o.body->definition().initial_design; }
+
+}  // namespace
+
+void bind_oracle(py::module_& m) {
+  py::class_<study::Evaluation>(m, "Evaluation", R"doc(
+One evaluation of the oracle at a design: Θ(α) [units of the cost, e.g. N² for target_pressure]
+and one Clarke subgradient ξ ∈ ∂Θ(α) [cost units per m] from one adjoint solve, with the
+index sets that tell whether Θ is differentiable there (no weak nodes). ``ok`` is False, with
+a ``message``, when the state or the adjoint failed (numerical failure is not an exception).
+)doc")
+      .def_readonly("ok", &study::Evaluation::ok, "False when the state solve or the adjoint failed.")
+      .def_readonly("message", &study::Evaluation::message, "Why not ok.")
+      .def_readonly("value", &study::Evaluation::value, "Θ(α) in the cost's units.")
+      .def_property_readonly("subgradient", [](const study::Evaluation& e) { return to_numpy(e.subgradient); },
+                             "ξ for the default piece, (d,) [cost units per m]; empty when not requested.")
+      .def_property_readonly("friction_gradient", [](const study::Evaluation& e) { return to_numpy(e.friction_gradient); },
+                             "∂Θ/∂p for the friction parameters p of the law (Oracle.friction_parameters).")
+      .def_property_readonly("index_sets", [](const study::Evaluation& e) { return e.index_sets.summary(); },
+                             "The contact index sets at α, one line.")
+      .def_property_readonly("weak_nodes", [](const study::Evaluation& e) { return e.index_sets.num_weak_nodes(); },
+                             "Nodes on a kink (weak contact / stick-slip transition): Θ need not be differentiable.")
+      .def_property_readonly("contact_report", [](const study::Evaluation& e) { return e.contact.brief_report(); },
+                             "The contact solver's one-line report.")
+      .def_property_readonly("adjoint_report", [](const study::Evaluation& e) { return e.adjoint.brief_report(); },
+                             "The adjoint solve's one-line report.")
+      .def_readonly("state_seconds", &study::Evaluation::state_seconds, "Wall time of the state solve [s].")
+      .def_readonly("subgradient_seconds", &study::Evaluation::subgradient_seconds, "Wall time of the adjoint [s].")
+      .def("__repr__", [](const study::Evaluation& e) {
+        return e.ok ? fmt::format("<frictopt.Evaluation Θ = {:.10g}, |ξ| = {:.4g}, {}>", e.value,
+                                  e.subgradient.size() ? e.subgradient.norm() : kNaN, e.index_sets.summary())
+                    : "<frictopt.Evaluation failed: " + e.message + ">";
+      });
+
+  py::class_<Oracle, std::shared_ptr<Oracle>>(m, "Oracle", R"doc(
+The shape problem as an oracle: Θ(α) = J(α, S(α)) — the case's [cost] of the contact state
+S(α) — and one Clarke subgradient ξ by one adjoint solve (docs/sensitivity.md). Results are
+cached per design. The oracle owns its body (a separate study::ElasticBody), so Body.solve
+elsewhere cannot disturb it. Evaluations release the GIL.
+
+Example::
+
+    oracle = frictopt.Oracle(case)
+    e = oracle.evaluate(case.initial_design)     # Evaluation: e.value, e.subgradient
+    theta, xi = oracle(alpha)
+)doc")
+      .def(py::init([](std::shared_ptr<const Case> source) { return make_oracle(source, source->description.body); }),
+           py::arg("case"), "Builds the body and the cost; ValueError without [contact] or [cost].")
+      .def(
+          "evaluate",
+          [](Oracle& o, const py::object& alpha, bool with_subgradient) {
+            const Eigen::VectorXd a = design_from_python(alpha, initial_design(o), "alpha");
+            py::gil_scoped_release release;
+            const std::lock_guard lock(o.mutex);
+            return study::Evaluation(o.oracle->evaluate_design(a, with_subgradient));
+          },
+          py::arg("alpha") = py::none(), py::arg("with_subgradient") = true,
+          "Θ(α) and (if requested) ξ at the design α [m] (default α⁰). Raises ValueError for a wrong size or\n"
+          "an inverting design; a failed solve gives ok = False.")
+      .def(
+          "__call__",
+          [](Oracle& o, const py::object& alpha) {
+            const Eigen::VectorXd a = design_from_python(alpha, initial_design(o), "alpha");
+            study::Evaluation e;
+            {
+              py::gil_scoped_release release;
+              const std::lock_guard lock(o.mutex);
+              e = o.oracle->evaluate_design(a, true);
+            }
+            if (!e.ok) return py::make_tuple(kNaN, to_numpy(Eigen::VectorXd(Eigen::VectorXd::Constant(a.size(), kNaN))));
+            return py::make_tuple(e.value, to_numpy(e.subgradient));
+          },
+          py::arg("alpha"), "(Θ(α), ξ) as (float, numpy array); NaNs when the evaluation failed.")
+      .def_property_readonly("cost", [](const Oracle& o) { return o.oracle->cost().name(); }, "The cost's name.")
+      .def_property_readonly("num_design_variables", [](const Oracle& o) { return initial_design(o).size(); },
+                             "d, the number of design variables.")
+      .def_property_readonly("initial_design", [](const Oracle& o) { return to_numpy(initial_design(o)); }, "α⁰ [m].")
+      .def_property_readonly("num_state_solves", [](const Oracle& o) { return o.oracle->num_state_solves(); },
+                             "State problems solved so far (cache hits do not count).")
+      .def_property_readonly(
+          "friction_parameters",
+          [](const Oracle& o) { return sensitivity::friction_parameters(o.body->definition().contact->law).names; },
+          "Names of the friction parameters of Evaluation.friction_gradient (e.g. 'mu_vertices[0]').")
+      .def("__repr__", [](const Oracle& o) {
+        return fmt::format("<frictopt.Oracle cost {} on '{}', {} design variables, {} state solves>",
+                           o.oracle->cost().name(), o.body->definition().name, initial_design(o).size(),
+                           o.oracle->num_state_solves());
+      });
+
+  m.def(
+      "check_gradient",
+      [](std::shared_ptr<const Case> source, const py::object& design, double relative_step) {
+        // As `frictopt check-gradient`: tighter solver tolerances so that differences resolve ξ.
+        study::BodyDefinition definition = source->description.body;
+        if (!definition.contact) throw InvalidInput(source->description.origin + ": check_gradient needs a [contact] table");
+        study::tighten_for_derivatives(definition.contact->coulomb);
+        if (!(relative_step > 0.0)) throw InvalidInput(fmt::format("relative_step = {}; expected > 0", relative_step));
+        auto o = make_oracle(source, definition);
+        const Eigen::VectorXd alpha = design_from_python(design, definition.initial_design, "design");
+        // The same admissibility check as certify: Θ and ξ are defined on Υ only.
+        study::require_admissible_design(*o->body, alpha, study::CertifyOptions{}.active_tolerance,
+                                         source->description.origin + (design.is_none() ? ": design.initial" : ": design"));
+        io::JsonValue json = io::JsonValue::object();
+        json["command"] = "check-gradient";
+        json["case"] = source->description.origin;
+        json["cost"] = o->oracle->cost().name();
+        {
+          py::gil_scoped_release release;
+          const study::Evaluation e = o->oracle->evaluate_design(alpha);
+          json["ok"] = e.ok;
+          json["message"] = e.message;
+          json["alpha"] = alpha;
+          json["value"] = e.value;
+          json["contact"] = e.contact.brief_report();
+          json["adjoint"] = e.adjoint.brief_report();
+          if (e.ok) {
+            json["index_sets"] = e.index_sets.summary();
+            json["weak_nodes"] = e.index_sets.num_weak_nodes();
+            json["cardinality_L"] = o->oracle->pieces(alpha, 1).cardinality;
+            const double h = relative_step * std::max(alpha.cwiseAbs().maxCoeff(), 1e-12);
+            const double scale = std::max(e.subgradient.cwiseAbs().maxCoeff(), 1e-300);
+            Eigen::VectorXd fd(alpha.size()), error(alpha.size());
+            for (Eigen::Index k = 0; k < alpha.size(); ++k) {
+              Eigen::VectorXd a = alpha;
+              a(k) += h;
+              const double plus = o->oracle->evaluate_design(a, false).value;
+              a(k) -= 2 * h;
+              const double minus = o->oracle->evaluate_design(a, false).value;
+              fd(k) = (plus - minus) / (2 * h);
+              error(k) = std::abs(fd(k) - e.subgradient(k)) / scale;  // relative to max|ξ|
+            }
+            json["step"] = h;
+            json["relative_step"] = relative_step;
+            json["subgradient"] = e.subgradient;
+            json["finite_difference"] = fd;
+            json["relative_error"] = error;
+            json["max_relative_error"] = error.maxCoeff();
+            io::JsonValue friction = io::JsonValue::object();
+            const auto params = sensitivity::friction_parameters(definition.contact->law);
+            for (Eigen::Index k = 0; k < e.friction_gradient.size(); ++k)
+              friction[params.names[static_cast<std::size_t>(k)]] = e.friction_gradient(k);
+            json["friction_gradient"] = friction;
+          }
+        }
+        return to_python(json);
+      },
+      py::arg("case"), py::arg("design") = py::none(), py::arg("relative_step") = 1e-6,
+      R"doc(The adjoint subgradient ξ against central differences of Θ, per component (as the CLI's
+``frictopt check-gradient``), with tightened contact tolerances. Returns a Summary: value, subgradient,
+finite_difference, relative_error (|fd − ξ_k| / max|ξ|), max_relative_error, step h [m] =
+relative_step·max|α|, index_sets, weak_nodes (differences need not match ξ at a kink),
+cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the solve failed.)doc");
+
+  m.def(
+      "certify",
+      [](const py::object& case_object, const py::object& alpha_object, const py::object& run_directory, int cap) {
+        std::shared_ptr<const Case> source;
+        Eigen::VectorXd alpha;
+        std::string design_name = "python";
+        namespace fs = std::filesystem;
+        std::optional<io::RunDirectory> run;
+        if (!run_directory.is_none()) {
+          run.emplace(run_directory.cast<fs::path>(), io::RunOpening::kExisting);
+          source = py::module_::import("frictopt").attr("load_case")(run->store_case()).cast<std::shared_ptr<Case>>();
+          const fs::path design_path = run->file(io::RunDirectory::kFinalDesign);
+          alpha = io::read_design_file(design_path, source->description.body.shape.num_controls());
+          design_name = design_path.string();
+        } else {
+          if (case_object.is_none()) throw InvalidInput("certify: pass a case or a run_directory");
+          source = case_object.cast<std::shared_ptr<Case>>();
+          alpha = design_from_python(alpha_object, source->description.body.initial_design, "alpha");
+        }
+        auto o = make_oracle(source, source->description.body);
+        study::CertifyOptions options;
+        options.cap = cap;
+        options.validate();
+        study::Certificate c;
+        {
+          py::gil_scoped_release release;
+          c = study::certify(*o->oracle, alpha, options);
+        }
+        // The certificate.json of `frictopt certify` (same keys).
+        io::JsonValue json = io::JsonValue::object();
+        json["command"] = "certify";
+        json["case"] = run ? run->file(io::RunDirectory::kCaseCopy).string() : source->description.origin;
+        json["design"] = design_name;
+        json["cost"] = o->oracle->cost().name();
+        io::add_members(json, io::to_json(c, options));
+        if (run) run->write_json_file(io::RunDirectory::kCertificate, json);
+        py::object result = to_python(json);
+        result.attr("__setitem__")("report", c.report());
+        return result;
+      },
+      py::arg("case") = py::none(), py::arg("alpha") = py::none(), py::kw_only(), py::arg("run_directory") = py::none(),
+      py::arg("cap") = 4096,
+      R"doc(The optimality certificate of a design (thesis §5.3; docs/certificate.md): index sets, |𝕃| and
+the ξ_i of its pieces, the Clarke stationarity distance δ = dist(0, conv{ξ_i} + N_Υ(α)), condition
+(MF1′) and the extreme-point check. Either ``certify(case, alpha)`` (α [m], default α⁰) or
+``certify(run_directory=DIR)`` for a run written by ``optimize`` (reads DIR/case.toml and
+DIR/final_design.json, writes DIR/certificate.json like ``frictopt certify``). Returns a Summary
+with the fields of certificate.json plus ``report`` (the CLI's text). ``cap`` bounds the pieces
+enumerated (above it a seeded sample). A failed solve is the status, not an exception.)doc");
+}
+
+}  // namespace frictopt::python

@@ -1,0 +1,87 @@
+# SPDX-License-Identifier: MIT
+"""Oracle Θ(α) and its subgradient, check_gradient, certify, FCLIB export."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import frictopt
+
+
+@pytest.fixture(scope="module")
+def oracle(coarse_case: frictopt.Case) -> frictopt.Oracle:
+    return frictopt.Oracle(coarse_case)
+
+
+def test_evaluate_and_call(oracle: frictopt.Oracle, coarse_case: frictopt.Case) -> None:
+    e = oracle.evaluate()
+    assert e.ok, e.message
+    assert e.value > 0.0 and e.subgradient.shape == (16,)
+    theta, xi = oracle(coarse_case.initial_design)
+    assert theta == e.value
+    np.testing.assert_array_equal(xi, e.subgradient)
+    assert oracle.cost == "target_normal_force"  # the cost module's name of [cost] kind target_pressure
+    assert len(oracle.friction_parameters) == e.friction_gradient.size == 4
+    assert "Θ =" in repr(e) and "frictopt.Oracle" in repr(oracle)
+
+
+def test_subgradient_matches_a_directional_difference(oracle: frictopt.Oracle, coarse_case: frictopt.Case) -> None:
+    alpha = coarse_case.initial_design
+    e = oracle.evaluate(alpha)
+    direction = np.random.default_rng(1).normal(size=alpha.size)
+    h = 1e-8
+    forward = oracle.evaluate(alpha + h * direction, with_subgradient=False).value
+    backward = oracle.evaluate(alpha - h * direction, with_subgradient=False).value
+    if e.weak_nodes == 0:  # smooth here: the adjoint ξ is the gradient
+        assert (forward - backward) / (2 * h) == pytest.approx(e.subgradient @ direction, rel=1e-5)
+
+
+def test_oracle_needs_contact_and_cost(coarse_case: frictopt.Case) -> None:
+    with pytest.raises(ValueError, match="cost"):
+        frictopt.Oracle(coarse_case.with_overrides(cost=None))
+    with pytest.raises(ValueError, match="alpha has 2 entries"):
+        frictopt.Oracle(coarse_case).evaluate([1.0, 2.0])
+
+
+def test_check_gradient(coarse_case: frictopt.Case) -> None:
+    r = frictopt.check_gradient(coarse_case)
+    assert r.ok and r.subgradient.shape == r.finite_difference.shape == (16,)
+    if r.weak_nodes == 0:
+        assert r.max_relative_error < 1e-4
+    assert set(r.friction_gradient) == {f"mu_vertices[{j}]" for j in range(4)}
+    assert r.step == pytest.approx(1e-6 * np.abs(coarse_case.initial_design).max())
+
+
+def test_certify_at_the_initial_design(coarse_case: frictopt.Case) -> None:
+    c = frictopt.certify(coarse_case, cap=64)
+    assert c.status == "converged", c.message
+    assert c.command == "certify" and c.value > 0.0
+    assert c.cardinality_L >= 1 and len(c.pieces) >= 1
+    assert c.clarke.distance >= 0.0 and c.clarke.relative_distance <= 1.0 + 1e-12
+    # Far from optimal: the initial dish is not stationary.
+    assert not c.clarke.stationary
+    assert "Clarke" in c.report or "δ" in c.report
+    assert isinstance(c.mf1.full_row_rank, bool)
+    assert json.loads(c.to_json())["status"] == "converged"
+
+
+def test_export_fclib(root, tmp_path) -> None:
+    case = frictopt.load_case(root / "cases3d" / "punch" / "case.toml").with_overrides(mesh={"cells": [6, 6, 3]})
+    body = frictopt.Body(case)
+    state = body.solve()
+    info = body.export_fclib(tmp_path / "punch.hdf5", state)
+    assert (tmp_path / "punch.hdf5").stat().st_size > 0
+    assert info.spacedim == 3 and info.num_contacts == body.num_contact_nodes
+    assert info.force_unit == 1.0 and info.length_unit == 1.0
+    with pytest.raises(ValueError, match="not solved on this body"):
+        frictopt.Body(case).export_fclib(tmp_path / "x.hdf5", state)
+
+
+def test_export_fclib_rejects_anisotropic_laws(coarse_case: frictopt.Case, tmp_path) -> None:
+    body = frictopt.Body(coarse_case)
+    state = body.solve()
+    with pytest.raises(ValueError, match="isotropic"):
+        body.export_fclib(tmp_path / "x.hdf5", state)
+    assert not (tmp_path / "x.hdf5").exists()
