@@ -400,6 +400,7 @@ class Run {
   BundleTrust::Summary& s_;
   const DenseQpSolver solver_;
   std::string last_failure_;
+  bool resolution_reached_ = false;  // set by update_t, reported by inner_iteration
   int restarts_ = 0;
   int tightenings_ = 0;
   double test_factor_ = 1.0;  // stopping test uses test_factor_·ε (see certify)
@@ -419,6 +420,14 @@ bool Run::inner_iteration(BundleTrust::IterationSummary& st, Trial& out) {
   // iteration later runs out of trials [ADDITION: avoids losing a known decrease].
   bool have_candidate = false;
   Trial candidate;
+  if (resolution_reached_) {
+    std::ostringstream m;
+    m << "the stopping test passed but the certificate " << s_.certificate_distance
+      << " exceeded its bound; after tightening the test, the line search returned a point the "
+         "bundle already holds (the oracle's resolution is reached): x is not certified stationary";
+    finish(st, Status::kStalled, StopReason::kStationarityNotCertified, m.str());
+    return false;
+  }
   for (;;) {
     if (j > o_.max_inner_iterations || t < t_min) {
       if (have_candidate) {
@@ -638,6 +647,13 @@ void Run::update_t(BundleTrust::IterationSummary& st, const Trial& trial) {
   if (trial.kind == StepKind::kSerious && trial.ratio >= o_.model_agreement && t_governs) {
     const double grown = trial.ratio >= 1.0 ? o_.t_growth_limit * t : t / (2.0 * (1.0 - trial.ratio));
     t = std::clamp(grown, t, o_.t_growth_limit * t);
+  } else if (trial.kind == StepKind::kLineSearchNull && trial.repeats_known_point && tightenings_ > 0) {
+    // The stated test already passed here and the certificate refused it (hence the
+    // tightening); now the line search returns a point the bundle holds, so no cut can sharpen
+    // the model any more: the oracle's resolution is reached. Halving t would only repeat this
+    // (the 2D example 5.2.2: t from 0.65 to 4e-14 over 1 000 evaluations at a fixed center).
+    // End with what the certificate found (inner_iteration reports it).
+    resolution_reached_ = true;
   } else if (trial.kind == StepKind::kLineSearchNull && trial.repeats_known_point) {
     // The line search ended at a point the bundle already holds: the new cut cannot change the
     // next QP, which would repeat the same line search (21 evaluations each, until the
