@@ -6,7 +6,10 @@
 //   optim_testset_table [--epsilon E] [--accuracy A] [--baseline] [--only NAME] > table.md
 // --epsilon sets BundleTrust::Options::epsilon (default: the default, 1e-4) and --accuracy the
 // relative accuracy checked (default: 1e-4). --baseline adds the projected subgradient method
-// with 10 000 evaluations. --only runs one problem and prints its brief report on stderr.
+// with 10 000 evaluations. --only runs one problem and prints its brief report on stderr;
+// with --only, the final point is also checked by gradient sampling (Burke–Lewis–Overton): the
+// certificate of g(x) and 4n fresh subgradients at uniform points of the ball B(x, r), for
+// r = 1e-2, 1e-4, 1e-6, 1e-8 times max(1, ‖x‖), relative to the largest of them (stderr).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +20,10 @@
 #include "frictopt/optim/bundle_trust.hpp"
 #include "frictopt/optim/luksan_vlcek.hpp"
 #include "frictopt/optim/projected_subgradient.hpp"
+#include "frictopt/optim/stationarity.hpp"
+
+#include <Eigen/Core>
+#include <random>
 
 namespace fo = frictopt::optim;
 
@@ -68,7 +75,30 @@ int main(int argc, char** argv) {
       std::printf(" %.1e |", p.relative_error(b.f));
     }
     std::printf("\n");
-    if (!only.empty()) std::fprintf(stderr, "%s\n", s.brief_report().c_str());
+    if (!only.empty()) {
+      std::fprintf(stderr, "%s\n", s.brief_report().c_str());
+      std::mt19937 rng(1);
+      std::normal_distribution<double> normal;
+      std::uniform_real_distribution<double> uniform;
+      const Eigen::Index n = s.x.size();
+      for (double r : {1e-2, 1e-4, 1e-6, 1e-8}) {
+        const double radius = r * std::max(1.0, s.x.norm());
+        Eigen::MatrixXd Xi(n, 4 * n + 1);
+        Xi.col(0) = p.evaluate(s.x).subgradient;
+        for (Eigen::Index j = 1; j < Xi.cols(); ++j) {
+          Eigen::VectorXd u(n);
+          for (Eigen::Index i = 0; i < n; ++i) u(i) = normal(rng);
+          u *= radius * std::pow(uniform(rng), 1.0 / static_cast<double>(n)) / u.norm();
+          Eigen::VectorXd y = s.x + u;
+          // Keep the sample feasible: a point outside Υ has no normal cone of x's.
+          if (p.constraints.max_violation(y) > 0.0) y = s.x;
+          Xi.col(j) = p.evaluate(y).subgradient;
+        }
+        const auto c = fo::stationarity_certificate(Xi, s.x, p.constraints);
+        std::fprintf(stderr, "gradient sampling r = %.0e: delta = %.3e, max|g| = %.3e, delta/max|g| = %.2e\n", r,
+                     c.distance, c.subgradient_scale, c.distance / c.subgradient_scale);
+      }
+    }
   }
   auto median = [](std::vector<int> v) {
     if (v.empty()) return 0.0;

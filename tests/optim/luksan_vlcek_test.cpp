@@ -147,3 +147,18 @@ INSTANTIATE_TEST_SUITE_P(SmallProblems, LuksanVlcekQuick,
                          [](const ::testing::TestParamInfo<std::string>& param_info) {
                            return test_name(param_info.param);
                          });
+
+// Regression (issue 16, second round): BPfilter's steep log pieces give G = ‖g(x_k)‖ ≈ 2e3 at
+// f ≈ 7e-3, so a certificate δ = 4e-3 passed ε·G while f was 4.5e-3 off relative. The bound
+// ε·min(G, F/ρ) (ρ: radius of the local subgradients, docs/optim.md) refuses that point: the run
+// may end stalled, but never "converged" at an inaccurate value.
+TEST(LuksanVlcekRegression, BPfilterDoesNotReportConvergedAtAnInaccurateValue) {
+  const auto p = fo::luksan_vlcek_problem("BPfilter");
+  fo::FunctionOracle oracle(p.evaluate);
+  const auto s = fo::BundleTrust({}, p.constraints).minimize(oracle, p.x0);
+  if (s.converged()) {
+    EXPECT_LE(p.relative_error(s.f), kAccuracy) << s.brief_report();
+  } else {
+    EXPECT_EQ(s.stop_reason, fo::StopReason::kStationarityNotCertified) << s.brief_report();
+  }
+}
