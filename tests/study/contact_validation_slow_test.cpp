@@ -110,8 +110,9 @@ TEST(HertzContact3D, GradedGridIsMoreAccuratePerUnknown) {
     EXPECT_LE(rel(graded.m.fit.radius, graded.m.theory.radius), tol);
     EXPECT_LE(rel(graded.m.moment_radius, graded.m.theory.radius), tol);
     EXPECT_LE(rel(graded.m.peak_pressure, graded.m.theory.pressure), tol);
-    if (graded.cells >= 24)
+    if (graded.cells >= 24) {
       EXPECT_LT(rel(graded.m.fit.radius, graded.m.theory.radius), rel(uniform.m.fit.radius, uniform.m.theory.radius));
+    }
   }
 }
 
