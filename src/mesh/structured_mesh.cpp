@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/mesh/graded_coordinates.hpp"
 
 namespace frictopt::mesh {
 
@@ -36,6 +37,10 @@ std::array<int, 3> validated_cells(int dim, double height, const GridResolution&
   }
   if (!(resolution.grading >= 1.0 && resolution.grading <= 10.0))
     throw InvalidInput(fmt::format("mesh.grading = {}; expected within [1, 10]", resolution.grading));
+  if (!(resolution.growth >= 1.0 && resolution.growth <= 2.0))
+    throw InvalidInput(fmt::format("mesh.growth = {}; expected within [1, 2] (1 = uniform columns)", resolution.growth));
+  if (resolution.refine_box && resolution.growth == 1.0)
+    throw InvalidInput("mesh.refine_box is given but mesh.growth = 1 (uniform columns); expected growth in (1, 2]");
   if (!(height > 0)) throw InvalidInput(fmt::format("geometry.height = {}; expected > 0", height));
   // Node, element and DOF indices are int: refuse a grid whose counts do not fit, before any
   // allocation (issue 17, item 6: the counts used to wrap around in 32-bit arithmetic).
@@ -64,6 +69,23 @@ StructuredMesh::StructuredMesh(const shape::BezierShape& shape, double height, c
   for (int k = 0; k <= nv; ++k) s_[static_cast<std::size_t>(k)] = std::pow(static_cast<double>(k) / nv, resolution.grading);
 
   const auto extent = shape.extents();
+  // Column positions per in-plane direction: uniform (the formula of the uniform grid, so the
+  // default is bit-identical), or graded toward the refinement box (issue 18, item 1).
+  for (int c = 0; c < dim - 1; ++c) {
+    const double length = extent[static_cast<std::size_t>(c)];
+    const int n = cells_[static_cast<std::size_t>(c)];
+    if (resolution.growth == 1.0) {
+      columns_[static_cast<std::size_t>(c)] = uniform_coordinates(length, n);
+    } else {
+      const double lo = resolution.refine_box ? (*resolution.refine_box)[2 * static_cast<std::size_t>(c)]
+                                              : length * (1 - kDefaultRefineFraction) / 2;
+      const double hi = resolution.refine_box ? (*resolution.refine_box)[2 * static_cast<std::size_t>(c) + 1]
+                                              : length * (1 + kDefaultRefineFraction) / 2;
+      columns_[static_cast<std::size_t>(c)] =
+          graded_coordinates(length, n, lo, hi, resolution.growth, fmt::format("mesh.cells[{}]", c));
+    }
+  }
+  if (dim == 2) columns_[1] = {0.0};
   const int d = shape.num_controls();
   Eigen::MatrixXd reference(num_nodes, dim);
   std::vector<Eigen::Triplet<double>> triplets;
@@ -71,8 +93,8 @@ StructuredMesh::StructuredMesh(const shape::BezierShape& shape, double height, c
   for (int i2 = 0; i2 <= n2; ++i2)
     for (int i1 = 0; i1 <= n1; ++i1) {
       Eigen::VectorXd x_plane(dim - 1);
-      x_plane(0) = extent[0] * i1 / n1;
-      if (dim == 3) x_plane(1) = extent[1] * i2 / n2;
+      x_plane(0) = columns_[0][static_cast<std::size_t>(i1)];
+      if (dim == 3) x_plane(1) = columns_[1][static_cast<std::size_t>(i2)];
       const Eigen::VectorXd basis = shape.basis(x_plane);
       for (int k = 0; k <= nv; ++k) {
         const int n = node(i1, i2, k);

@@ -19,6 +19,7 @@
 #include "frictopt/contact/contact_state.hpp"
 #include "frictopt/contact/delassus.hpp"
 #include "frictopt/contact/friction_law.hpp"
+#include "frictopt/mesh/graded_coordinates.hpp"
 #include "frictopt/study/elastic_body.hpp"
 
 namespace frictopt::study::validation {
@@ -38,7 +39,21 @@ struct BlockSpec {
   contact::FrictionLaw law = contact::FrictionLaw::disc(0.0);
   contact::CoulombMethod method = contact::CoulombMethod::kFixedPoint;
   int dense_max_unknowns = 1500;
+  /// In-plane grading (issue 18, item 1): growth > 1 grades the columns toward the square
+  /// [refine_min, refine_max]² around the apex; 1 keeps the uniform grid.
+  double growth = 1.0;
+  double refine_min = 0.0, refine_max = 0.0;  ///< [m], both in-plane directions
 };
+
+/// The in-plane cell size at the apex: L/cells, or the refinement box's cell when graded.
+inline double apex_cell(const BlockSpec& s) {
+  if (s.growth == 1.0) return s.width / s.cells;
+  const std::vector<double> x =
+      mesh::graded_coordinates(s.width, s.cells, s.refine_min, s.refine_max, s.growth, "BlockSpec.cells");
+  double h = s.width;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) h = std::min(h, x[i + 1] - x[i]);
+  return h;
+}
 
 /// Control heights of the 1D quadratic (x − L/2)²/(2R) on [0, L]: Bernstein coefficients of a
 /// quadratic with values f(0), f(L/2), f(L) are f(0), 2f(L/2) − (f(0)+f(L))/2, f(L).
@@ -58,10 +73,11 @@ inline Eigen::VectorXd paraboloid_design(const BlockSpec& s) {
   return alpha;
 }
 
-/// Vertical grading that makes the bottom layer about as thick as an in-plane cell:
-/// H/layers^g = L/cells, clipped to the mesh's range [1, 10].
+/// Vertical grading that makes the bottom layer about as thick as an in-plane cell at the apex:
+/// H/layers^g = h (h = L/cells on the uniform grid), clipped to the mesh's range [1, 10].
 inline double bottom_grading(const BlockSpec& s) {
-  const double g = std::log(s.height * s.cells / s.width) / std::log(static_cast<double>(s.layers));
+  const double g = s.growth == 1.0 ? std::log(s.height * s.cells / s.width) / std::log(static_cast<double>(s.layers))
+                                   : std::log(s.height / apex_cell(s)) / std::log(static_cast<double>(s.layers));
   return std::clamp(g, 1.0, 10.0);
 }
 
@@ -72,6 +88,10 @@ inline BodyDefinition block_definition(const BlockSpec& s) {
   def.height = s.height;
   def.resolution.cells = {s.cells, s.dim == 2 ? 1 : s.cells, s.layers};
   def.resolution.grading = bottom_grading(s);
+  if (s.growth != 1.0) {
+    def.resolution.growth = s.growth;
+    def.resolution.refine_box = std::array<double, 4>{s.refine_min, s.refine_max, s.refine_min, s.refine_max};
+  }
   def.material.young = s.young;
   def.material.poisson = s.poisson;
   def.material.plane_model = fem::PlaneModel::kPlaneStrain;
@@ -264,7 +284,7 @@ struct HertzMeasurement {
   double peak_pressure = 0.0;       ///< λ/area at the apex node
   double outermost_loaded = 0.0;    ///< largest r of a loaded (not separated) node
   double innermost_unloaded = 0.0;  ///< smallest r of a separated node
-  double cell = 0.0;                ///< in-plane cell size h
+  double cell = 0.0;                ///< in-plane cell size h at the apex
 };
 inline HertzMeasurement measure_hertz(const ElasticBody& body, const BodyState& state, const BlockSpec& s) {
   const contact::ContactState& st = state.contact->state;
@@ -272,7 +292,7 @@ inline HertzMeasurement measure_hertz(const ElasticBody& body, const BodyState& 
   const Eigen::VectorXd pressure = lambda.cwiseQuotient(tributary_areas(body));
   const Eigen::VectorXd r = apex_distances(body, s.width);
   HertzMeasurement m;
-  m.cell = s.width / s.cells;
+  m.cell = apex_cell(s);
   m.load = lambda.sum();
   m.theory = hertz(s.dim, m.load, s.radius, s.young, s.poisson);
   m.moment_radius = moment_radius(s.dim, lambda, r);

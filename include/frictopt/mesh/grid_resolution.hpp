@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 namespace frictopt::mesh {
 
@@ -12,6 +13,16 @@ struct GridResolution {
   /// Vertical bias toward the contact surface: layer k sits at ŝ_k = (k/n_vertical)^grading,
   /// so grading > 1 refines near the bottom where the contact stresses concentrate. In [1, 10].
   double grading = 1.0;
+  /// In-plane grading (issue 18): 1 keeps the columns uniform (x_i = L·i/n). growth > 1 puts
+  /// uniform cells inside refine_box and cells growing geometrically, by a ratio of at most
+  /// `growth` between neighbours, from the box to the sides (graded_coordinates.hpp). In [1, 2].
+  double growth = 1.0;
+  /// [x1min, x1max, x2min, x2max] in metres (the x2 pair is unused in 2D); without it and with
+  /// growth > 1, the centred box of a third of each extent (kDefaultRefineFraction).
+  std::optional<std::array<double, 4>> refine_box{};
 };
+
+/// The default refinement box is the central 1/3 of each in-plane extent.
+inline constexpr double kDefaultRefineFraction = 1.0 / 3.0;
 
 }  // namespace frictopt::mesh

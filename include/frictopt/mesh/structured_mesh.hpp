@@ -37,8 +37,11 @@ StructuredGridSizes structured_grid_sizes(int dim, const GridResolution& resolut
 ///
 /// Node numbering: column c = i1 + (n1+1)·i2 (i2 = 0 in 2D), node = c + num_columns·k with
 /// layer k = 0 (bottom, Γ_c) .. n_vertical (top). Coordinates of a node in column c, layer k:
-///   x' = (i1·a/n1, i2·b/n2),   x_dim = ŝ_k·C4 + (1 − ŝ_k)·G_α(x')        (spec 01, (A-MESH))
+///   x' = (ξ1_i1, ξ2_i2),   x_dim = ŝ_k·C4 + (1 − ŝ_k)·G_α(x')        (spec 01, (A-MESH))
 /// so X(α) = X_ref + V α with X_ref(x_dim) = ŝ_k·C4 and V[(node, dim−1), :] = (1−ŝ_k)·basis(x').
+/// The column lines ξ are uniform (ξ1_i = i·a/n1) or, with resolution.growth > 1, graded toward
+/// the refinement box (graded_coordinates.hpp); either way the columns are fixed and V is the
+/// Bernstein basis at the actual column positions, so V stays constant.
 ///
 /// The faces become the named boundary sets of mesh(): "left", "right" (x1 = 0, a), "front",
 /// "back" (x2 = 0, b; 3D only), "bottom" (the Bézier surface, Γ_c) and "top" (x_dim = C4).
@@ -46,7 +49,8 @@ StructuredGridSizes structured_grid_sizes(int dim, const GridResolution& resolut
 class StructuredMesh {
  public:
   /// `shape` gives the bottom surface (its extents are the body's a, b); `height` is C4.
-  /// Throws InvalidInput for a resolution < 1, a grading outside [1, 10], a height <= 0, or a
+  /// Throws InvalidInput for a resolution < 1, a grading outside [1, 10], a growth outside [1, 2],
+  /// a refinement box that does not fit or too few cells to grade, a height <= 0, or a
   /// grid with more than 2^31 − 1 unknowns (node and DOF indices are 32-bit).
   StructuredMesh(const shape::BezierShape& shape, double height, const GridResolution& resolution);
 
@@ -64,6 +68,8 @@ class StructuredMesh {
   const shape::BezierShape& shape() const { return shape_; }
   /// Node index of column (i1, i2) in layer k.
   int node(int i1, int i2, int k) const { return i1 + (cells_[0] + 1) * i2 + num_columns_ * k; }
+  /// The column lines along in-plane direction c (0: x1, 1: x2 in 3D; {0} for x2 in 2D) [m].
+  const std::vector<double>& column_coordinates(int c) const { return columns_[static_cast<std::size_t>(c)]; }
   /// Vertical parameter ŝ_k of layer k.
   double layer_parameter(int k) const { return s_[static_cast<std::size_t>(k)]; }
 
@@ -76,6 +82,7 @@ class StructuredMesh {
   std::array<int, 3> cells_;
   int num_columns_;
   std::vector<double> s_;
+  std::array<std::vector<double>, 2> columns_;
   Mesh mesh_;
 };
 
