@@ -17,5 +17,12 @@ cmake --build "$build" -j "$jobs"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 cd "$build"
-if [ "$#" -eq 0 ]; then set -- -L quick -LE "slow|viz"; fi
+# Excluded: the tests that call Ceres' GradientChecker (study_identification_test). Eigen frees
+# with its own aligned allocator in ASan-instrumented code (it disables "malloc is aligned"
+# under __SANITIZE_ADDRESS__) matrices that Debian's uninstrumented libceres allocated with
+# malloc, which ASan reports as a heap-buffer-overflow in Eigen::internal::handmade_aligned_free
+# — a mismatch between our instrumented Eigen and the library's, not a defect of frictopt.
+if [ "$#" -eq 0 ]; then
+  set -- -L quick -LE "slow|viz" -E "GradientCheckerOnIdentification|IdentificationJacobian"
+fi
 ctest --output-on-failure -j "$jobs" "$@"
