@@ -76,8 +76,10 @@ class RunDirectory {
   /// returns the path to load; on kResume and kExisting the run's own copy.
   [[nodiscard]] std::filesystem::path store_case();
 
-  /// Compares the problem `description` and `body` define with the run's checkpoint and
-  /// with the case argument; throws InvalidInput naming every setting that changed.
+  /// kResume: refuses (InvalidInput naming every setting that changed) when the case argument
+  /// defines another problem than the run's case.toml (`run_case`), or when `current` (the
+  /// fingerprint of run_case and its mesh) differs from the checkpoint's. Only [optimization]
+  /// and [output] may change between resumes.
   void check_resume(const CaseDescription& run_case, const RunCheckpoint& checkpoint,
                     const CaseFingerprint& current) const;
 
