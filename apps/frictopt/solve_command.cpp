@@ -33,22 +33,7 @@ int run_solve(const std::filesystem::path& case_path, const std::filesystem::pat
   study::BodyState state = body.solve(body.definition().initial_design, "initial design");
   if (state.contact) fmt::print("{}\n", state.contact->summary.brief_report());
   fmt::print("{}\n", state.summary.brief_report());
-  io::JsonValue summary = io::JsonValue::object();
-  summary["case"] = case_path.string();
-  summary["command"] = "solve";
-  io::add_members(summary, io::to_json(state.summary));
-  summary["dim"] = mesh.dim();
-  summary["num_nodes"] = static_cast<std::int64_t>(mesh.num_nodes());
-  summary["num_unknowns"] = static_cast<std::int64_t>(body.elasticity().dofs().num_free());
-  summary["alpha"] = state.alpha;
-  if (state.contact) {
-    const auto& c = *state.contact;
-    io::JsonValue contact = io::to_json(c.summary);
-    contact["num_contact_nodes"] = static_cast<std::int64_t>(c.state.num_nodes());
-    contact["dense_delassus"] = c.dense_delassus;
-    contact["total_normal_force"] = c.state.normal_forces().sum();
-    summary["contact"] = contact;
-  }
+  const io::JsonValue summary = io::solve_summary(case_path.string(), body, state);
   if (state.summary.status != Status::kConverged) {
     // The failure is reported in summary.json too, so a script sees why.
     run.write_json_file(io::RunDirectory::kSummary, summary);
@@ -67,10 +52,6 @@ int run_solve(const std::filesystem::path& case_path, const std::filesystem::pat
     io::write_contact_csv(csv, body, *state.contact);
     fmt::print("wrote {}\n", csv.string());
   }
-  summary["strain_energy"] = state.strain_energy;
-  summary["external_work"] = state.external_work;
-  summary["volume"] = state.volume;
-  summary["max_von_mises"] = state.stress.nodal_von_mises.maxCoeff();
   run.write_json_file(io::RunDirectory::kSummary, summary);
   return kExitOk;
 }

@@ -16,30 +16,7 @@
 namespace frictopt::python {
 
 io::JsonValue solve_summary_json(const Case& source, const study::ElasticBody& body, const study::BodyState& state) {
-  // The keys and values of apps/frictopt/solve_command.cpp's summary.json.
-  const auto& mesh = body.mesh();
-  io::JsonValue summary = io::JsonValue::object();
-  summary["case"] = source.description.origin;
-  summary["command"] = "solve";
-  io::add_members(summary, io::to_json(state.summary));
-  summary["dim"] = mesh.dim();
-  summary["num_nodes"] = static_cast<std::int64_t>(mesh.num_nodes());
-  summary["num_unknowns"] = static_cast<std::int64_t>(body.elasticity().dofs().num_free());
-  summary["alpha"] = state.alpha;
-  if (state.contact) {
-    const auto& c = *state.contact;
-    io::JsonValue contact = io::to_json(c.summary);
-    contact["num_contact_nodes"] = static_cast<std::int64_t>(c.state.num_nodes());
-    contact["dense_delassus"] = c.dense_delassus;
-    contact["total_normal_force"] = c.state.normal_forces().sum();
-    summary["contact"] = contact;
-  }
-  if (state.summary.status != Status::kConverged) return summary;  // as the CLI: no energies
-  summary["strain_energy"] = state.strain_energy;
-  summary["external_work"] = state.external_work;
-  summary["volume"] = state.volume;
-  summary["max_von_mises"] = state.stress.nodal_von_mises.maxCoeff();
-  return summary;
+  return io::solve_summary(source.description.origin, body, state);  // the CLI's summary.json
 }
 
 namespace {

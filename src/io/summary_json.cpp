@@ -249,4 +249,30 @@ JsonValue to_json(const study::Certificate& c, const study::CertifyOptions& opti
   return json;
 }
 
+JsonValue solve_summary(const std::string& case_name, const study::ElasticBody& body, const study::BodyState& state) {
+  const auto& mesh = body.mesh();
+  JsonValue summary = JsonValue::object();
+  summary["case"] = case_name;
+  summary["command"] = "solve";
+  add_members(summary, to_json(state.summary));
+  summary["dim"] = mesh.dim();
+  summary["num_nodes"] = static_cast<std::int64_t>(mesh.num_nodes());
+  summary["num_unknowns"] = static_cast<std::int64_t>(body.elasticity().dofs().num_free());
+  summary["alpha"] = state.alpha;
+  if (state.contact) {
+    const auto& c = *state.contact;
+    JsonValue contact = to_json(c.summary);
+    contact["num_contact_nodes"] = static_cast<std::int64_t>(c.state.num_nodes());
+    contact["dense_delassus"] = c.dense_delassus;
+    contact["total_normal_force"] = c.state.normal_forces().sum();
+    summary["contact"] = contact;
+  }
+  if (state.summary.status != Status::kConverged) return summary;  // no energies of a failed state
+  summary["strain_energy"] = state.strain_energy;
+  summary["external_work"] = state.external_work;
+  summary["volume"] = state.volume;
+  summary["max_von_mises"] = state.stress.nodal_von_mises.maxCoeff();
+  return summary;
+}
+
 }  // namespace frictopt::io

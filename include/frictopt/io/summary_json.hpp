@@ -21,6 +21,10 @@ namespace frictopt::io {
 void add_members(JsonValue& into, const JsonValue& members);
 
 [[nodiscard]] JsonValue to_json(const study::StateSummary& summary);
+/// summary.json of `solve` (CLI and Python alike): the case, the state's summary, mesh sizes, the
+/// contact summary and, for a converged state, energies, volume and the largest von Mises stress.
+[[nodiscard]] JsonValue solve_summary(const std::string& case_name, const study::ElasticBody& body,
+                                      const study::BodyState& state);
 [[nodiscard]] JsonValue to_json(const contact::TrescaSolver::Summary& summary);
 [[nodiscard]] JsonValue to_json(const contact::CoulombSolver::Summary& summary);
 [[nodiscard]] JsonValue to_json(const sensitivity::AdjointSensitivity::Summary& summary);
