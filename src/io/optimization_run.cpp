@@ -17,50 +17,57 @@
 #include "frictopt/study/shape_oracle.hpp"
 
 namespace frictopt::io {
-namespace {
 
-const std::vector<std::string> kHistoryColumns = {
-    "iteration",    "evaluations",        "step",          "theta",      "t",           "stationarity_relative",
-    "aggregate_error_relative", "bundle_size", "serious_steps", "null_steps", "state_solves", "coulomb_iterations",
-    "qp_iterations", "weak_nodes",        "state_seconds", "subgradient_seconds", "elapsed_seconds"};
+const std::vector<std::string>& optimization_history_columns() {
+  static const std::vector<std::string> columns = {
+      "iteration",     "evaluations", "step",          "theta",      "t",
+      "stationarity_relative",        "aggregate_error_relative",    "bundle_size",
+      "serious_steps", "null_steps",  "state_solves",  "coulomb_iterations",
+      "qp_iterations", "weak_nodes",  "state_seconds", "subgradient_seconds", "elapsed_seconds"};
+  return columns;
+}
 
-}  // namespace
-
-OptimizationRunResult run_optimization(RunDirectory& run, const std::filesystem::path& case_path, bool resume,
-                                       const std::function<void(const std::string&)>& report) {
-  // The run solves its own copy of the case, read as the user's file: output names and
-  // messages follow the case the user gave, not the run directory's copy.
-  const CaseDescription description =
-      load_case(case_path, run.case_argument().empty() ? case_path.string() : run.case_argument().string());
+OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
+  const CaseDescription& description = request.description;
+  const std::string& case_name = request.case_name;
+  RunDirectory* const run = request.run;
+  const auto report = [&](const std::string& line) {
+    if (request.report) request.report(line);
+  };
+  if (request.resume && run == nullptr) throw InvalidInput(case_name + ": a resume needs a run directory");
   const study::BodyDefinition& definition = description.body;
-  if (!definition.contact) throw InvalidInput(case_path.string() + ": optimize needs a [contact] table");
+  if (!definition.contact) throw InvalidInput(case_name + ": optimize needs a [contact] table");
+  optim::BundleTrust::Options options = request.options.value_or(description.optimization);
+  options.validate();
   study::ElasticBody body(definition);
-  study::require_admissible_design(body, definition.initial_design, 1e-9,
-                                   case_path.string() + ": design.initial");
+  study::require_admissible_design(body, definition.initial_design, 1e-9, case_name + ": design.initial");
   const CaseFingerprint fingerprint = fingerprint_of(description, body);
   std::optional<RunCheckpoint> checkpoint;
-  if (resume) {
-    checkpoint = run.read_checkpoint();
-    run.check_resume(description, *checkpoint, fingerprint);
+  if (request.resume) {
+    checkpoint = run->read_checkpoint();
+    run->check_resume(description, *checkpoint, fingerprint);
   }
   study::ShapeOracle oracle(body, description.required_cost());
-  const optim::BundleTrust::Options& options = description.optimization;
 
-  std::vector<std::string> notes;
-  CsvWriter history = run.open_history(kHistoryColumns, checkpoint ? checkpoint->method.iteration : 0, notes);
-  run.start_series(definition.name, checkpoint ? checkpoint->method.iteration : 0, notes);
-  for (const std::string& note : notes) report(fmt::format("note: {}", note));
+  OptimizationRunResult result;
+  std::optional<CsvWriter> history;
+  if (run) {
+    const int start_iteration = checkpoint ? checkpoint->method.iteration : 0;
+    history.emplace(run->open_history(optimization_history_columns(), start_iteration, result.notes));
+    run->start_series(definition.name, start_iteration, result.notes);
+  }
+  for (const std::string& note : result.notes) report(fmt::format("note: {}", note));
 
   const int every = description.output.every;
   int output_solves = 0;  // solves made for pictures only: not counted as the method's
   const auto write_design_vtu = [&](int iteration, const Eigen::VectorXd& alpha) {
-    if (!description.output.vtk) return;
+    if (run == nullptr || !description.output.vtk) return;
     // Output must not change the numbers: a state solved here for the picture (the design is
     // not among the oracle's recent states, e.g. right after a resume) would move the warm
     // start of the next solve, so it is restored afterwards.
     const auto warm_start = body.warm_start();
     const int solves = oracle.num_state_solves();
-    run.add_to_series(iteration, [&](const std::filesystem::path& vtu) { write_state_vtu(vtu, body, oracle.state(alpha)); });
+    run->add_to_series(iteration, [&](const std::filesystem::path& vtu) { write_state_vtu(vtu, body, oracle.state(alpha)); });
     output_solves += oracle.num_state_solves() - solves;
     body.set_warm_start(warm_start);
   };
@@ -87,7 +94,7 @@ OptimizationRunResult run_optimization(RunDirectory& run, const std::filesystem:
   }
 
   report(fmt::format("{}: {} design variables, {} contact nodes, cost {}, {} inequalities and {} equalities of Υ",
-             case_path.string(), definition.shape.num_controls(), body.contact_boundary()->num_nodes(),
+             case_name, definition.shape.num_controls(), body.contact_boundary()->num_nodes(),
              oracle.cost().name(), body.admissible_set().A_in.rows(), body.admissible_set().A_eq.rows()));
   // The method minimizes Θ/|Θ(α⁰)| (study defaults): its stationarity measure ‖z + ω‖ and
   // aggregate error are relative to |Θ(α⁰)| per unit of α; summary.json also gives them in Θ's units.
@@ -104,29 +111,32 @@ OptimizationRunResult run_optimization(RunDirectory& run, const std::filesystem:
     if (p.center.ok)  // else the centre is the checkpoint's, not evaluated by this process
       center = {p.center.contact.iterations, p.center.contact.qp_iterations, p.center.index_sets.num_weak_nodes(),
                 p.center.state_seconds, p.center.subgradient_seconds};
-    history.write_row({static_cast<std::int64_t>(m.iteration), static_cast<std::int64_t>(m.evaluations),
-                       std::string(optim::to_string(m.step)), m.f, m.t, m.stationarity, m.aggregate_error,
-                       static_cast<std::int64_t>(m.bundle.size()), static_cast<std::int64_t>(m.serious_steps),
-                       static_cast<std::int64_t>(m.null_steps), solves, center.coulomb_iterations,
-                       center.qp_iterations, center.weak_nodes, center.state_seconds, center.subgradient_seconds,
-                       elapsed});
+    const std::vector<CsvValue> row = {
+        static_cast<std::int64_t>(m.iteration), static_cast<std::int64_t>(m.evaluations),
+        std::string(optim::to_string(m.step)), m.f, m.t, m.stationarity, m.aggregate_error,
+        static_cast<std::int64_t>(m.bundle.size()), static_cast<std::int64_t>(m.serious_steps),
+        static_cast<std::int64_t>(m.null_steps), solves, center.coulomb_iterations, center.qp_iterations,
+        center.weak_nodes, center.state_seconds, center.subgradient_seconds, elapsed};
     report(fmt::format("{:>5} {:>6} {:>14.6e} {:>14} {:>10.3e} {:>12.3e} {:>8} {:>8.1f}s", m.iteration, m.evaluations, m.f,
                optim::to_string(m.step), m.t, m.stationarity, center.qp_iterations, elapsed));
-    if (m.iteration % every == 0) write_design_vtu(m.iteration, m.x);
-    // Last, so the checkpoint holds the state the next iteration starts from.
-    RunCheckpoint c;
-    c.method = m;
-    c.fingerprint = fingerprint;
-    if (const auto& warm = body.warm_start()) {
-      c.warm_start = warm->z;
-      c.warm_start_dim = warm->dim;
+    if (run) {
+      history->write_row(row);
+      if (m.iteration % every == 0) write_design_vtu(m.iteration, m.x);
+      // Last, so the checkpoint holds the state the next iteration starts from.
+      RunCheckpoint c;
+      c.method = m;
+      c.fingerprint = fingerprint;
+      if (const auto& warm = body.warm_start()) {
+        c.warm_start = warm->z;
+        c.warm_start_dim = warm->dim;
+      }
+      c.initial_cost = initial_value;
+      c.elapsed_seconds = elapsed;
+      c.state_solves = solves;
+      c.center = center;
+      run->write_checkpoint(c);
     }
-    c.initial_cost = initial_value;
-    c.elapsed_seconds = elapsed;
-    c.state_solves = solves;
-    c.center = center;
-    run.write_checkpoint(c);
-    return CallbackResult::kContinue;
+    return request.on_iteration ? request.on_iteration(row, p) : CallbackResult::kContinue;
   };
 
   const optim::BundleTrust::Summary summary =
@@ -134,13 +144,10 @@ OptimizationRunResult run_optimization(RunDirectory& run, const std::filesystem:
   report(summary.brief_report());
 
   const study::Evaluation& final = oracle.evaluate_design(summary.x, true);
-  if (!run.series_has(summary.iterations)) write_design_vtu(summary.iterations, summary.x);
-  JsonValue design = JsonValue::object();
-  design["alpha"] = summary.x;
-  run.write_json_file(RunDirectory::kFinalDesign, design);
+  if (run && !run->series_has(summary.iterations)) write_design_vtu(summary.iterations, summary.x);
 
   JsonValue json = JsonValue::object();
-  json["case"] = case_path.string();
+  json["case"] = case_name;
   json["command"] = "optimize";
   json["cost"] = oracle.cost().name();
   json["status"] = std::string(to_string(summary.status));
@@ -159,7 +166,7 @@ OptimizationRunResult run_optimization(RunDirectory& run, const std::filesystem:
   json["aggregate_error"] = summary.aggregate_error;
   json["objective_scale"] = summary.objective_scale;  // |Θ(α⁰)|: history.csv's columns are relative to it
   json["stationarity_relative"] = summary.stationarity / summary.objective_scale;
-  json["cost_kind"] = std::string(to_string(description.cost->kind));
+  json["cost_kind"] = std::string(to_string(description.required_cost().kind));
   // The method's state solves over all resumes, as history.csv (pictures' solves not counted).
   json["state_solves"] = solves_offset + oracle.num_state_solves() - solves_before - output_solves;
   json["time_seconds"] = summary.time_seconds;                      // this process's optimizer
@@ -168,12 +175,27 @@ OptimizationRunResult run_optimization(RunDirectory& run, const std::filesystem:
   json["final_contact"] = final.contact.brief_report();
   json["final_contact_solve"] = to_json(final.contact);
   json["optimizer"] = to_json(summary);
-  run.write_json_file(RunDirectory::kSummary, json);
-  OptimizationRunResult result;
+  if (run) {
+    JsonValue design = JsonValue::object();
+    design["alpha"] = summary.x;
+    run->write_json_file(RunDirectory::kFinalDesign, design);
+    run->write_json_file(RunDirectory::kSummary, json);
+  }
   result.summary = summary;
   result.initial_cost = initial_value;
   result.final_cost = final.value;
+  result.summary_json = std::move(json);
   return result;
+}
+
+OptimizationRunResult run_optimization(RunDirectory& run, const std::filesystem::path& case_path, bool resume,
+                                       const std::function<void(const std::string&)>& report) {
+  // The run solves its own copy of the case, read as the user's file: output names and
+  // messages follow the case the user gave, not the run directory's copy.
+  OptimizationRunRequest request{
+      load_case(case_path, run.case_argument().empty() ? case_path.string() : run.case_argument().string()),
+      case_path.string(), &run, resume, std::nullopt, report, {}};
+  return run_optimization(request);
 }
 
 }  // namespace frictopt::io
