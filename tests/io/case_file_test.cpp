@@ -2,6 +2,7 @@
 // Case-file parsing: valid 2D and 3D cases give the expected values; every kind of bad input
 // (syntax, unknown key, wrong type, missing field, out of range, size not matching the
 // dimension) gives an InvalidInput whose message names the field.
+#include "common/invalid_case.hpp"
 #include "frictopt/io/case_file.hpp"
 
 #include <gtest/gtest.h>
@@ -21,6 +22,9 @@
 
 namespace frictopt::io {
 namespace {
+
+using testing::expect_invalid_case;
+using testing::replaced;
 
 using contact::FrictionLawKind;
 using cost::CostKind;
@@ -123,28 +127,7 @@ vtk = false
 name = "block"
 )";
 
-// `base` with the first occurrence of `from` replaced by `to`; fails the test if absent, so
-// a mutation cannot silently test the unmodified case.
-std::string replaced(std::string_view base, std::string_view from, std::string_view to) {
-  std::string text(base);
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << "'" << from << "' not in the base case";
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
 
-// Expects parse_case(text) to throw InvalidInput whose message contains every fragment.
-void expect_invalid(const std::string& text, std::initializer_list<std::string_view> fragments) {
-  try {
-    (void)parse_case(text, "case.toml");
-    ADD_FAILURE() << "no InvalidInput; expected a message with '" << *fragments.begin() << "'";
-  } catch (const InvalidInput& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.rfind("case.toml", 0), 0u) << message;
-    for (std::string_view f : fragments)
-      EXPECT_NE(message.find(f), std::string::npos) << "'" << f << "' not in: " << message;
-  }
-}
 
 TEST(ParseCase, Valid2dCaseGivesTheWrittenValuesAndDefaults) {
   const CaseDescription c = parse_case(kValid2d, "cases2d/thesis/case.toml");
@@ -273,17 +256,17 @@ TEST(ParseCase, PlaneStressIsAccepted) {
 }
 
 TEST(ParseCase, SyntaxErrorNamesTheLine) {
-  expect_invalid(replaced(kValid2d, "a = 2.0", "a = = 2.0"), {"case.toml:4:", "TOML syntax"});
+  expect_invalid_case(replaced(kValid2d, "a = 2.0", "a = = 2.0"), {"case.toml:4:", "TOML syntax"});
 }
 
 TEST(ParseCase, UnknownKeyIsNamedWithTheAcceptedKeysAndASuggestion) {
-  expect_invalid(replaced(kValid2d, "height = 1.0", "heigth = 1.0"),
+  expect_invalid_case(replaced(kValid2d, "height = 1.0", "heigth = 1.0"),
                  {"case.toml:5:", "unknown key 'geometry.heigth'", "did you mean 'height'",
                   "expected one of dim, a, b, height"});
 }
 
 TEST(ParseCase, UnknownTopLevelTableIsAnError) {
-  expect_invalid(std::string(kValid2d) + "\n[meshh]\ncells = [1, 1]\n",
+  expect_invalid_case(std::string(kValid2d) + "\n[meshh]\ncells = [1, 1]\n",
                  {"unknown key 'meshh'", "did you mean 'mesh'"});
 }
 
@@ -297,12 +280,12 @@ TEST(ParseCase, CostAndOptimizationTablesAreValidated) {
   EXPECT_TRUE(std::isnan(c.cost->target_pressure)) << "NaN: the initial mean pressure";
   EXPECT_EQ(c.optimization.max_iterations, 30);
   EXPECT_EQ(c.optimization.epsilon, 1e-5);
-  expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"x\"\n", {"cost.kind"});
-  expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"target_pressure\"\n", {"cost.target"});
-  expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"compliance\"\nexponent = 4\n", {"cost.exponent"});
-  expect_invalid(std::string(kValid2d) + "\n[optimization]\nbundle_size = 2\n", {"optimization.bundle_size"});
-  expect_invalid(std::string(kValid2d) + "\n[optimization]\nmax_iters = 2\n", {"optimization.max_iters"});
-  expect_invalid(std::string(kValid2d) + "\n[study]\n", {"[study] is reserved"});
+  expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"x\"\n", {"cost.kind"});
+  expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"target_pressure\"\n", {"cost.target"});
+  expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"compliance\"\nexponent = 4\n", {"cost.exponent"});
+  expect_invalid_case(std::string(kValid2d) + "\n[optimization]\nbundle_size = 2\n", {"optimization.bundle_size"});
+  expect_invalid_case(std::string(kValid2d) + "\n[optimization]\nmax_iters = 2\n", {"optimization.max_iters"});
+  expect_invalid_case(std::string(kValid2d) + "\n[study]\n", {"[study] is reserved"});
 }
 
 TEST(ParseCase, TractionUniformityTakesTheMeanOrATargetOfDimMinusOneComponents) {
@@ -317,9 +300,9 @@ TEST(ParseCase, TractionUniformityTakesTheMeanOrATargetOfDimMinusOneComponents) 
   EXPECT_TRUE(parse_case(std::string(kValid2d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = \"mean\"\n",
                          "case.toml")
                   .cost->target_traction.size() == 0);
-  expect_invalid(std::string(kValid2d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = [1, 2]\n",
+  expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = [1, 2]\n",
                  {"cost.target has 2 components; expected 1"});
-  expect_invalid(std::string(kValid3d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = \"median\"\n",
+  expect_invalid_case(std::string(kValid3d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = \"median\"\n",
                  {"cost.target", "\"mean\"", "\"initial_mean\""});
   EXPECT_TRUE(parse_case(std::string(kValid3d) + "\n[cost]\nkind = \"traction_uniformity\"\ntarget = \"initial_mean\"\n",
                          "case.toml")
@@ -327,148 +310,148 @@ TEST(ParseCase, TractionUniformityTakesTheMeanOrATargetOfDimMinusOneComponents) 
 }
 
 TEST(ParseCase, UnknownKeyInNestedTablesIsNamedWithItsPath) {
-  expect_invalid(replaced(kValid2d, "mu = 0.3", "mu = 0.3\nmuu = 0.1"), {"contact.friction.muu"});
-  expect_invalid(replaced(kValid2d, "max_iterations = 40", "max_iter = 40"),
+  expect_invalid_case(replaced(kValid2d, "mu = 0.3", "mu = 0.3\nmuu = 0.1"), {"contact.friction.muu"});
+  expect_invalid_case(replaced(kValid2d, "max_iterations = 40", "max_iter = 40"),
                  {"solver.coulomb.max_iter"});
-  expect_invalid(replaced(kValid3d, "[solver.fem]", "[solver.fem]\nordering = \"amd\""),
+  expect_invalid_case(replaced(kValid3d, "[solver.fem]", "[solver.fem]\nordering = \"amd\""),
                  {"solver.fem.ordering"});
-  expect_invalid(replaced(kValid2d, "face = \"left\"", "face = \"left\"\nvalue = 0"),
+  expect_invalid_case(replaced(kValid2d, "face = \"left\"", "face = \"left\"\nvalue = 0"),
                  {"dirichlet[0].value"});
 }
 
 TEST(ParseCase, WrongTypeNamesFieldValueAndExpectedType) {
-  expect_invalid(replaced(kValid2d, "a = 2.0", "a = \"2.0\""),
+  expect_invalid_case(replaced(kValid2d, "a = 2.0", "a = \"2.0\""),
                  {"geometry.a = \"2.0\" (a string); expected a number"});
-  expect_invalid(replaced(kValid2d, "dim = 2", "dim = 2.0"),
+  expect_invalid_case(replaced(kValid2d, "dim = 2", "dim = 2.0"),
                  {"geometry.dim = 2 (a float); expected an integer"});
-  expect_invalid(replaced(kValid2d, "cells = [29, 14]", "cells = [29, 14.5]"),
+  expect_invalid_case(replaced(kValid2d, "cells = [29, 14]", "cells = [29, 14.5]"),
                  {"mesh.cells[1] = 14.5 (a float); expected an integer"});
-  expect_invalid(replaced(kValid2d, "every = 5", "every = 5\nvtk = \"yes\""), {"output.vtk"});
-  expect_invalid(replaced(kValid2d, "[mesh]\ncells", "mesh = 3\n[mesh2]\ncells"), {"mesh"});
+  expect_invalid_case(replaced(kValid2d, "every = 5", "every = 5\nvtk = \"yes\""), {"output.vtk"});
+  expect_invalid_case(replaced(kValid2d, "[mesh]\ncells", "mesh = 3\n[mesh2]\ncells"), {"mesh"});
 }
 
 TEST(ParseCase, NonFiniteNumbersAreRejected) {
-  expect_invalid(replaced(kValid2d, "young = 2.1e11", "young = inf"),
+  expect_invalid_case(replaced(kValid2d, "young = 2.1e11", "young = inf"),
                  {"material.young = inf; expected a finite number"});
-  expect_invalid(replaced(kValid2d, "poisson = 0.3", "poisson = nan"), {"material.poisson"});
+  expect_invalid_case(replaced(kValid2d, "poisson = 0.3", "poisson = nan"), {"material.poisson"});
 }
 
 TEST(ParseCase, MissingRequiredFieldsAreNamed) {
-  expect_invalid(replaced(kValid2d, "height = 1.0", ""),
+  expect_invalid_case(replaced(kValid2d, "height = 1.0", ""),
                  {"geometry.height is missing", "expected a number > 0"});
-  expect_invalid(replaced(kValid2d, "young = 2.1e11", ""), {"material.young is missing"});
-  expect_invalid(replaced(kValid2d, "initial = 0.05", ""), {"design.initial is missing"});
-  expect_invalid(replaced(kValid2d, "[material]\nyoung = 2.1e11\npoisson = 0.3\n", ""),
+  expect_invalid_case(replaced(kValid2d, "young = 2.1e11", ""), {"material.young is missing"});
+  expect_invalid_case(replaced(kValid2d, "initial = 0.05", ""), {"design.initial is missing"});
+  expect_invalid_case(replaced(kValid2d, "[material]\nyoung = 2.1e11\npoisson = 0.3\n", ""),
                  {"material is missing", "a table [material]"});
-  expect_invalid(replaced(kValid2d, "face = \"top\"\n", ""), {"load[0].face is missing"});
-  expect_invalid(replaced(kValid2d, "kind = \"isotropic\"\nmu = 0.3", "kind = \"isotropic\""),
+  expect_invalid_case(replaced(kValid2d, "face = \"top\"\n", ""), {"load[0].face is missing"});
+  expect_invalid_case(replaced(kValid2d, "kind = \"isotropic\"\nmu = 0.3", "kind = \"isotropic\""),
                  {"contact.friction.mu is missing"});
-  expect_invalid(replaced(kValid3d, "b = 1\n", ""), {"geometry.b is missing", "in 3D"});
+  expect_invalid_case(replaced(kValid3d, "b = 1\n", ""), {"geometry.b is missing", "in 3D"});
 }
 
 TEST(ParseCase, AtLeastOneDirichletConditionIsRequired) {
   const std::string text = replaced(
       replaced(kValid2d, "[[dirichlet]]\nface = \"left\"\n", ""),
       "[[dirichlet]]\nface = \"right\"\ndisplacement = [0.0, 1e-3]\ncomponents = [1]\n", "");
-  expect_invalid(text, {"dirichlet is missing", "rigid-body modes"});
+  expect_invalid_case(text, {"dirichlet is missing", "rigid-body modes"});
 }
 
 TEST(ParseCase, OutOfRangeValuesNameFieldValueAndRange) {
-  expect_invalid(replaced(kValid2d, "poisson = 0.3", "poisson = 0.6"),
+  expect_invalid_case(replaced(kValid2d, "poisson = 0.3", "poisson = 0.6"),
                  {"case.toml:13: material.poisson = 0.6; expected 0 <= poisson < 0.5"});
-  expect_invalid(replaced(kValid2d, "young = 2.1e11", "young = -1"),
+  expect_invalid_case(replaced(kValid2d, "young = 2.1e11", "young = -1"),
                  {"material.young = -1; expected young > 0"});
-  expect_invalid(replaced(kValid2d, "dim = 2", "dim = 4"), {"geometry.dim = 4; expected 2 or 3"});
-  expect_invalid(replaced(kValid2d, "a = 2.0", "a = 0.0"), {"geometry.a = 0; expected 1e-06 <= a <= 1000000 m"});
-  expect_invalid(replaced(kValid2d, "grading = 2.0", "grading = 0.5"),
+  expect_invalid_case(replaced(kValid2d, "dim = 2", "dim = 4"), {"geometry.dim = 4; expected 2 or 3"});
+  expect_invalid_case(replaced(kValid2d, "a = 2.0", "a = 0.0"), {"geometry.a = 0; expected 1e-06 <= a <= 1000000 m"});
+  expect_invalid_case(replaced(kValid2d, "grading = 2.0", "grading = 0.5"),
                  {"mesh.grading = 0.5", "1 <= grading <= 10"});
-  expect_invalid(replaced(kValid2d, "cells = [29, 14]", "cells = [29, 0]"),
+  expect_invalid_case(replaced(kValid2d, "cells = [29, 14]", "cells = [29, 0]"),
                  {"mesh.cells[1] = 0; expected an integer >= 1"});
-  expect_invalid(replaced(kValid2d, "control_points = [15]", "control_points = [1]"),
+  expect_invalid_case(replaced(kValid2d, "control_points = [15]", "control_points = [1]"),
                  {"design.control_points[0] = 1; expected an integer in [2, 64]"});
-  expect_invalid(replaced(kValid2d, "initial = 0.05", "initial = 0.8"),
+  expect_invalid_case(replaced(kValid2d, "initial = 0.05", "initial = 0.8"),
                  {"design.initial = 0.8; expected 0 <= α <= upper_bound = 0.75"});
-  expect_invalid(replaced(kValid2d, "upper_bound = 0.75", "upper_bound = 1.0"),
+  expect_invalid_case(replaced(kValid2d, "upper_bound = 0.75", "upper_bound = 1.0"),
                  {"design.upper_bound = 1", "< geometry.height = 1"});
-  expect_invalid(replaced(kValid2d, "slope_bound = 1.0", "slope_bound = 0"),
+  expect_invalid_case(replaced(kValid2d, "slope_bound = 1.0", "slope_bound = 0"),
                  {"design.slope_bound = 0; expected slope_bound > 0"});
-  expect_invalid(replaced(kValid2d, "max_iterations = 40", "max_iterations = 0"),
+  expect_invalid_case(replaced(kValid2d, "max_iterations = 40", "max_iterations = 0"),
                  {"solver.coulomb.max_iterations = 0; expected 1 <= max_iterations <= 10000"});
-  expect_invalid(replaced(kValid2d, "relative_tolerance = 1e-9", "relative_tolerance = -1e-9"),
+  expect_invalid_case(replaced(kValid2d, "relative_tolerance = 1e-9", "relative_tolerance = -1e-9"),
                  {"solver.coulomb.relative_tolerance = -1e-09"});
-  expect_invalid(replaced(kValid2d, "every = 5", "every = 0"), {"output.every = 0"});
-  expect_invalid(replaced(kValid3d, "name = \"block\"", "name = \"a/b\""), {"output.name"});
+  expect_invalid_case(replaced(kValid2d, "every = 5", "every = 0"), {"output.every = 0"});
+  expect_invalid_case(replaced(kValid3d, "name = \"block\"", "name = \"a/b\""), {"output.name"});
 }
 
 TEST(ParseCase, UnreachableVolumeIsRejectedWithTheReachableInterval) {
   // The thesis' printed formula reads C2 as d·(mean height); as an area, 28.5 is far outside
   // [a·(C4 − C0), a·C4] = [0.5, 2] (spec 01 §4.2).
-  expect_invalid(replaced(kValid2d, "volume = 1.9", "volume = 28.5"),
+  expect_invalid_case(replaced(kValid2d, "volume = 1.9", "volume = 28.5"),
                  {"design.volume = 28.5; expected 0.5 <= volume <= 2"});
 }
 
 TEST(ParseCase, SizesMustMatchTheDimension) {
-  expect_invalid(replaced(kValid2d, "cells = [29, 14]", "cells = [29, 3, 14]"),
+  expect_invalid_case(replaced(kValid2d, "cells = [29, 14]", "cells = [29, 3, 14]"),
                  {"mesh.cells = [29, 3, 14]; expected a list of 2 integers"});
-  expect_invalid(replaced(kValid3d, "cells = [20, 10, 8]", "cells = [20, 8]"),
+  expect_invalid_case(replaced(kValid3d, "cells = [20, 10, 8]", "cells = [20, 8]"),
                  {"mesh.cells", "a list of 3 integers"});
-  expect_invalid(replaced(kValid2d, "traction = [0.0, -2.0e7]", "traction = [0.0, 0.0, -2.0e7]"),
+  expect_invalid_case(replaced(kValid2d, "traction = [0.0, -2.0e7]", "traction = [0.0, 0.0, -2.0e7]"),
                  {"load[0].traction = [0, 0, -20000000]; expected a list of 2 numbers"});
-  expect_invalid(replaced(kValid3d, "traction = [1e5, 0, -1e6]", "traction = [1e5, -1e6]"),
+  expect_invalid_case(replaced(kValid3d, "traction = [1e5, 0, -1e6]", "traction = [1e5, -1e6]"),
                  {"load[0].traction", "3 numbers"});
-  expect_invalid(replaced(kValid2d, "displacement = [0.0, 1e-3]", "displacement = [1e-3]"),
+  expect_invalid_case(replaced(kValid2d, "displacement = [0.0, 1e-3]", "displacement = [1e-3]"),
                  {"dirichlet[1].displacement"});
-  expect_invalid(replaced(kValid2d, "components = [1]", "components = [2]"),
+  expect_invalid_case(replaced(kValid2d, "components = [1]", "components = [2]"),
                  {"dirichlet[1].components[0] = 2; expected an index in 0..1"});
-  expect_invalid(replaced(kValid2d, "control_points = [15]", "control_points = [15, 3]"),
+  expect_invalid_case(replaced(kValid2d, "control_points = [15]", "control_points = [15, 3]"),
                  {"design.control_points", "a list [m1]"});
-  expect_invalid(replaced(kValid3d, "initial = [0.0, 0.1, 0.1, 0.0,", "initial = [0.1, 0.0,"),
+  expect_invalid_case(replaced(kValid3d, "initial = [0.0, 0.1, 0.1, 0.0,", "initial = [0.1, 0.0,"),
                  {"design.initial", "a list of 12 numbers"});
-  expect_invalid(replaced(kValid2d, "a = 2.0", "a = 2.0\nb = 1.0"),
+  expect_invalid_case(replaced(kValid2d, "a = 2.0", "a = 2.0\nb = 1.0"),
                  {"geometry.b = 1 is only allowed in 3D"});
-  expect_invalid(replaced(kValid3d, "poisson = 0.25", "poisson = 0.25\nmodel = \"plane_strain\""),
+  expect_invalid_case(replaced(kValid3d, "poisson = 0.25", "poisson = 0.25\nmodel = \"plane_strain\""),
                  {"material.model", "only allowed in 2D"});
 }
 
 TEST(ParseCase, FacesAreCheckedAgainstTheDimension) {
-  expect_invalid(replaced(kValid2d, "face = \"top\"", "face = \"front\""),
+  expect_invalid_case(replaced(kValid2d, "face = \"top\"", "face = \"front\""),
                  {"load[0].face = \"front\"; expected one of left, right, top in 2D"});
-  expect_invalid(replaced(kValid2d, "face = \"top\"", "face = \"bottom\""),
+  expect_invalid_case(replaced(kValid2d, "face = \"top\"", "face = \"bottom\""),
                  {"load[0].face = \"bottom\"", "contact surface"});
-  expect_invalid(replaced(kValid3d, "face = \"left\"", "face = \"side\""),
+  expect_invalid_case(replaced(kValid3d, "face = \"left\"", "face = \"side\""),
                  {"dirichlet[0].face = \"side\"", "left, right, front, back, top"});
 }
 
 TEST(ParseCase, AComponentFixedTwiceOnOneFaceIsAnError) {
-  expect_invalid(replaced(kValid2d, "face = \"right\"", "face = \"left\""),
+  expect_invalid_case(replaced(kValid2d, "face = \"right\"", "face = \"left\""),
                  {"dirichlet[1].face = \"left\" fixes component 1", "dirichlet[0]"});
 }
 
 TEST(ParseCase, FrictionLawsAreValidated) {
   const std::string_view poly = "mu_vertices = [0.3, 0.2, 0.3, 0.2]";
-  expect_invalid(replaced(kValid3d, poly, "mu_vertices = [0.3, -0.2, 0.3, 0.2]"),
+  expect_invalid_case(replaced(kValid3d, poly, "mu_vertices = [0.3, -0.2, 0.3, 0.2]"),
                  {"contact.friction.mu_vertices[1] = -0.2", "0 <= mu_vertices[i] <= 10"});
-  expect_invalid(replaced(kValid3d, poly, "mu_vertices = [0.3, 0.2]"),
+  expect_invalid_case(replaced(kValid3d, poly, "mu_vertices = [0.3, 0.2]"),
                  {"contact.friction.mu_vertices = [0.3, 0.2]", "3 to 256 numbers"});
-  expect_invalid(replaced(kValid3d, poly, "mu_vertices = [0.3, 0.2, 0.3, 0.2]\nn = 6"),
+  expect_invalid_case(replaced(kValid3d, poly, "mu_vertices = [0.3, 0.2, 0.3, 0.2]\nn = 6"),
                  {"contact.friction.n = 6", "length of mu_vertices (4)"});
-  expect_invalid(replaced(kValid3d, "kind = \"polygon\"\n" + std::string(poly),
+  expect_invalid_case(replaced(kValid3d, "kind = \"polygon\"\n" + std::string(poly),
                           "kind = \"isotropic\"\nmu = 0.3\nn = 2"),
                  {"contact.friction.n = 2; expected 3 <= n <= 256"});
-  expect_invalid(replaced(kValid2d, "mu = 0.3", "mu = -0.3"),
+  expect_invalid_case(replaced(kValid2d, "mu = 0.3", "mu = -0.3"),
                  {"contact.friction.mu = -0.3; expected 0 <= mu <= 10"});
-  expect_invalid(replaced(kValid2d, "kind = \"isotropic\"", "kind = \"ellipse\""),
+  expect_invalid_case(replaced(kValid2d, "kind = \"isotropic\"", "kind = \"ellipse\""),
                  {"contact.friction.kind = \"ellipse\"", "none, isotropic, polygon in 2D"});
-  expect_invalid(replaced(kValid2d, "kind = \"isotropic\"", "kind = \"anisotropic\""),
+  expect_invalid_case(replaced(kValid2d, "kind = \"isotropic\"", "kind = \"anisotropic\""),
                  {"contact.friction.kind = \"anisotropic\""});
-  expect_invalid(replaced(kValid2d, "mu = 0.3", "mu = 0.3\nn = 8"),
+  expect_invalid_case(replaced(kValid2d, "mu = 0.3", "mu = 0.3\nn = 8"),
                  {"contact.friction.n = 8 is not used by kind = \"isotropic\" in 2D"});
-  expect_invalid(replaced(kValid3d, poly, std::string(poly) + "\nmu = 0.3"),
+  expect_invalid_case(replaced(kValid3d, poly, std::string(poly) + "\nmu = 0.3"),
                  {"contact.friction.mu = 0.3 is not used by kind = \"polygon\""});
-  expect_invalid(
+  expect_invalid_case(
       replaced(kValid2d, "kind = \"isotropic\"\nmu = 0.3", "kind = \"polygon\"\nmu_plus = 0.3"),
       {"contact.friction.mu_minus is missing"});
-  expect_invalid(replaced(kValid3d, "law = \"coulomb\"", "law = \"tresca\""),
+  expect_invalid_case(replaced(kValid3d, "law = \"coulomb\"", "law = \"tresca\""),
                  {"contact.law = \"tresca\"; expected one of coulomb"});
 }
 

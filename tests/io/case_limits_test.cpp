@@ -12,12 +12,16 @@
 #include <string>
 
 #include "common/temporary_directory.hpp"
+#include "common/invalid_case.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
 #include "frictopt/io/measurements.hpp"
 
 namespace frictopt::io {
 namespace {
+
+using testing::expect_invalid_case;
+using testing::replaced;
 
 constexpr std::string_view kCase2d = R"(
 [geometry]
@@ -79,26 +83,7 @@ kind = "isotropic"
 mu = 0.3
 )";
 
-std::string replaced(std::string_view base, std::string_view from, std::string_view to) {
-  std::string text(base);
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << "'" << from << "' not in the base case";
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
 
-// parse_case must throw InvalidInput with every fragment and none of `absent`.
-void expect_invalid(const std::string& text, std::initializer_list<std::string_view> fragments,
-                    std::initializer_list<std::string_view> absent = {}) {
-  try {
-    (void)parse_case(text, "case.toml");
-    ADD_FAILURE() << "no InvalidInput; expected a message with '" << *fragments.begin() << "'";
-  } catch (const InvalidInput& e) {
-    const std::string message = e.what();
-    for (std::string_view f : fragments) EXPECT_NE(message.find(f), std::string::npos) << "'" << f << "' not in: " << message;
-    for (std::string_view a : absent) EXPECT_EQ(message.find(a), std::string::npos) << "'" << a << "' in: " << message;
-  }
-}
 
 TEST(CaseLimits, TheBaseCasesAreValid) {
   EXPECT_NO_THROW((void)parse_case(kCase2d, "case.toml"));
@@ -106,62 +91,62 @@ TEST(CaseLimits, TheBaseCasesAreValid) {
 }
 
 TEST(CaseLimits, AHugeGridIsRefusedAtOnceWithAMemoryEstimate) {
-  expect_invalid(replaced(kCase3d, "cells = [4, 4, 2]", "cells = [300, 300, 300]"),
+  expect_invalid_case(replaced(kCase3d, "cells = [4, 4, 2]", "cells = [300, 300, 300]"),
                  {"mesh.cells", "at most 2000000 unknowns", "GB"});
-  expect_invalid(replaced(kCase3d, "cells = [4, 4, 2]", "cells = [2000000000, 2000000000, 2000000000]"),
+  expect_invalid_case(replaced(kCase3d, "cells = [4, 4, 2]", "cells = [2000000000, 2000000000, 2000000000]"),
                  {"mesh.cells", "8e+27 nodes", "2.4e+28 unknowns"});
-  expect_invalid(replaced(kCase2d, "cells = [29, 14]", "cells = [1000000, 1000000]"), {"mesh.cells", "GB"});
+  expect_invalid_case(replaced(kCase2d, "cells = [29, 14]", "cells = [1000000, 1000000]"), {"mesh.cells", "GB"});
 }
 
 TEST(CaseLimits, ControlPointCountsAreBoundedAndNeverReportedWrapped) {
   // Issue 17 item 6: 100000² wrapped to "a list of 1410065408 numbers".
-  expect_invalid(replaced(kCase3d, "control_points = [4, 4]", "control_points = [100000, 100000]"),
+  expect_invalid_case(replaced(kCase3d, "control_points = [4, 4]", "control_points = [100000, 100000]"),
                  {"design.control_points[0] = 100000", "[2, 64]"}, {"1410065408"});
-  expect_invalid(replaced(kCase2d, "control_points = [15]", "control_points = [1000000]"),
+  expect_invalid_case(replaced(kCase2d, "control_points = [15]", "control_points = [1000000]"),
                  {"design.control_points[0]", "[2, 64]"});
-  expect_invalid(replaced(kCase3d, "control_points = [4, 4]", "control_points = [40, 40]"),
+  expect_invalid_case(replaced(kCase3d, "control_points = [4, 4]", "control_points = [40, 40]"),
                  {"design.control_points", "at most 1024 design variables", "1600"});
 }
 
 TEST(CaseLimits, PolygonSizesAreBounded) {
-  expect_invalid(replaced(kCase3d, "mu = 0.3", "mu = 0.3\nn = 1000000"), {"contact.friction.n = 1000000", "256"});
+  expect_invalid_case(replaced(kCase3d, "mu = 0.3", "mu = 0.3\nn = 1000000"), {"contact.friction.n = 1000000", "256"});
   std::string many = "mu_vertices = [";
   for (int i = 0; i < 300; ++i) many += i ? ", 0.3" : "0.3";
-  expect_invalid(replaced(kCase3d, "kind = \"isotropic\"\nmu = 0.3", "kind = \"polygon\"\n" + many + "]"),
+  expect_invalid_case(replaced(kCase3d, "kind = \"isotropic\"\nmu = 0.3", "kind = \"polygon\"\n" + many + "]"),
                  {"contact.friction.mu_vertices", "3 to 256"});
 }
 
 TEST(CaseLimits, PhysicalBoundsNameTheField) {
-  expect_invalid(replaced(kCase2d, "poisson = 0.3", "poisson = 0.49999999"), {"material.poisson = 0.49999999", "0.49"});
-  expect_invalid(replaced(kCase2d, "young = 2.1e11", "young = 1e308"), {"material.young = 1e+308", "1e+13 Pa"});
-  expect_invalid(replaced(kCase2d, "young = 2.1e11", "young = 1e-300"), {"material.young = 1e-300", "1 Pa"});
-  expect_invalid(replaced(kCase3d, "displacement = [1.0e-4, 0.0, -1.2e-3]", "displacement = [1e300, 0.0, 0.0]"),
+  expect_invalid_case(replaced(kCase2d, "poisson = 0.3", "poisson = 0.49999999"), {"material.poisson = 0.49999999", "0.49"});
+  expect_invalid_case(replaced(kCase2d, "young = 2.1e11", "young = 1e308"), {"material.young = 1e+308", "1e+13 Pa"});
+  expect_invalid_case(replaced(kCase2d, "young = 2.1e11", "young = 1e-300"), {"material.young = 1e-300", "1 Pa"});
+  expect_invalid_case(replaced(kCase3d, "displacement = [1.0e-4, 0.0, -1.2e-3]", "displacement = [1e300, 0.0, 0.0]"),
                  {"dirichlet[0].displacement[0]", "|displacement| <= 1 m"});
-  expect_invalid(replaced(kCase2d, "traction = [0.0, -2.0e7]", "traction = [0.0, -1e300]"),
+  expect_invalid_case(replaced(kCase2d, "traction = [0.0, -2.0e7]", "traction = [0.0, -1e300]"),
                  {"load[0].traction[1]", "material.young"});
-  expect_invalid(replaced(kCase2d, "a = 2.0", "a = 1e300"), {"geometry.a", "1000000 m"});
-  expect_invalid(replaced(kCase2d, "mu = 0.3", "mu = 1e300"), {"contact.friction.mu", "<= 10"});
+  expect_invalid_case(replaced(kCase2d, "a = 2.0", "a = 1e300"), {"geometry.a", "1000000 m"});
+  expect_invalid_case(replaced(kCase2d, "mu = 0.3", "mu = 1e300"), {"contact.friction.mu", "<= 10"});
 }
 
 TEST(CaseLimits, SolverSettingsThatCouldNeverBeMetAreRefused) {
   // Found by the case fuzzer (tests/fuzz): relative_tolerance = 1e-300 with a huge cap ran for hours.
-  expect_invalid(std::string(kCase2d) + "\n[solver.qp]\nrelative_tolerance = 1e-300\n",
+  expect_invalid_case(std::string(kCase2d) + "\n[solver.qp]\nrelative_tolerance = 1e-300\n",
                  {"solver.qp.relative_tolerance = 1e-300", "1e-15 <= relative_tolerance < 1"});
-  expect_invalid(std::string(kCase2d) + "\n[solver.qp]\nmax_iterations = 2147483647\n",
+  expect_invalid_case(std::string(kCase2d) + "\n[solver.qp]\nmax_iterations = 2147483647\n",
                  {"solver.qp.max_iterations = 2147483647", "<= 1000000"});
-  expect_invalid(std::string(kCase2d) + "\n[solver.coulomb]\nmax_iterations = 100000\n",
+  expect_invalid_case(std::string(kCase2d) + "\n[solver.coulomb]\nmax_iterations = 100000\n",
                  {"solver.coulomb.max_iterations = 100000", "<= 10000"});
 }
 
 TEST(CaseLimits, AMeshWithoutFreeUnknownsAboveTheContactSurfaceIsRefused) {
   // Issue 17 item 5: one cell layer under a fully fixed top (3D [4,4,1], 2D [29,1]) left an
   // empty free block and crashed in the factorization.
-  expect_invalid(replaced(kCase3d, "cells = [4, 4, 2]", "cells = [4, 4, 1]"),
+  expect_invalid_case(replaced(kCase3d, "cells = [4, 4, 2]", "cells = [4, 4, 1]"),
                  {"mesh.cells = [4, 4, 1]", "no free unknown", "mesh.cells[2] >= 2"});
   const std::string top_fixed_2d = replaced(replaced(kCase2d, "face = \"left\"", "face = \"top\""),
                                             "[[load]]\nface = \"top\"\ntraction = [0.0, -2.0e7]\n", "");
   EXPECT_NO_THROW((void)parse_case(top_fixed_2d, "case.toml"));
-  expect_invalid(replaced(top_fixed_2d, "cells = [29, 14]", "cells = [29, 1]"), {"mesh.cells = [29, 1]", "no free unknown"});
+  expect_invalid_case(replaced(top_fixed_2d, "cells = [29, 14]", "cells = [29, 1]"), {"mesh.cells = [29, 1]", "no free unknown"});
   // Without contact the bottom nodes are free: one layer is a valid body.
   const std::string no_contact = replaced(replaced(kCase3d, "cells = [4, 4, 2]", "cells = [4, 4, 1]"),
                                           "[contact]\n[contact.friction]\nkind = \"isotropic\"\nmu = 0.3\n", "");
@@ -175,7 +160,7 @@ TEST(CaseLimits, AMeshWithoutFreeUnknownsAboveTheContactSurfaceIsRefused) {
 
 TEST(CaseLimits, ALoadOnAComponentFixedOnTheSameFaceIsRefused) {
   const std::string text = replaced(kCase3d, "[[dirichlet]]", "[[load]]\nface = \"top\"\ntraction = [0, 0, -1e6]\n\n[[dirichlet]]");
-  expect_invalid(text, {"load[0].traction[2] = -1000000", "dirichlet[0] fixes", "does no work"});
+  expect_invalid_case(text, {"load[0].traction[2] = -1000000", "dirichlet[0] fixes", "does no work"});
   // A tangential load on a top fixed only vertically is fine.
   EXPECT_NO_THROW((void)parse_case(replaced(replaced(text, "traction = [0, 0, -1e6]", "traction = [1e5, 0, 0]"),
                                             "displacement = [1.0e-4, 0.0, -1.2e-3]",
@@ -187,7 +172,7 @@ TEST(CaseLimits, OutputNamesThatCannotBeFileNamesAreRefused) {
   // Issue 17 item 10: a NUL byte cut "<name>.vtu" and "<name>_contact.csv" to one file.
   for (std::string_view bad : {R"("a\u0000b")", R"("")", R"("a/b")", R"("..")", R"("x\ny")"}) {
     SCOPED_TRACE(std::string(bad));
-    expect_invalid(std::string(kCase2d) + "\n[output]\nname = " + std::string(bad) + "\n", {"output.name"});
+    expect_invalid_case(std::string(kCase2d) + "\n[output]\nname = " + std::string(bad) + "\n", {"output.name"});
   }
 }
 

@@ -7,12 +7,14 @@
 #include <string>
 #include <string_view>
 
+#include "common/invalid_case.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
 
 namespace frictopt::io {
 namespace {
 
+using testing::expect_invalid_case;
 std::string case_text(int dim, std::string_view mesh_keys) {
   const std::string geometry = dim == 2 ? "dim = 2\na = 2.0\nheight = 1.0\n" : "dim = 3\na = 2.0\nb = 1.0\nheight = 1.0\n";
   const std::string cells = dim == 2 ? "cells = [30, 8]\n" : "cells = [30, 15, 8]\n";
@@ -22,17 +24,6 @@ std::string case_text(int dim, std::string_view mesh_keys) {
          "initial = 0.05\nupper_bound = 0.5\n";
 }
 
-void expect_invalid(const std::string& text, std::initializer_list<std::string_view> fragments) {
-  try {
-    (void)parse_case(text, "case.toml");
-    ADD_FAILURE() << "no InvalidInput; expected a message with '" << *fragments.begin() << "'";
-  } catch (const InvalidInput& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.rfind("case.toml", 0), 0u) << message;
-    for (std::string_view f : fragments)
-      EXPECT_NE(message.find(f), std::string::npos) << "'" << f << "' not in: " << message;
-  }
-}
 
 TEST(CaseMeshGrading, DefaultIsUniformColumns) {
   const CaseDescription c = parse_case(case_text(3, ""), "case.toml");
@@ -55,21 +46,21 @@ TEST(CaseMeshGrading, ReadsGrowthAndTheBoxIn2DAnd3D) {
 }
 
 TEST(CaseMeshGrading, BadValuesAreReportedWithTheField) {
-  expect_invalid(case_text(2, "growth = 2.5\n"), {"mesh.growth = 2.5", "1 <= growth <= 2"});
-  expect_invalid(case_text(2, "growth = 0.9\n"), {"mesh.growth = 0.9"});
-  expect_invalid(case_text(2, "refine_box = [0.8, 1.2]\n"), {"mesh.refine_box", "growth = 1", "(1, 2]"});
-  expect_invalid(case_text(2, "growth = 1.2\nrefine_box = [0.8, 1.2, 0.1, 0.2]\n"),
+  expect_invalid_case(case_text(2, "growth = 2.5\n"), {"mesh.growth = 2.5", "1 <= growth <= 2"});
+  expect_invalid_case(case_text(2, "growth = 0.9\n"), {"mesh.growth = 0.9"});
+  expect_invalid_case(case_text(2, "refine_box = [0.8, 1.2]\n"), {"mesh.refine_box", "growth = 1", "(1, 2]"});
+  expect_invalid_case(case_text(2, "growth = 1.2\nrefine_box = [0.8, 1.2, 0.1, 0.2]\n"),
                  {"mesh.refine_box", "a list of 2 numbers [x1min, x1max]"});
-  expect_invalid(case_text(3, "growth = 1.2\nrefine_box = [0.8, 1.2]\n"),
+  expect_invalid_case(case_text(3, "growth = 1.2\nrefine_box = [0.8, 1.2]\n"),
                  {"mesh.refine_box", "a list of 4 numbers"});
-  expect_invalid(case_text(3, "growth = 1.2\nrefine_box = [0.5, 1.5, 0.25, 1.75]\n"),
+  expect_invalid_case(case_text(3, "growth = 1.2\nrefine_box = [0.5, 1.5, 0.25, 1.75]\n"),
                  {"mesh.refine_box[3] = 1.75", "[0, 1] m (geometry.b)"});
-  expect_invalid(case_text(2, "growth = 1.2\nrefine_box = [1.2, 0.8]\n"),
+  expect_invalid_case(case_text(2, "growth = 1.2\nrefine_box = [1.2, 0.8]\n"),
                  {"mesh.refine_box[1] = 0.8", "a maximum > the minimum 1.2"});
-  expect_invalid(case_text(2, "growth = 1.2\nrefine_box = [0.8, \"x\"]\n"), {"mesh.refine_box"});
+  expect_invalid_case(case_text(2, "growth = 1.2\nrefine_box = [0.8, \"x\"]\n"), {"mesh.refine_box"});
   // Too few cells for the box and the sides at this growth: the message names the cell count.
-  expect_invalid(case_text(2, "growth = 1.01\nrefine_box = [0.95, 1.05]\n"), {"mesh.cells[0] = 30", "growth = 1.01"});
-  expect_invalid(case_text(2, "growth = 1.2\nrefin_box = [0.8, 1.2]\n"), {"refin_box", "refine_box"});
+  expect_invalid_case(case_text(2, "growth = 1.01\nrefine_box = [0.95, 1.05]\n"), {"mesh.cells[0] = 30", "growth = 1.01"});
+  expect_invalid_case(case_text(2, "growth = 1.2\nrefin_box = [0.8, 1.2]\n"), {"refin_box", "refine_box"});
 }
 
 }  // namespace
