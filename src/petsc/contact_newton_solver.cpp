@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "distributed_stiffness.hpp"
+#include "krylov_delassus.hpp"
+#include "krylov_spd_solver.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/petsc/petsc_session.hpp"
 #include "petsc_check.hpp"
@@ -88,6 +90,8 @@ struct ContactNewtonSolver::Impl {
   std::vector<LocalContactNode> contact_nodes;
   std::vector<NodeLinearization> linearization;  // per owned contact node, at the last residual
   bool options_checked = false;
+  bool jacobian_is_stiffness = false;  // J = K with Γ_u eliminated (no contact rows)
+  KSP spd_ksp = nullptr;               // CG for solves with that J (the Delassus columns)
   PetscOptions database = nullptr;  // the solver's own options (Options::petsc_options)
   double rho = 0.0;
 
@@ -126,6 +130,7 @@ struct ContactNewtonSolver::Impl {
 
   ~Impl() {
     KSPDestroy(&ksp);
+    KSPDestroy(&spd_ksp);
     PetscOptionsDestroy(&database);
     for (Vec* v : {&u, &F, &du, &u_try, &F_try}) VecDestroy(v);
     MatDestroy(&J);
@@ -170,6 +175,7 @@ struct ContactNewtonSolver::Impl {
   //   row_ν = (1 − χ) K_ν + χ ρ E_ν,
   //   row_t = (I − J_P) K_t + ρ J_P E_t + χ ∂_sP (K_ν − ρ E_ν).
   void jacobian(bool contact) {
+    jacobian_is_stiffness = !contact;
     if (J == nullptr) {  // K's pattern exists after its first assembly
       FRICTOPT_PETSC_CALL(MatDuplicate(stiffness.matrix(), MAT_COPY_VALUES, &J));
       FRICTOPT_PETSC_CALL(MatSetNearNullSpace(J, stiffness.near_null_space()));
@@ -258,6 +264,55 @@ struct ContactNewtonSolver::Impl {
       }
     }
     return reason;
+  }
+
+  // A⁻¹ rhs on the free DOFs (A = K restricted to them): CG + GAMG on J = K with Γ_u
+  // eliminated, to a relative residual of 1e-12 (the sensitivity reads these as exact).
+  Eigen::VectorXd free_solve(const Eigen::VectorXd& rhs_free) {
+    if (!jacobian_is_stiffness) jacobian(false);
+    if (spd_ksp == nullptr) {
+      FRICTOPT_PETSC_CALL(KSPCreate(PETSC_COMM_WORLD, &spd_ksp));
+      FRICTOPT_PETSC_CALL(KSPSetType(spd_ksp, KSPCG));
+      PC pc;
+      FRICTOPT_PETSC_CALL(KSPGetPC(spd_ksp, &pc));
+      FRICTOPT_PETSC_CALL(PCSetType(pc, PCGAMG));
+      FRICTOPT_PETSC_CALL(KSPSetTolerances(spd_ksp, 1e-12, 0.0, PETSC_DEFAULT, options.krylov_max_iterations));
+    }
+    FRICTOPT_PETSC_CALL(KSPSetOperators(spd_ksp, J, J));
+    const fem::DofMap& dofs = fem.dofs();
+    PetscScalar* b = nullptr;
+    FRICTOPT_PETSC_CALL(VecGetArray(F_try, &b));
+    for (int dof = stiffness.first_dof(); dof < stiffness.end_dof(); ++dof) {
+      const int k = dofs.free_index(dof);
+      b[dof - stiffness.first_dof()] = k >= 0 ? rhs_free(k) : 0.0;
+    }
+    FRICTOPT_PETSC_CALL(VecRestoreArray(F_try, &b));
+    FRICTOPT_PETSC_CALL(VecSet(du, 0.0));
+    FRICTOPT_PETSC_CALL(KSPSolve(spd_ksp, F_try, du));
+    KSPConvergedReason reason;
+    FRICTOPT_PETSC_CALL(KSPGetConvergedReason(spd_ksp, &reason));
+    if (reason < 0)
+      throw NumericalFailure(fmt::format("PETSc engine: a solve with the stiffness (Delassus column) did not converge: {}",
+                                         KSPConvergedReasons[reason]));
+    return dofs.restrict(gather(du));
+  }
+
+  // The full vector on every rank.
+  Eigen::VectorXd gather(Vec v) const {
+    VecScatter scatter;
+    Vec all;
+    FRICTOPT_PETSC_CALL(VecScatterCreateToAll(v, &scatter, &all));
+    FRICTOPT_PETSC_CALL(VecScatterBegin(scatter, v, all, INSERT_VALUES, SCATTER_FORWARD));
+    FRICTOPT_PETSC_CALL(VecScatterEnd(scatter, v, all, INSERT_VALUES, SCATTER_FORWARD));
+    PetscInt n = 0;
+    FRICTOPT_PETSC_CALL(VecGetSize(all, &n));
+    const PetscScalar* a = nullptr;
+    FRICTOPT_PETSC_CALL(VecGetArrayRead(all, &a));
+    Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(a, n);
+    FRICTOPT_PETSC_CALL(VecRestoreArrayRead(all, &a));
+    FRICTOPT_PETSC_CALL(VecScatterDestroy(&scatter));
+    FRICTOPT_PETSC_CALL(VecDestroy(&all));
+    return out;
   }
 
   double norm(Vec v) const {
@@ -424,20 +479,8 @@ ContactNewtonSolver::Summary ContactNewtonSolver::solve(const Eigen::Ref<const E
   }
   summary.relative_residual = residual_norm / scale;
 
-  // Gather u to every rank, and z = (q, λ) of the owned contact nodes.
-  {
-    VecScatter gather;
-    Vec all;
-    FRICTOPT_PETSC_CALL(VecScatterCreateToAll(m.u, &gather, &all));
-    FRICTOPT_PETSC_CALL(VecScatterBegin(gather, m.u, all, INSERT_VALUES, SCATTER_FORWARD));
-    FRICTOPT_PETSC_CALL(VecScatterEnd(gather, m.u, all, INSERT_VALUES, SCATTER_FORWARD));
-    const PetscScalar* a = nullptr;
-    FRICTOPT_PETSC_CALL(VecGetArrayRead(all, &a));
-    displacement = Eigen::Map<const Eigen::VectorXd>(a, m.fem.mesh().num_dofs());
-    FRICTOPT_PETSC_CALL(VecRestoreArrayRead(all, &a));
-    FRICTOPT_PETSC_CALL(VecScatterDestroy(&gather));
-    FRICTOPT_PETSC_CALL(VecDestroy(&all));
-  }
+  // u on every rank, and z = (q, λ) of the owned contact nodes summed over the ranks.
+  displacement = m.gather(m.u);
   const Eigen::Index p = m.boundary.num_nodes();
   state = contact::ContactState(dim, p);
   if (m.linearization.size() == m.contact_nodes.size())
@@ -462,6 +505,37 @@ ContactNewtonSolver::Summary ContactNewtonSolver::solve(const Eigen::Ref<const E
   contact::classify_nodes(state, laws, m.options.classification_tolerance, c_scale);
   summary.solve_seconds = seconds_since(start);
   return summary;
+}
+
+std::shared_ptr<const contact::DelassusMatrix> ContactNewtonSolver::delassus() {
+  Impl* impl = impl_.get();
+  return std::make_shared<detail::KrylovDelassus>([impl](const Eigen::VectorXd& rhs) { return impl->free_solve(rhs); },
+                                                  impl->boundary);
+}
+
+std::vector<ContactNewtonSolver::NodePiece> ContactNewtonSolver::newton_piece() const {
+  const Impl& m = *impl_;
+  // Per node (in_contact, face, index), encoded as integers and summed over the owning ranks.
+  std::vector<int> code(static_cast<std::size_t>(3 * m.boundary.num_nodes()), 0);
+  if (m.linearization.size() == m.contact_nodes.size())
+    for (std::size_t k = 0; k < m.contact_nodes.size(); ++k) {
+      const auto i = static_cast<std::size_t>(m.contact_nodes[k].index);
+      code[3 * i] = m.linearization[k].in_contact ? 1 : 0;
+      code[3 * i + 1] = static_cast<int>(m.linearization[k].projection.face.face);
+      code[3 * i + 2] = m.linearization[k].projection.face.index + 1;  // −1 -> 0 so that sums work
+    }
+  MPI_Allreduce(MPI_IN_PLACE, code.data(), static_cast<int>(code.size()), MPI_INT, MPI_SUM, PETSC_COMM_WORLD);
+  std::vector<NodePiece> out(static_cast<std::size_t>(m.boundary.num_nodes()));
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    out[i].in_contact = code[3 * i] != 0;
+    out[i].face = {static_cast<contact::FrictionFace>(code[3 * i + 1]), code[3 * i + 2] - 1};
+  }
+  return out;
+}
+
+std::unique_ptr<linalg::SpdSolver> ContactNewtonSolver::stiffness_solver() {
+  Impl* impl = impl_.get();
+  return std::make_unique<detail::KrylovSpdSolver>([impl](const Eigen::VectorXd& rhs) { return impl->free_solve(rhs); });
 }
 
 }  // namespace frictopt::petsc

@@ -9,8 +9,8 @@ namespace {
 // J_W(y) for a polygon (or the 2D interval) at y outside W, from the face its projection
 // lies on. The face tolerance is relative to the set's size: the projection is exact to
 // rounding, so 1e-12·max|w| separates an edge point from a vertex robustly.
-Eigen::Matrix2d polygon_jacobian(const contact::FrictionLaw& law, const Eigen::Vector2d& p) {
-  const contact::FaceLocation face = law.locate(p, 1.0, 1e-12 * law.max_coefficient());
+Eigen::Matrix2d polygon_jacobian(const contact::FrictionLaw& law, const Eigen::Vector2d& p, contact::FaceLocation& face) {
+  face = law.locate(p, 1.0, 1e-12 * law.max_coefficient());
   if (face.face != contact::FrictionFace::kEdge) return Eigen::Matrix2d::Zero();  // vertex: P constant
   const Eigen::Vector2d e = law.edge_normals()[static_cast<std::size_t>(face.index)];
   const Eigen::Vector2d t(-e.y(), e.x());
@@ -40,10 +40,12 @@ ProjectionLinearization linearize_projection(const contact::FrictionLaw& law, co
   Eigen::Matrix2d J;
   if (law.boundary_offset(y, 1.0) <= 0.0) {
     J.setIdentity();
+    out.face = {contact::FrictionFace::kInterior, -1};
   } else if (law.is_polygonal()) {
-    J = polygon_jacobian(law, p);
+    J = polygon_jacobian(law, p, out.face);
   } else {
     J = ellipse_jacobian(law, y, p);
+    out.face = {contact::FrictionFace::kSmooth, -1};
   }
   if (law.dim() == 2) {  // one tangential component
     J(0, 1) = J(1, 0) = J(1, 1) = 0.0;

@@ -17,6 +17,9 @@ struct ProjectionLinearization {
   Eigen::Vector2d value = Eigen::Vector2d::Zero();
   Eigen::Matrix2d d_x = Eigen::Matrix2d::Zero();
   Eigen::Vector2d d_s = Eigen::Vector2d::Zero();
+  /// The face of s·W the projection lands on: kInterior (x inside: stick), kVertex j / kEdge j
+  /// (polygons, interval), kSmooth (disc, ellipse), kDegenerate (s = 0 or a zero law).
+  contact::FaceLocation face{contact::FrictionFace::kDegenerate, -1};
 };
 
 /// One element of the generalized Jacobian of P at (x, s). P is positively homogeneous,

@@ -14,9 +14,11 @@
 
 #include "frictopt/contact/contact_boundary.hpp"
 #include "frictopt/contact/contact_state.hpp"
+#include "frictopt/contact/delassus.hpp"
 #include "frictopt/contact/friction_law.hpp"
 #include "frictopt/core/status.hpp"
 #include "frictopt/fem/linear_elasticity.hpp"
+#include "frictopt/linalg/spd_solver.hpp"
 
 namespace frictopt::petsc {
 
@@ -60,6 +62,14 @@ class ContactNewtonSolver {
     void validate() const;
   };
 
+  /// The piece of the last Newton linearization at one contact node (docs/petsc-engine.md):
+  /// whether the normal row imposes the gap (λ̂ > 0) and the face of λ̂·W the friction
+  /// projection selected (interior = stick; vertex, edge or smooth boundary = slip).
+  struct NodePiece {
+    bool in_contact = false;
+    contact::FaceLocation face{contact::FrictionFace::kDegenerate, -1};
+  };
+
   struct Summary {
     Status status = Status::kNotRun;
     std::string message = "solve() has not been called";
@@ -94,6 +104,20 @@ class ContactNewtonSolver {
   /// engine's (contact::CoulombSolver) — on every rank.
   [[nodiscard]] Summary solve(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& gaps,
                               Eigen::VectorXd& displacement, contact::ContactState& state);
+
+  /// M = G A⁻¹ Gᵀ at the last solved design (A: the stiffness on the free DOFs), applied and
+  /// read in blocks by Krylov solves (CG + GAMG, one per column): what the sensitivity module
+  /// reads. Valid until the next solve() (which reassembles); collective like solve().
+  [[nodiscard]] std::shared_ptr<const contact::DelassusMatrix> delassus();
+
+  /// The piece of the generalized Jacobian at the returned state, per contact node (every rank).
+  [[nodiscard]] std::vector<NodePiece> newton_piece() const;
+
+  /// A⁻¹ on the free DOFs at the last solved design, as a linalg::SpdSolver (its analyze and
+  /// factorize do nothing; each solve is one CG + GAMG solve to 1e-12): for
+  /// fem::LinearElasticity::set_factorization, so the adjoint runs in this engine. The solver
+  /// must outlive it; collective like solve().
+  [[nodiscard]] std::unique_ptr<linalg::SpdSolver> stiffness_solver();
 
   const Options& options() const { return options_; }
 
