@@ -34,6 +34,25 @@ enable_language(C)
 find_package(fclib 3 CONFIG REQUIRED)
 set_target_properties(FCLIB::fclib PROPERTIES IMPORTED_GLOBAL TRUE)  # tests/io reads files back
 
+# petsc (optional, FRICTOPT_WITH_PETSC): the distributed engine, found through pkg-config and
+# FindMPI by our module cmake/FindPETScMPI.cmake (AUTO: built when found; ON: required).
+set(FRICTOPT_HAVE_PETSC OFF)
+if(NOT FRICTOPT_WITH_PETSC STREQUAL "OFF")
+  if(FRICTOPT_WITH_PETSC STREQUAL "ON")
+    find_package(PETScMPI REQUIRED)
+  else()
+    find_package(PETScMPI)
+  endif()
+  if(PETScMPI_FOUND)
+    set(FRICTOPT_HAVE_PETSC ON)
+    message(STATUS "frictopt: PETSc ${PETSC_VERSION} found; the PETSc engine is built")
+  else()
+    message(STATUS "frictopt: PETSc not found; the PETSc engine is not built (FRICTOPT_WITH_PETSC=AUTO)")
+  endif()
+  set(FRICTOPT_PACKAGE_OF_PkgConfig::PETSC "PETScMPI")
+  set(FRICTOPT_PACKAGE_OF_MPI::MPI_C "PETScMPI")
+endif()
+
 if(FRICTOPT_BUILD_APPS)
   find_package(CLI11 REQUIRED)  # the command line's argument parser
 endif()

@@ -12,6 +12,7 @@ packages=(
   python3 python3-numpy python3-matplotlib python3-vtk9 xvfb xauth
   python3-siconos python3-h5py python3-scipy
   pybind11-dev python3-dev python3-pytest
+  petsc-dev openmpi-bin
 )
 
 missing=()

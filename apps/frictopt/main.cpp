@@ -12,6 +12,13 @@
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "frictopt/core/error.hpp"
+#ifdef FRICTOPT_HAVE_PETSC
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "frictopt/petsc/petsc_session.hpp"
+#endif
 
 using namespace frictopt::app;
 
@@ -94,6 +101,36 @@ int main(int argc, char** argv) {
     // invalid input, exit 2 as documented.
     return app.exit(e) == 0 ? kExitOk : kExitInvalidInput;
   }
+#ifdef FRICTOPT_HAVE_PETSC
+  // PETSc/MPI lifetime (issue 14): the guard initializes PETSc only when a case selects
+  // engine = "petsc", so a direct run never needs mpirun. Under mpirun every rank runs the
+  // command (the engine is collective); rank 0 alone prints and writes into the output
+  // directory, the other ranks write into a private scratch directory removed at the end.
+  const frictopt::petsc::PetscSession petsc_session;
+  std::filesystem::path scratch;
+  if (frictopt::petsc::PetscSession::launcher_rank() > 0) {
+    if (resume) {
+      std::fprintf(stderr, "error: optimize --resume is not supported under mpirun yet; resume with one process\n");
+      return kExitInvalidInput;
+    }
+    std::string pattern = (std::filesystem::temp_directory_path() / "frictopt-rank-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) {
+      std::fprintf(stderr, "error: rank %d could not create its scratch directory\n",
+                   frictopt::petsc::PetscSession::launcher_rank());
+      return kExitInvalidInput;
+    }
+    scratch = pattern;
+    out_dir = scratch / "out";
+    if (std::freopen("/dev/null", "w", stdout) == nullptr) return kExitInvalidInput;
+  }
+  struct ScratchRemoval {
+    const std::filesystem::path& path;
+    ~ScratchRemoval() {
+      std::error_code ignored;
+      if (!path.empty()) std::filesystem::remove_all(path, ignored);  // only files this run wrote
+    }
+  } scratch_removal{scratch};
+#endif
   return run_guarded([&] {
     if (*solve) return run_solve(case_path, out_dir);
     if (*optimize) {

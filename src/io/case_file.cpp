@@ -24,6 +24,7 @@
 #include "frictopt/mesh/face.hpp"
 #include "frictopt/mesh/graded_coordinates.hpp"
 #include "frictopt/study/shape_optimization.hpp"
+#include "case_solver_section.hpp"
 #include "text_input.hpp"
 #include "toml_reader.hpp"
 
@@ -939,8 +940,10 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   if (const toml::table* contact = top.optional_table("contact"))
     friction = read_contact(TableReader(*contact, "contact", origin, {"law", "friction"}), dim, origin);
   contact::CoulombSolver::Options coulomb;
-  if (const toml::table* solver = top.optional_table("solver"))
-    coulomb = read_solver(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem"}), origin);
+  if (const toml::table* solver = top.optional_table("solver")) {
+    coulomb = read_solver(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem", "engine", "petsc_options", "newton"}), origin);
+    detail::read_solver_engine(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem", "engine", "petsc_options", "newton"}), origin, body.engine);
+  }
   if (friction) {
     study::ContactDefinition contact_definition;
     contact_definition.law = friction->law;

@@ -9,6 +9,9 @@
 #include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
+#ifdef FRICTOPT_HAVE_PETSC
+#include "frictopt/petsc/contact_newton_solver.hpp"
+#endif
 
 namespace frictopt::study {
 namespace {
@@ -34,12 +37,30 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
                                                  fem::expand_dirichlet(*mesh_, definition_.dirichlet),
                                                  definition_.tractions, definition_.linear_solver);
   admissible_ = shape::make_admissible_set(definition_.shape, definition_.admissible);
+  if (definition_.engine.kind == StateEngine::kPetsc && !definition_.contact)
+    throw InvalidInput("solver.engine = \"petsc\": the PETSc engine solves contact problems; expected a [contact] table");
   if (definition_.contact) {
     if (definition_.contact->law.dim() != mesh_->dim())
       throw InvalidInput(fmt::format("contact.friction: a {}D friction law for a {}D body",
                                      definition_.contact->law.dim(), mesh_->dim()));
     definition_.contact->coulomb.validate();
     boundary_ = std::make_unique<contact::ContactBoundary>(*mesh_, fem_->dofs(), definition_.contact_surface);
+    if (definition_.engine.kind == StateEngine::kPetsc) {
+#ifdef FRICTOPT_HAVE_PETSC
+      petsc::ContactNewtonSolver::Options options;
+      options.petsc_options = definition_.engine.petsc_options;
+      options.relative_tolerance = definition_.engine.relative_tolerance;
+      options.max_iterations = definition_.engine.max_iterations;
+      options.classification_tolerance = definition_.contact->coulomb.tresca.classification_tolerance;
+      petsc_engine_ = std::make_shared<petsc::ContactNewtonSolver>(*fem_, *boundary_, definition_.contact->law, options);
+      fem_->set_factorization(petsc_engine_->stiffness_solver());  // the adjoint's solves, by Krylov
+      return;  // no factorization: the trailing-DOF ordering below is the direct engine's
+#else
+      throw InvalidInput(
+          "solver.engine = \"petsc\": this frictopt was built without PETSc; expected engine = \"direct\", or a "
+          "build with petsc-dev installed (FRICTOPT_WITH_PETSC, docs/petsc-engine.md)");
+#endif
+    }
     // Contact DOFs last, in z order: the trailing factor gives the Delassus matrix (spec 02 §5).
     // A backend without that capability gets M by solves instead (solve()).
     if (fem_->factorization().supports_trailing_factor()) {
@@ -61,6 +82,7 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
   mesh_->check_quality(state.positions, design_label);
   state.volume = mesh_->volume(state.positions);
 
+  if (petsc_engine_) return solve_with_petsc(std::move(state));
   auto start = std::chrono::steady_clock::now();
   fem_->assemble(state.positions);
   state.summary.assembly_seconds = seconds_since(start);
@@ -137,6 +159,39 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
                                       : "linear elasticity solved by sparse Cholesky";
   }
   return state;
+}
+
+BodyState ElasticBody::solve_with_petsc(BodyState state) {
+#ifdef FRICTOPT_HAVE_PETSC
+  ContactResult result;
+  result.gaps = boundary_->gaps(state.positions);
+  Eigen::VectorXd u = petsc_displacement_;
+  const petsc::ContactNewtonSolver::Summary s = petsc_engine_->solve(state.positions, result.gaps, u, result.state);
+  if (s.converged()) petsc_displacement_ = u;
+  // The engine's report in the contact summary's terms (iterations = Newton, QP = Krylov).
+  result.summary.status = s.status;
+  result.summary.message = s.brief_report();
+  result.summary.iterations = s.newton_iterations;
+  result.summary.qp_iterations = s.krylov_iterations;
+  result.summary.kkt_residual = s.kkt_residual;
+  result.summary.complementarity_gap = s.complementarity_gap;
+  result.summary.time_seconds = s.solve_seconds;
+  result.delassus = petsc_engine_->delassus();  // Krylov solves; valid until the next solve
+  state.summary.assembly_seconds = s.assembly_seconds;
+  state.summary.solve_seconds = s.solve_seconds;
+  state.summary.relative_residual = s.relative_residual;
+  state.summary.status = s.status;
+  state.summary.message = (s.converged() ? "contact with Coulomb friction solved by the " : "contact: the ") + s.brief_report();
+  state.displacement = std::move(u);
+  state.contact = std::move(result);
+  state.stress = fem::recover_stresses(*mesh_, definition_.material, state.positions, state.displacement);
+  state.strain_energy = fem_->strain_energy(state.positions, state.displacement);
+  state.external_work = fem_->external_work(state.positions, state.displacement);
+  return state;
+#else
+  (void)state;
+  throw InvalidInput("solver.engine = \"petsc\": this frictopt was built without PETSc");
+#endif
 }
 
 }  // namespace frictopt::study

@@ -51,6 +51,9 @@ class LinearElasticity {
   /// one). A failed analysis or factorization is a status; factorization().message() says why.
   [[nodiscard]] Status factorize();
   const linalg::SpdSolver& factorization() const { return *solver_; }
+  /// Replaces the solver behind factorization() by `solver` (already able to solve, e.g. the
+  /// PETSc engine's Krylov solves, issue 14); factorize() is then not called by the owner.
+  void set_factorization(std::unique_ptr<linalg::SpdSolver> solver) { solver_ = std::move(solver); }
   /// The full displacement for the assembled load: u_f = A⁻¹ l, u_d prescribed.
   Eigen::VectorXd solve() const;
 

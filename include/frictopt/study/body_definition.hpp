@@ -53,6 +53,24 @@ struct CostDefinition {
   bool target_traction_initial_mean = false;
 };
 
+/// Which engine solves the state problem (issue 14; docs/petsc-engine.md).
+enum class StateEngine {
+  kDirect,  ///< CHOLMOD factorization + dual QP fixed point on the Delassus matrix (default)
+  kPetsc    ///< PETSc: distributed assembly, semismooth Newton with Krylov steps (MPI)
+};
+
+/// [solver] engine settings.
+struct EngineDefinition {
+  StateEngine kind = StateEngine::kDirect;
+  /// kPetsc: PETSc options for the Krylov solver (e.g. "-ksp_type gmres -pc_type hypre"); an
+  /// option no PETSc object uses is an error at the first solve.
+  std::string petsc_options;
+  /// kPetsc: ‖F‖ <= relative_tolerance·‖F(u_d)‖ ends the Newton method (in (0, 1)).
+  double relative_tolerance = 1e-11;
+  /// kPetsc: cap on Newton iterations (>= 1).
+  int max_iterations = 60;
+};
+
 struct BodyDefinition {
   std::string name = "body";                 ///< used in output file names
   shape::BezierShape shape = shape::BezierShape::curve(1.0, 2);
@@ -67,6 +85,7 @@ struct BodyDefinition {
   Eigen::VectorXd initial_design;             ///< α⁰
   std::optional<ContactDefinition> contact;   ///< absent: no foundation (pure elasticity)
   linalg::SpdSolver::Options linear_solver;   ///< the backend that factorizes the stiffness
+  EngineDefinition engine;                    ///< [solver] engine (direct or PETSc)
 };
 
 }  // namespace frictopt::study

@@ -19,6 +19,10 @@
 #include "frictopt/shape/admissible_set.hpp"
 #include "frictopt/study/body_definition.hpp"
 
+namespace frictopt::petsc {
+class ContactNewtonSolver;  // the PETSc engine (built with FRICTOPT_WITH_PETSC)
+}  // namespace frictopt::petsc
+
 namespace frictopt::study {
 
 /// Outcome of one state solve.
@@ -93,6 +97,10 @@ class ElasticBody {
   shape::LinearConstraints admissible_;
   std::unique_ptr<contact::ContactBoundary> boundary_;
   std::optional<contact::ContactState> warm_start_;  // last converged contact state
+  // engine = "petsc" (issue 14): the engine and its last converged displacement (warm start).
+  std::shared_ptr<petsc::ContactNewtonSolver> petsc_engine_;
+  Eigen::VectorXd petsc_displacement_;
+  BodyState solve_with_petsc(BodyState state);
 };
 
 }  // namespace frictopt::study

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: MIT
+#include "case_solver_section.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace frictopt::io::detail {
+
+void read_solver_engine(const TableReader& solver, std::string_view origin, study::EngineDefinition& out) {
+  if (const std::optional<std::string> engine = solver.optional_string("engine")) {
+    if (*engine == "direct")
+      out.kind = study::StateEngine::kDirect;
+    else if (*engine == "petsc")
+      out.kind = study::StateEngine::kPetsc;
+    else
+      solver.fail_value("engine", "one of direct, petsc");
+  }
+  const bool petsc = out.kind == study::StateEngine::kPetsc;
+  if (const std::optional<std::string> options = solver.optional_string("petsc_options")) {
+    if (!petsc) solver.fail("petsc_options", "solver.petsc_options needs engine = \"petsc\" (the direct engine has no PETSc)");
+    out.petsc_options = *options;
+  }
+  if (const toml::table* newton = solver.optional_table("newton")) {
+    if (!petsc) solver.fail("newton", "[solver.newton] needs engine = \"petsc\" (the direct engine's iterations are [solver.coulomb])");
+    const TableReader r(*newton, solver.field("newton"), origin, {"max_iterations", "relative_tolerance"});
+    if (const std::optional<int> n = r.optional_int("max_iterations")) {
+      if (*n < 1 || *n > 10'000) r.fail_value("max_iterations", "1 <= max_iterations <= 10000");
+      out.max_iterations = *n;
+    }
+    if (const std::optional<double> tol = r.optional_number("relative_tolerance")) {
+      // Below 1e-15 double precision cannot meet it (the Newton residual stagnates at rounding).
+      if (!(*tol >= 1e-15 && *tol < 1)) r.fail_value("relative_tolerance", "1e-15 <= relative_tolerance < 1");
+      out.relative_tolerance = *tol;
+    }
+  }
+}
+
+}  // namespace frictopt::io::detail
