@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// TEST19 of Lukšan & Vlček (TR V-798, 2000): 24 of the 25 small unconstrained nonsmooth
-// problems (TR48 needs the data file TEST19.DAT, see docs/optim-testset.md). Formulas follow the
-// report; data and starting points follow the Fortran (TIUD19, TFFU19), which the report's
+// TEST19 of Lukšan & Vlček (TR V-798, 2000): all 25 small unconstrained nonsmooth problems
+// (TR48's data, which the Fortran reads from TEST19.DAT, in luksan_vlcek_tr48_data.cpp). Formulas
+// follow the report; data and starting points follow the Fortran (TIUD19, TFFU19), which the report's
 // tables were computed with. Where several pieces of a max tie, the gradient of the first one in
 // the order listed is returned (one Clarke subgradient).
 #include <cmath>
@@ -10,6 +10,7 @@
 
 #include "frictopt/optim/luksan_vlcek.hpp"
 #include "luksan_vlcek_pieces.hpp"
+#include "luksan_vlcek_tr48_data.hpp"
 
 namespace frictopt::optim {
 
@@ -317,6 +318,19 @@ std::vector<LuksanVlcekProblem> luksan_vlcek_unconstrained() {
     const double f = x.cwiseAbs().maxCoeff(&k);
     VectorXd g = VectorXd::Zero(x.size());
     g(k) = sgn(x(k));
+    return OracleResult::success(f, g);
+  }));
+  P.push_back(make("TR48", "TEST19 #21", VectorXd::Zero(48), -638565.0, [](Vec x) {
+    // Σ_j d_j max_i (x_i − a_ij) − Σ_i s_i x_i (transportation dual); subgradient: −s plus d_j
+    // at the first maximizing i of each j.
+    const detail::Tr48Data& t = detail::tr48_data();
+    VectorXd g = -t.s;
+    double f = -t.s.dot(x);
+    for (Eigen::Index j = 0; j < 48; ++j) {
+      Eigen::Index i = 0;
+      f += t.d(j) * (x - t.a.col(j)).maxCoeff(&i);
+      g(i) += t.d(j);
+    }
     return OracleResult::success(f, g);
   }));
   VectorXd x50(50);

@@ -344,8 +344,11 @@ std::string Certificate::report() const {
   s += fmt::format("default piece alone: distance {:.6e} (relative {:.3e})\n", default_piece.distance,
                    default_relative_distance);
   if (!mf1.computed)
-    s += fmt::format("(MF1') not computed: more than {} contact unknowns (the dense singular values cost O(n^3))\n",
-                     kMaxMf1ContactUnknowns);
+    s += "(MF1') not computed: " +
+         (mf1.not_computed_reason.empty()
+              ? fmt::format("more than {} contact unknowns (the dense singular values cost O(n^3))", kMaxMf1ContactUnknowns)
+              : mf1.not_computed_reason) +
+         "\n";
   if (mf1.computed)
     s += fmt::format("(MF1') matrix {} x {} (m0 = {} extra conditions), rank {} (tol {:.1e} sigma_max, sigma_min/sigma_max "
                      "= {:.3e}): {}\n",
@@ -416,8 +419,13 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
     c.active_constraints.push_back(fmt::format("volume: sum_k alpha_k = {:.6g} (equality{})", upsilon.b_eq(r),
                                                upsilon.A_eq.rows() > 1 ? fmt::format(" {}", r) : std::string()));
 
-  c.mf1 = mf1_report(oracle, c.index_sets, options);
-  c.mordukhovich = mordukhovich_report(c, alpha, constraints, options);
+  if (options.clarke_only) {
+    c.mf1.not_computed_reason = "not asked for (Clarke distance only)";
+    c.mordukhovich.message = "not asked for (Clarke distance only)";
+  } else {
+    c.mf1 = mf1_report(oracle, c.index_sets, options);
+    c.mordukhovich = mordukhovich_report(c, alpha, constraints, options);
+  }
   c.status = Status::kConverged;
   c.message.clear();
   c.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

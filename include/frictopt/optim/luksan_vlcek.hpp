@@ -36,8 +36,7 @@ struct LuksanVlcekProblem {
   [[nodiscard]] double relative_error(double f) const;
 };
 
-/// TEST19: 24 of the 25 unconstrained problems (TR48 is left out: its data file TEST19.DAT is
-/// not available to us; docs/optim-testset.md).
+/// TEST19: all 25 unconstrained problems.
 [[nodiscard]] std::vector<LuksanVlcekProblem> luksan_vlcek_unconstrained();
 /// TEST22: all 15 linearly constrained minimax problems.
 [[nodiscard]] std::vector<LuksanVlcekProblem> luksan_vlcek_constrained();

@@ -33,12 +33,17 @@ struct CertifyOptions {
   // Distances δ ≤ stationary_tolerance·max_i‖ξ_i‖ are reported as "stationary" (the thesis gives
   // no tolerance; spec 05 §2.6 item 3 — read δ against its scale). > 0.
   double stationary_tolerance = 1e-3;
+  // Compute the Clarke distance only, without (MF1′) and the extreme-point test: the final
+  // check of study::optimize, which needs the distance alone (issue 16: a study run that says
+  // "converged" must pass this certificate).
+  bool clarke_only = false;
   void validate() const;  // throws InvalidInput naming field, value, expectation
 };
 
 /// Condition (MF1′) of spec 03 §11.1: full row rank of the tight system's Jacobian.
 struct Mf1Report {
   bool computed = false;
+  std::string not_computed_reason;  ///< why `computed` is false (empty when computed)
   Eigen::Index rows = 0;        ///< dim·p + m₀ (our contact-reduced form, see certificate.cpp)
   Eigen::Index cols = 0;        ///< d + dim·p
   int extra_conditions = 0;     ///< m₀: equations beyond one piece's dim·p ("other branches")

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+// How many threads the BLAS behind CHOLMOD and the dense kernels may use, chosen per call from
+// the size of the work and the cores other processes leave idle (issue 18, item 4;
+// docs/benchmarks.md, "BLAS threads on a shared machine"). OpenBLAS' pthread workers spin while
+// they wait; with another process on the second core a threaded call waited for a descheduled
+// worker, and the demo's factorization took 2.0 s with two threads against 0.23 s with one.
+#pragma once
+
+#include <string>
+
+namespace frictopt::linalg {
+
+/// Where the thread count comes from.
+enum class BlasThreadMode {
+  kAutomatic,  ///< per call: 1 below kMinFlopsForThreads, else the cores other processes leave idle
+  kFixed,      ///< FRICTOPT_BLAS_THREADS = N: always N (capped at the BLAS' own maximum)
+  kUser,       ///< OPENBLAS_NUM_THREADS / OMP_NUM_THREADS set: the BLAS' own setting, never changed
+  kUnavailable ///< the BLAS has no thread control (reference BLAS, ATLAS): nothing to choose
+};
+
+/// Work (flops) below which a call runs on one thread even on an idle machine: a parallel
+/// region costs tens of µs when the cores are free and up to a scheduler time slice when one is
+/// not, while 2e8 flops take ~50 ms on one core (measured in docs/benchmarks.md).
+inline constexpr double kMinFlopsForThreads = 2e8;
+
+/// The pure rule: threads for a call of `flops` work, with at most `max_threads` (the BLAS'
+/// count at start-up, normally the cores), `idle_cores` cores not used by other processes,
+/// mode and, for kFixed, `fixed_threads`. Always in [1, max_threads].
+[[nodiscard]] int choose_blas_threads(double flops, int max_threads, int idle_cores, BlasThreadMode mode,
+                                      int fixed_threads);
+
+/// Cores usable by this process (affinity mask) minus the runnable threads of other processes
+/// (/proc/stat procs_running minus this process' running threads), at least 0. -1 if /proc is
+/// not readable.
+[[nodiscard]] int idle_cores_now();
+
+/// The mode read once from the environment: FRICTOPT_BLAS_THREADS ("auto" or an integer >= 1;
+/// anything else throws InvalidInput naming the variable, value and expectation), else kUser if
+/// OPENBLAS_NUM_THREADS, GOTO_NUM_THREADS or OMP_NUM_THREADS is set, else kAutomatic.
+[[nodiscard]] BlasThreadMode blas_thread_mode();
+
+/// One line for logs and benchmarks: "BLAS threads: automatic (max 2)" etc.
+[[nodiscard]] std::string describe_blas_threads();
+
+/// Sets the BLAS thread count for the lifetime of the object from the rule above and restores
+/// the previous count afterwards. A no-op in modes kUser and kUnavailable. Not thread-safe:
+/// the count is process-wide (frictopt calls the BLAS from one thread).
+class ScopedBlasThreads {
+ public:
+  explicit ScopedBlasThreads(double flops);
+  ~ScopedBlasThreads();
+  ScopedBlasThreads(const ScopedBlasThreads&) = delete;
+  ScopedBlasThreads& operator=(const ScopedBlasThreads&) = delete;
+  /// Threads in force inside the scope (0 when the count is not ours to set).
+  [[nodiscard]] int threads() const { return threads_; }
+
+ private:
+  int previous_ = 0;
+  int threads_ = 0;
+};
+
+}  // namespace frictopt::linalg

@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/linalg/blas_threads.hpp"
+
+#include <dirent.h>
+#include <dlfcn.h>
+#include <sched.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "frictopt/core/error.hpp"
+
+namespace frictopt::linalg {
+
+namespace {
+
+// OpenBLAS' thread control, looked up at run time: the BLAS is chosen by the system's
+// alternatives (libblas.so.3 may be OpenBLAS, the reference BLAS or ATLAS), so linking against
+// openblas_set_num_threads would tie the binary to one of them.
+using SetThreads = void (*)(int);
+using GetThreads = int (*)();
+
+struct BlasControl {
+  SetThreads set = nullptr;
+  GetThreads get = nullptr;
+  int max_threads = 1;  // the BLAS' count before we change anything (OpenBLAS: the cores)
+  BlasThreadMode mode = BlasThreadMode::kUnavailable;
+  int fixed_threads = 0;
+};
+
+BlasThreadMode mode_from_environment(int& fixed) {
+  if (const char* v = std::getenv("FRICTOPT_BLAS_THREADS")) {
+    const std::string s(v);
+    if (s == "auto") return BlasThreadMode::kAutomatic;
+    char* end = nullptr;
+    const long n = std::strtol(v, &end, 10);
+    if (s.empty() || *end != '\0' || n < 1 || n > 4096)
+      throw InvalidInput("environment variable FRICTOPT_BLAS_THREADS = '" + s +
+                         "'; expected 'auto' or an integer number of threads >= 1");
+    fixed = static_cast<int>(n);
+    return BlasThreadMode::kFixed;
+  }
+  for (const char* name : {"OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS"})
+    if (std::getenv(name) != nullptr) return BlasThreadMode::kUser;
+  return BlasThreadMode::kAutomatic;
+}
+
+const BlasControl& control() {
+  static const BlasControl c = [] {
+    BlasControl b;
+    b.set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    b.get = reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    int fixed = 0;
+    const BlasThreadMode requested = mode_from_environment(fixed);  // validated even without OpenBLAS
+    if (b.set == nullptr || b.get == nullptr) return b;
+    b.max_threads = std::max(1, b.get());
+    b.mode = requested;
+    b.fixed_threads = fixed;
+    return b;
+  }();
+  return c;
+}
+
+// procs_running of /proc/stat: runnable threads of the whole system, this one included.
+int system_running_threads() {
+  std::ifstream in("/proc/stat");
+  std::string key;
+  long value = 0;
+  while (in >> key) {
+    if (key == "procs_running" && in >> value) return static_cast<int>(value);
+    in.ignore(1 << 20, '\n');
+  }
+  return -1;
+}
+
+// Running threads of this process (state R in /proc/self/task/*/stat): OpenBLAS workers still
+// spinning after the previous call count here, not as another process' load.
+int own_running_threads() {
+  DIR* dir = opendir("/proc/self/task");
+  if (dir == nullptr) return -1;
+  int running = 0;
+  while (const dirent* e = readdir(dir)) {
+    if (e->d_name[0] == '.') continue;
+    std::ifstream stat(std::string("/proc/self/task/") + e->d_name + "/stat");
+    std::string line;
+    if (!std::getline(stat, line)) continue;
+    const auto close = line.rfind(')');  // the command name may contain spaces
+    if (close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'R') ++running;
+  }
+  closedir(dir);
+  return running;
+}
+
+}  // namespace
+
+int choose_blas_threads(double flops, int max_threads, int idle_cores, BlasThreadMode mode, int fixed_threads) {
+  max_threads = std::max(1, max_threads);
+  switch (mode) {
+    case BlasThreadMode::kFixed: return std::clamp(fixed_threads, 1, max_threads);
+    case BlasThreadMode::kUser:
+    case BlasThreadMode::kUnavailable: return max_threads;
+    case BlasThreadMode::kAutomatic: break;
+  }
+  if (!(flops >= kMinFlopsForThreads)) return 1;
+  // Unknown load (no /proc): stay on one thread, which costs at most the parallel speed-up;
+  // a guess of "idle" could cost a multiple (the measurement in the header comment).
+  if (idle_cores < 0) return 1;
+  return std::clamp(idle_cores, 1, max_threads);
+}
+
+int idle_cores_now() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof(set), &set) != 0) return -1;
+  const int usable = CPU_COUNT(&set);
+  const int all = system_running_threads();
+  const int own = own_running_threads();
+  if (all < 0 || own < 0) return -1;
+  // `own` includes the calling thread, which /proc/stat counts as well.
+  return std::max(0, usable - std::max(0, all - own));
+}
+
+BlasThreadMode blas_thread_mode() { return control().mode; }
+
+std::string describe_blas_threads() {
+  const BlasControl& c = control();
+  std::ostringstream s;
+  s << "BLAS threads: ";
+  switch (c.mode) {
+    case BlasThreadMode::kAutomatic: s << "automatic (max " << c.max_threads << ")"; break;
+    case BlasThreadMode::kFixed: s << "FRICTOPT_BLAS_THREADS = " << c.fixed_threads << " (max " << c.max_threads << ")"; break;
+    case BlasThreadMode::kUser: s << "set by OPENBLAS_NUM_THREADS/OMP_NUM_THREADS (" << c.max_threads << ")"; break;
+    case BlasThreadMode::kUnavailable: s << "not controllable (the BLAS is not OpenBLAS)"; break;
+  }
+  return s.str();
+}
+
+ScopedBlasThreads::ScopedBlasThreads(double flops) {
+  const BlasControl& c = control();
+  if (c.mode == BlasThreadMode::kUser || c.mode == BlasThreadMode::kUnavailable) return;
+  const int idle = c.mode == BlasThreadMode::kAutomatic && flops >= kMinFlopsForThreads ? idle_cores_now() : 0;
+  threads_ = choose_blas_threads(flops, c.max_threads, idle, c.mode, c.fixed_threads);
+  previous_ = c.get();
+  if (threads_ != previous_) c.set(threads_);
+}
+
+ScopedBlasThreads::~ScopedBlasThreads() {
+  if (threads_ > 0 && threads_ != previous_) control().set(previous_);
+}
+
+}  // namespace frictopt::linalg

@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: MIT
+// The BLAS thread rule (issue 18, item 4): one thread for small work and whenever no core is
+// idle; never more threads than idle cores; fixed and user modes as documented.
+#include "frictopt/linalg/blas_threads.hpp"
+
+#include <gtest/gtest.h>
+#include <sched.h>
+
+namespace fl = frictopt::linalg;
+using fl::BlasThreadMode;
+
+TEST(BlasThreads, SmallWorkRunsOnOneThreadEvenOnAnIdleMachine) {
+  EXPECT_EQ(fl::choose_blas_threads(0.99 * fl::kMinFlopsForThreads, 8, 8, BlasThreadMode::kAutomatic, 0), 1);
+  EXPECT_EQ(fl::choose_blas_threads(0.0, 8, 8, BlasThreadMode::kAutomatic, 0), 1);
+}
+
+TEST(BlasThreads, LargeWorkUsesTheIdleCoresOnly) {
+  const double big = 100 * fl::kMinFlopsForThreads;
+  EXPECT_EQ(fl::choose_blas_threads(big, 2, 2, BlasThreadMode::kAutomatic, 0), 2);  // idle machine
+  EXPECT_EQ(fl::choose_blas_threads(big, 2, 1, BlasThreadMode::kAutomatic, 0), 1);  // a build on core 2
+  EXPECT_EQ(fl::choose_blas_threads(big, 2, 0, BlasThreadMode::kAutomatic, 0), 1);  // overloaded
+  EXPECT_EQ(fl::choose_blas_threads(big, 4, 16, BlasThreadMode::kAutomatic, 0), 4); // never above the BLAS' max
+  EXPECT_EQ(fl::choose_blas_threads(big, 2, -1, BlasThreadMode::kAutomatic, 0), 1); // load unknown
+}
+
+TEST(BlasThreads, FixedAndUserModes) {
+  EXPECT_EQ(fl::choose_blas_threads(1.0, 8, 0, BlasThreadMode::kFixed, 3), 3);
+  EXPECT_EQ(fl::choose_blas_threads(1.0, 2, 0, BlasThreadMode::kFixed, 3), 2);
+  EXPECT_EQ(fl::choose_blas_threads(1.0, 8, 0, BlasThreadMode::kUser, 0), 8);
+}
+
+TEST(BlasThreads, IdleCoresAreBoundedByTheAffinityMask) {
+  const int idle = fl::idle_cores_now();
+  EXPECT_GE(idle, -1);
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  ASSERT_EQ(sched_getaffinity(0, sizeof(set), &set), 0);
+  EXPECT_LE(idle, CPU_COUNT(&set));
+}
+
+TEST(BlasThreads, ScopeRestoresTheCount) {
+  // Whatever the mode, a scope reports a count in [0, max] and nesting scopes is harmless.
+  const fl::ScopedBlasThreads outer(1e12);
+  {
+    const fl::ScopedBlasThreads inner(1.0);
+    EXPECT_GE(inner.threads(), 0);
+    if (fl::blas_thread_mode() == BlasThreadMode::kAutomatic) {
+      EXPECT_EQ(inner.threads(), 1);
+    }
+  }
+  EXPECT_GE(outer.threads(), 0);
+  EXPECT_FALSE(fl::describe_blas_threads().empty());
+}
