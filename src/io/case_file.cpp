@@ -24,6 +24,7 @@
 #include "frictopt/mesh/face.hpp"
 #include "frictopt/mesh/graded_coordinates.hpp"
 #include "frictopt/study/shape_optimization.hpp"
+#include "case_program_section.hpp"
 #include "text_input.hpp"
 #include "toml_reader.hpp"
 
@@ -884,7 +885,9 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
 
   const TableReader top(root, "", origin,
                         {"geometry", "mesh", "material", "load", "dirichlet", "design", "contact",
-                         "solver", "cost", "optimization", "output", "identification"});
+                         "solver", "cost", "optimization", "output", "identification",
+                         // issue 12's sections (case_program_section.hpp)
+                         "force", "program", "experiment"});
   const auto table = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
     const toml::table* t = top.optional_table(key);
     if (t == nullptr) top.fail_missing(key, fmt::format("a table [{}]", key));
@@ -931,6 +934,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   }
 
   check_loads_on_fixed_faces(c, dim, fixed_by);
+  detail::read_program_sections(top, origin, dim, c);
 
   read_design(table("design", {"control_points", "initial", "upper_bound", "slope_bound", "volume", "slope_scaling"}),
               geometry, body);

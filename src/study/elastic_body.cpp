@@ -34,6 +34,8 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
                                                  fem::expand_dirichlet(*mesh_, definition_.dirichlet),
                                                  definition_.tractions, definition_.linear_solver);
   admissible_ = shape::make_admissible_set(definition_.shape, definition_.admissible);
+  if (!definition_.forces.empty())
+    nodal_forces_ = fem_->dofs().restrict(fem::nodal_force_load(*mesh_, fem_->dofs(), definition_.forces));
   if (definition_.contact) {
     if (definition_.contact->law.dim() != mesh_->dim())
       throw InvalidInput(fmt::format("contact.friction: a {}D friction law for a {}D body",
@@ -52,6 +54,25 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
 }
 
 BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, const std::string& design_label) {
+  step_alpha_.reset();  // a plain solve refactorizes; the next step solve must not trust the cache
+  return solve_impl(alpha, design_label, nullptr);
+}
+
+BodyState ElasticBody::solve_step(const Eigen::Ref<const Eigen::VectorXd>& alpha, const StepLoads& step,
+                                  const std::string& design_label) {
+  const Eigen::Index n_free = fem_->dofs().num_free();
+  if (step.load_change.size() != n_free || step.prescribed_change.size() != mesh_->num_dofs() ||
+      (boundary_ && step.previous_tangential.size() != (mesh_->dim() - 1) * boundary_->num_nodes()))
+    throw InvalidInput(fmt::format("StepLoads: sizes {}, {}, {}; expected {} free DOFs, {} DOFs and {} tangential "
+                                   "contact components",
+                                   step.load_change.size(), step.prescribed_change.size(),
+                                   step.previous_tangential.size(), n_free, mesh_->num_dofs(),
+                                   boundary_ ? (mesh_->dim() - 1) * boundary_->num_nodes() : 0));
+  return solve_impl(alpha, design_label, &step);
+}
+
+BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha, const std::string& design_label,
+                                  const StepLoads* step) {
   if (alpha.size() != definition_.shape.num_controls())
     throw InvalidInput(fmt::format("{}: has {} control heights; expected {}", design_label, alpha.size(),
                                    definition_.shape.num_controls()));
@@ -61,21 +82,28 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
   mesh_->check_quality(state.positions, design_label);
   state.volume = mesh_->volume(state.positions);
 
+  // A step at the design of the previous step reuses A(α), its factor and M (spec 07 §1).
+  const bool reuse = step != nullptr && step_alpha_ && *step_alpha_ == alpha;
   auto start = std::chrono::steady_clock::now();
-  fem_->assemble(state.positions);
-  state.summary.assembly_seconds = seconds_since(start);
-  start = std::chrono::steady_clock::now();
-  const Status status = fem_->factorize();
-  state.summary.factorization_seconds = seconds_since(start);
-  if (status != Status::kConverged) {
-    state.summary.status = status;
-    state.summary.message = fem_->factorization().message();
-    return state;
+  if (!reuse) {
+    step_alpha_.reset();
+    fem_->assemble(state.positions);
+    state.summary.assembly_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    const Status status = fem_->factorize();
+    state.summary.factorization_seconds = seconds_since(start);
+    if (status != Status::kConverged) {
+      state.summary.status = status;
+      state.summary.message = fem_->factorization().message();
+      return state;
+    }
   }
   start = std::chrono::steady_clock::now();
   const linalg::SpdSolver& solver = fem_->factorization();
-  Eigen::VectorXd u_free = solver.solve(fem_->load());  // the free body's response A⁻¹l
   Eigen::VectorXd rhs = fem_->load();
+  if (nodal_forces_.size()) rhs += nodal_forces_;
+  if (step) rhs += step->load_change;
+  Eigen::VectorXd u_free = solver.solve(rhs);  // the free body's response A⁻¹l
   if (boundary_) {
     // Dual contact QP (spec 02, §7/§9.2): min ½zᵀMz + zᵀc with c = G A⁻¹ l + (0, g).
     ContactResult result;
@@ -83,9 +111,15 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
     const int dim = mesh_->dim();
     Eigen::VectorXd c = boundary_->times(u_free);
     for (Eigen::Index i = 0; i < boundary_->num_nodes(); ++i) c(dim * i + dim - 1) += result.gaps(i);
+    // The lifting of prescribed values enters c through A⁻¹l; their own motion at contact nodes
+    // is zero (contact nodes have only free DOFs), so c needs no other Dirichlet term.
+    if (step) c = contact::shift_by_previous_slip(c, step->previous_tangential, dim);
     const ContactDefinition& cd = *definition_.contact;
     result.dense_delassus = boundary_->num_unknowns() <= cd.dense_delassus_max_unknowns;
-    if (solver.trailing_size() > 0) {
+    if (reuse) {
+      result.delassus = step_delassus_;
+      result.delassus_matrix = step_delassus_matrix_;
+    } else if (solver.trailing_size() > 0) {
       auto schur = std::make_shared<contact::SchurDelassus>(solver.trailing_factor(), dim);
       if (result.dense_delassus) {
         // One copy of the dense M, shared by the QP operator and readers of delassus_matrix; the
@@ -104,13 +138,22 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
       // how ShapeOracle uses it (the sensitivity reads M only at the last solved design).
       result.delassus = std::make_shared<contact::FactorizedDelassus>(solver, *boundary_);
     }
+    if (step) {
+      step_alpha_ = Eigen::VectorXd(alpha);
+      step_delassus_ = result.delassus;
+      step_delassus_matrix_ = result.delassus_matrix;
+    }
     const linalg::LinearOperator* delassus = result.delassus.get();
     result.state = warm_start_ && warm_start_->z.size() == boundary_->num_unknowns()
                        ? *warm_start_
                        : contact::ContactState(dim, boundary_->num_nodes());
-    const contact::CoulombSolver coulomb(*delassus, cd.law, cd.coulomb);
+    const bool frictionless = step && !step->friction;
+    const contact::CoulombSolver coulomb(
+        *delassus, frictionless ? contact::frictionless_law(dim) : cd.law, cd.coulomb);
     result.summary = coulomb.solve(c, result.state);
     if (result.summary.converged()) warm_start_ = result.state;
+    result.resultants = contact::contact_resultants(result.state, boundary_->tributary_areas(),
+                                                    boundary_->plane_coordinates());
     // u_f = A⁻¹(l + Gᵀz): the body under its loads and the contact forces.
     Eigen::VectorXd w = Eigen::VectorXd::Zero(fem_->dofs().num_free());
     boundary_->add_transpose_times(result.state.z, w);
@@ -121,8 +164,11 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
       state.summary.message = "contact: " + result.summary.message;
     }
     state.contact = std::move(result);
+  } else if (step) {
+    step_alpha_ = Eigen::VectorXd(alpha);
   }
   state.displacement = fem_->dofs().expand(u_free);
+  if (step) state.displacement += step->prescribed_change;
   state.summary.solve_seconds = seconds_since(start);
 
   const double load_norm = rhs.norm();
@@ -130,7 +176,9 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
       (fem_->stiffness() * u_free - rhs).norm() / (load_norm > 0 ? load_norm : 1.0);
   state.stress = fem::recover_stresses(*mesh_, definition_.material, state.positions, state.displacement);
   state.strain_energy = fem_->strain_energy(state.positions, state.displacement);
+  // The work of the definition's tractions (a loading program recomputes it with its step's loads).
   state.external_work = fem_->external_work(state.positions, state.displacement);
+  if (nodal_forces_.size()) state.external_work += nodal_forces_.dot(u_free);
   if (state.summary.status == Status::kNotRun) {
     state.summary.status = Status::kConverged;
     state.summary.message = boundary_ ? "contact with Coulomb friction solved (dual QP fixed point)"

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "frictopt/contact/contact_boundary.hpp"
+#include "frictopt/contact/contact_resultants.hpp"
 #include "frictopt/contact/contact_state.hpp"
 #include "frictopt/contact/coulomb_solver.hpp"
 #include "frictopt/contact/delassus.hpp"
@@ -37,6 +38,8 @@ struct ContactResult {
   contact::ContactState state;       ///< z = (q, λ) per node, u_t and u_ν + g, node statuses
   Eigen::VectorXd gaps;              ///< initial gaps g = B̃α at the contact nodes [m]
   contact::CoulombSolver::Summary summary;
+  /// Total forces, areas, stick zone (issue 12, item 6), from `state` and the tributary areas.
+  contact::ContactResultants resultants;
   bool dense_delassus = false;       ///< used: dense M (true) or the Schur-factor operator
   /// M = G A⁻¹ Gᵀ at this design (dense or from the Schur factor), reused by the sensitivity.
   std::shared_ptr<const contact::DelassusMatrix> delassus;
@@ -55,6 +58,20 @@ struct BodyState {
   double volume = kNaN;          ///< meas Ω(α) of the mesh [m³ or m²]
   std::optional<ContactResult> contact;  ///< present when the body has a foundation
   StateSummary summary;
+};
+
+/// The loads of one step of a loading program (study/loading_program.hpp) in place of the
+/// definition's: the step's free-DOF load, its prescribed values, and the slip reference of
+/// incremental Coulomb friction (spec 07 §1; docs/theory/loading-program.md).
+struct StepLoads {
+  /// The difference l^k − l(α) of the step's free-DOF load (tractions, nodal forces and the
+  /// lifting −A_fd u_d^k of its prescribed displacements) from the definition's load.
+  Eigen::VectorXd load_change;
+  /// The difference u_d^k − u_d of the prescribed values (full DOF vector, zero at free DOFs).
+  Eigen::VectorXd prescribed_change;
+  /// u_t^{k−1} of the contact nodes ((dim−1)·p, node-interleaved): friction acts on u_t − u_t^{k−1}.
+  Eigen::VectorXd previous_tangential;
+  bool friction = true;  ///< false: this step is frictionless (W = {0})
 };
 
 /// Lifetime: holds the mesh and the FE problem; not thread-safe (the factorization is reused).
@@ -79,6 +96,11 @@ class ElasticBody {
   /// `design_label`); a failed factorization or contact solve is a status.
   [[nodiscard]] BodyState solve(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                 const std::string& design_label = "design");
+  /// One step of a loading program: as solve(), with the step's loads. When α is the design of
+  /// the last step solve, the assembled A(α), its factorization and the Delassus operator are
+  /// reused (the stiffness does not change between steps): only the contact right-hand side does.
+  [[nodiscard]] BodyState solve_step(const Eigen::Ref<const Eigen::VectorXd>& alpha, const StepLoads& step,
+                                     const std::string& design_label = "design");
 
   /// The contact state the next solve starts from (the last converged one; only its z is
   /// read). A run's checkpoint stores it so that a resumed run repeats the uninterrupted one
@@ -93,6 +115,13 @@ class ElasticBody {
   shape::LinearConstraints admissible_;
   std::unique_ptr<contact::ContactBoundary> boundary_;
   std::optional<contact::ContactState> warm_start_;  // last converged contact state
+  Eigen::VectorXd nodal_forces_;  // free-DOF load of definition_.forces (empty: none)
+  // solve_step's reuse: the design whose A is factorized and its Delassus operator/matrix.
+  std::optional<Eigen::VectorXd> step_alpha_;
+  std::shared_ptr<const contact::DelassusMatrix> step_delassus_;
+  std::shared_ptr<const Eigen::MatrixXd> step_delassus_matrix_;
+  BodyState solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha, const std::string& design_label,
+                       const StepLoads* step);
 };
 
 }  // namespace frictopt::study
