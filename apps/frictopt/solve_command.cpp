@@ -34,6 +34,7 @@ int run_solve(const std::filesystem::path& case_path, const std::filesystem::pat
   study::BodyState state = body.solve(body.definition().initial_design, "initial design");
   if (state.contact) {
     fmt::print("{}\n", state.contact->summary.brief_report());
+    if (state.contact->floating) fmt::print("{}\n", state.contact->floating->brief_report());
     fmt::print("{}\n", state.contact->resultants.brief_report());
   }
   fmt::print("{}\n", state.summary.brief_report());

@@ -911,10 +911,14 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                     dim, body.material.young));
 
   const toml::array* dirichlet = top.optional_table_array("dirichlet");
-  if (dirichlet == nullptr || dirichlet->empty())
+  // Without [[dirichlet]] a body floats: only contact and friction can hold it (issue 12,
+  // spec 07 §2; study::ElasticBody solves it with the kernel-aware dual).
+  const toml::array no_dirichlet;
+  if ((dirichlet == nullptr || dirichlet->empty()) && top.optional_table("contact") == nullptr)
     top.fail_missing("dirichlet",
                      "at least one [[dirichlet]] table (a body without a "
-                     "Dirichlet part has rigid-body modes)");
+                     "Dirichlet part and without [contact] has rigid-body modes)");
+  if (dirichlet == nullptr) dirichlet = &no_dirichlet;
   // (face, component) -> index of the [[dirichlet]] entry that fixes it first.
   std::map<std::pair<std::string, int>, std::size_t> fixed_by;
   for (std::size_t i = 0; i < dirichlet->size(); ++i) {

@@ -285,6 +285,17 @@ JsonValue solve_summary(const std::string& case_name, const study::ElasticBody& 
     contact["dense_delassus"] = c.dense_delassus;
     add_members(contact, to_json(c.resultants));
     contact["min_initial_gap"] = c.gaps.size() ? c.gaps.minCoeff() : 0.0;
+    if (c.floating) {
+      JsonValue f = status_fields(c.floating->status, c.floating->message);
+      f["outer_iterations"] = c.floating->outer_iterations;
+      f["fixed_point_iterations"] = c.floating->fixed_point_iterations;
+      f["qp_iterations"] = c.floating->qp_iterations;
+      f["equality_residual"] = c.floating->equality_residual;
+      f["penalty"] = c.floating->penalty;
+      f["rigid_motion"] = c.rigid_motion;
+      f["time_seconds"] = c.floating->time_seconds;
+      contact["floating"] = f;
+    }
     summary["contact"] = contact;
   }
   if (state.summary.status != Status::kConverged) return summary;  // no energies of a failed state

@@ -9,6 +9,7 @@
 #include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
+#include "frictopt/study/floating_body.hpp"
 
 namespace frictopt::study {
 namespace {
@@ -24,18 +25,37 @@ std::string StateSummary::brief_report() const {
 }
 
 ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(definition)) {
-  if (definition_.dirichlet.empty())
+  if (definition_.dirichlet.empty() && !definition_.contact)
     throw InvalidInput(
         "dirichlet: no Dirichlet condition; expected at least one face with prescribed displacement "
         "(otherwise rigid-body motions are free and the stiffness matrix is singular)");
   mesh_ = std::make_unique<const mesh::Mesh>(
       mesh::StructuredMesh(definition_.shape, definition_.height, definition_.resolution).take_mesh());
-  fem_ = std::make_unique<fem::LinearElasticity>(*mesh_, definition_.material,
-                                                 fem::expand_dirichlet(*mesh_, definition_.dirichlet),
-                                                 definition_.tractions, definition_.linear_solver);
+  fem::PrescribedDofs prescribed = fem::expand_dirichlet(*mesh_, definition_.dirichlet);
+  user_prescribed_dofs_ = prescribed.dofs;
+  // A floating body (spec 07 §2): rigid modes the Dirichlet conditions leave free are held by
+  // contact and friction only. Hold r DOFs off Γ_c at 0 so that the factorized block is SPD
+  // (its inverse is a generalized inverse A⁺); the modes come back as Rβ in solve().
+  const Eigen::MatrixXd modes = free_rigid_modes(mesh_->reference_positions(), user_prescribed_dofs_);
+  if (modes.cols() > 0) {
+    if (!definition_.contact)
+      throw InvalidInput(fmt::format(
+          "dirichlet: the Dirichlet conditions leave {} rigid-body mode{} free and the body has no contact to hold "
+          "them; expected conditions that hold the body (the stiffness matrix would be singular)",
+          modes.cols(), modes.cols() == 1 ? "" : "s"));
+    fixing_dofs_ = study::fixing_dofs(modes, user_prescribed_dofs_,
+                               mesh_->boundary(definition_.contact_surface).nodes, mesh_->dim());
+    for (int d : fixing_dofs_) prescribed.dofs.push_back(d), prescribed.values.push_back(0.0);
+  }
+  fem_ = std::make_unique<fem::LinearElasticity>(*mesh_, definition_.material, prescribed, definition_.tractions,
+                                                 definition_.linear_solver);
   admissible_ = shape::make_admissible_set(definition_.shape, definition_.admissible);
-  if (!definition_.forces.empty())
-    nodal_forces_ = fem_->dofs().restrict(fem::nodal_force_load(*mesh_, fem_->dofs(), definition_.forces));
+  if (!definition_.forces.empty()) {
+    // Checked against the user's conditions (a force on a fixing DOF is carried by the floating
+    // body's equilibrium, not refused).
+    nodal_forces_full_ = fem::nodal_force_load(*mesh_, fem::DofMap(mesh_->num_dofs(), fem::expand_dirichlet(*mesh_, definition_.dirichlet)), definition_.forces);
+    nodal_forces_ = fem_->dofs().restrict(nodal_forces_full_);
+  }
   if (definition_.contact) {
     if (definition_.contact->law.dim() != mesh_->dim())
       throw InvalidInput(fmt::format("contact.friction: a {}D friction law for a {}D body",
@@ -148,9 +168,77 @@ BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha
                        ? *warm_start_
                        : contact::ContactState(dim, boundary_->num_nodes());
     const bool frictionless = step && !step->friction;
-    const contact::CoulombSolver coulomb(
-        *delassus, frictionless ? contact::frictionless_law(dim) : cd.law, cd.coulomb);
-    result.summary = coulomb.solve(c, result.state);
+    const contact::FrictionLaw& law = frictionless ? contact::frictionless_law(dim) : cd.law;
+    Eigen::MatrixXd modes;
+    if (fixing_dofs_.empty()) {
+      const contact::CoulombSolver coulomb(*delassus, law, cd.coulomb);
+      result.summary = coulomb.solve(c, result.state);
+    } else {
+      // Floating body (spec 07 §2): the contact forces must balance the loads, E z = e with
+      // E = (G R)ᵀ and e = −Rᵀ l over every DOF the user does not prescribe, l including the
+      // lifting of the prescribed values: l = f − (A u_d − l_traction) = f − residual(u_d).
+      modes = free_rigid_modes(state.positions, user_prescribed_dofs_);
+      if (modes.cols() != static_cast<Eigen::Index>(fixing_dofs_.size()))
+        throw InvalidInput(fmt::format("{}: the body has {} free rigid-body modes at this design but {} at the "
+                                       "reference; expected the same",
+                                       design_label, modes.cols(), fixing_dofs_.size()));
+      Eigen::VectorXd prescribed = fem_->dofs().prescribed_values();
+      if (step) prescribed += step->prescribed_change;
+      Eigen::VectorXd load = -fem_->residual(state.positions, prescribed);
+      if (nodal_forces_full_.size()) load += nodal_forces_full_;
+      if (step && step->applied_change.size()) load += step->applied_change;
+      for (int d : user_prescribed_dofs_) load(d) = 0.0;  // reactions are not loads
+      const Eigen::VectorXd e = -modes.transpose() * load;
+      Eigen::MatrixXd E(modes.cols(), boundary_->num_unknowns());
+      for (Eigen::Index j = 0; j < modes.cols(); ++j)
+        E.row(j) = boundary_->times(fem_->dofs().restrict(modes.col(j))).transpose();
+      // A priori: when the net load presses the body (vertical translation free), the friction
+      // capacity is known before any iteration: refuse a load beyond it with its excess.
+      std::string excess;
+      Eigen::VectorXd translation = Eigen::VectorXd::Zero(mesh_->num_dofs());
+      Eigen::Vector3d net = Eigen::Vector3d::Zero();
+      bool translations_free = true;
+      for (int comp = 0; comp < dim; ++comp) {
+        translation.setZero();
+        for (int a = 0; a < mesh_->num_nodes(); ++a) translation(a * dim + comp) = 1.0;
+        net(comp) = translation.dot(load);
+        for (int d : user_prescribed_dofs_) translations_free &= d % dim != comp;
+      }
+      if (translations_free) {
+        // Σλ = −F_ν and Σq = F_t (the contact balances the net load).
+        excess = friction_capacity_excess(law, dim == 3 ? Eigen::Vector2d(net(0), net(1)) : Eigen::Vector2d(net(0), 0.0),
+                                          -net(dim - 1), dim);
+      }
+      contact::FloatingCoulombSolver::Options fo;
+      fo.coulomb = cd.coulomb;
+      const contact::FloatingCoulombSolver floating(*delassus, E, law, fo);
+      contact::FloatingCoulombSolver::Summary fs;
+      if (!excess.empty()) {
+        fs.status = Status::kDiverged;
+        fs.message = excess;
+        result.summary.status = Status::kDiverged;
+        result.summary.message = excess;
+        result.rigid_motion = Eigen::VectorXd::Zero(modes.cols());
+        // Not solved: no contact forces, every node reported separated.
+        result.state = contact::ContactState(dim, boundary_->num_nodes());
+        result.state.nodes.assign(static_cast<std::size_t>(boundary_->num_nodes()), contact::NodeClassification{});
+      } else {
+        fs = floating.solve(c, e, result.state, result.rigid_motion);
+        result.summary = fs.inner;
+        if (!fs.converged()) {
+          result.summary.status = fs.status;
+          result.summary.message = fs.message;
+          // A posteriori: with the normal force a result, compare with the capacity at the
+          // last iterate's P.
+          if (dim == 3 || dim == 2) {
+            Eigen::Vector2d tangential(net(0), dim == 3 ? net(1) : 0.0);
+            const std::string report = friction_capacity_excess(law, tangential, result.state.normal_forces().sum(), dim);
+            if (!report.empty()) result.summary.message = fs.message = report;
+          }
+        }
+      }
+      result.floating = fs;
+    }
     if (result.summary.converged()) warm_start_ = result.state;
     result.resultants = contact::contact_resultants(result.state, boundary_->tributary_areas(),
                                                     boundary_->plane_coordinates());
@@ -169,6 +257,10 @@ BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha
   }
   state.displacement = fem_->dofs().expand(u_free);
   if (step) state.displacement += step->prescribed_change;
+  if (state.contact && state.contact->rigid_motion.size()) {
+    // u = A⁺(l + Gᵀz) + Rβ (spec 07 §2); the rigid motion does not change A u.
+    state.displacement += free_rigid_modes(state.positions, user_prescribed_dofs_) * state.contact->rigid_motion;
+  }
   state.summary.solve_seconds = seconds_since(start);
 
   const double load_norm = rhs.norm();

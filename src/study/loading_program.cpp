@@ -81,6 +81,7 @@ StepLoads StepLoadBuilder::build(const std::vector<double>& load_scale, const st
   }
   step.previous_tangential = previous_tangential;
   step.friction = friction;
+  step.applied_change = std::move(change);
   return step;
 }
 

@@ -150,4 +150,44 @@ TEST(CliExperiment, BadProgramsAndExperimentsExitTwoNamingTheField) {
   EXPECT_NE(r.output.find("experiment.normal_force"), std::string::npos) << r.output;
 }
 
+// A floating block: no [[dirichlet]]; pressed by a top pressure and pulled by a top shear.
+std::string floating_case(double shear) {
+  return R"(
+[geometry]
+dim = 3
+a = 0.1
+b = 0.1
+height = 0.05
+[mesh]
+cells = [4, 4, 2]
+[material]
+young = 7.0e10
+poisson = 0.33
+[[load]]
+face = "top"
+traction = [)" + std::to_string(shear) + R"(, 0.0, -1.0e6]
+[design]
+control_points = [2, 2]
+initial = [0.0, 0.0, 0.0, 0.0]
+upper_bound = 1.0e-3
+[contact.friction]
+kind = "disc_exact"
+mu = 0.3
+)";
+}
+
+TEST(CliFloating, InsideTheCapacitySolvesBeyondItExitsThreeWithTheExcess) {
+  const fs::path dir = fresh_directory("floating");
+  const RunResult inside = run("solve " + write_case(dir, floating_case(1.5e5)).string() + " -o " + (dir / "a").string());
+  ASSERT_EQ(inside.exit_code, 0) << inside.output;
+  const auto json = frictopt::io::parse_json(read_text(dir / "a" / "summary.json"));
+  EXPECT_EQ(json.at("contact").at("floating").at("status").as_string(), "converged");
+  EXPECT_NEAR(json.at("contact").at("total_normal_force").as_number(), 1e4, 1e-4);
+  const RunResult beyond = run("solve " + write_case(dir, floating_case(4.5e5)).string() + " -o " + (dir / "b").string());
+  EXPECT_EQ(beyond.exit_code, 3) << beyond.output;
+  EXPECT_NE(beyond.output.find("exceeds the friction capacity μ(θ)·P = 0.3 × 10000 N = 3000 N by 50 %"),
+            std::string::npos)
+      << beyond.output;
+}
+
 }  // namespace

@@ -13,6 +13,7 @@
 #include "frictopt/contact/contact_state.hpp"
 #include "frictopt/contact/coulomb_solver.hpp"
 #include "frictopt/contact/delassus.hpp"
+#include "frictopt/contact/floating_coulomb_solver.hpp"
 #include "frictopt/core/status.hpp"
 #include "frictopt/fem/linear_elasticity.hpp"
 #include "frictopt/fem/stress_recovery.hpp"
@@ -45,6 +46,11 @@ struct ContactResult {
   std::shared_ptr<const contact::DelassusMatrix> delassus;
   /// The dense M when dense_delassus (else null).
   std::shared_ptr<const Eigen::MatrixXd> delassus_matrix;
+  /// A floating body (ElasticBody::num_floating_modes() > 0): the augmented-Lagrangian report
+  /// (spec 07 §2); `summary` is then its last inner Coulomb solve.
+  std::optional<contact::FloatingCoulombSolver::Summary> floating;
+  /// β: the rigid motion R β added to A⁺(l + Gᵀz) (empty for a held body).
+  Eigen::VectorXd rigid_motion;
 };
 
 /// The state of the body at one design.
@@ -72,6 +78,9 @@ struct StepLoads {
   /// u_t^{k−1} of the contact nodes ((dim−1)·p, node-interleaved): friction acts on u_t − u_t^{k−1}.
   Eigen::VectorXd previous_tangential;
   bool friction = true;  ///< false: this step is frictionless (W = {0})
+  /// The change of the applied forces (tractions + point forces) as a full DOF vector, for the
+  /// equilibrium of a floating body (empty: none).
+  Eigen::VectorXd applied_change;
 };
 
 /// Lifetime: holds the mesh and the FE problem; not thread-safe (the factorization is reused).
@@ -87,6 +96,11 @@ class ElasticBody {
   const std::string& contact_surface() const { return definition_.contact_surface; }
   const fem::LinearElasticity& elasticity() const { return *fem_; }
   const shape::LinearConstraints& admissible_set() const { return admissible_; }
+  /// The number r of rigid-body modes the Dirichlet conditions leave free (0: a held body). A
+  /// floating body (r > 0, only with contact) is solved with the kernel-aware dual of spec 07 §2.
+  int num_floating_modes() const { return static_cast<int>(fixing_dofs_.size()); }
+  /// The DOFs held at 0 to factorize the floating body's stiffness (its generalized inverse).
+  const std::vector<int>& fixing_dofs() const { return fixing_dofs_; }
   /// The contact nodes (null without a foundation).
   const contact::ContactBoundary* contact_boundary() const { return boundary_.get(); }
 
@@ -116,6 +130,9 @@ class ElasticBody {
   std::unique_ptr<contact::ContactBoundary> boundary_;
   std::optional<contact::ContactState> warm_start_;  // last converged contact state
   Eigen::VectorXd nodal_forces_;  // free-DOF load of definition_.forces (empty: none)
+  Eigen::VectorXd nodal_forces_full_;       // the same, full DOF vector
+  std::vector<int> user_prescribed_dofs_;   // the DOFs the Dirichlet conditions prescribe
+  std::vector<int> fixing_dofs_;            // floating body: DOFs held for A⁺ (spec 07 §2)
   // solve_step's reuse: the design whose A is factorized and its Delassus operator/matrix.
   std::optional<Eigen::VectorXd> step_alpha_;
   std::shared_ptr<const contact::DelassusMatrix> step_delassus_;
