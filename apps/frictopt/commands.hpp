@@ -9,11 +9,17 @@
 #include <string>
 
 #include "exit_codes.hpp"
+#include "frictopt/io/case_description.hpp"
 
 namespace frictopt::app {
 
 
 int run_solve(const std::filesystem::path& case_path, const std::filesystem::path& out_dir);
+/// `solve` of a case with [[program.step]] tables: one state per step (experiment_command.cpp).
+int run_program(const std::filesystem::path& case_path, const std::filesystem::path& out_dir,
+                const io::CaseDescription& description);
+/// `experiment`: the virtual tribometer of the case's [experiment] table.
+int run_experiment(const std::filesystem::path& case_path, const std::filesystem::path& out_dir);
 int run_export_fclib(const std::filesystem::path& case_path, const std::filesystem::path& out_path,
                      const std::string& units, bool include_solution);
 int run_check_gradient(const std::filesystem::path& case_path, const std::filesystem::path& design_path,

@@ -94,6 +94,12 @@ int main(int argc, char** argv) {
                      "write DIR/measurements.csv: the measurement rows with values from the case's own law plus noise");
   identify->add_option("--seed", identify_seed, "seed of the synthetic noise (std::mt19937_64)");
   identify->add_flag("--noise-free", identify_noise_free, "synthetic values without noise");
+  CLI::App* experiment = app.add_subcommand(
+      "experiment", "Virtual tribometer: press, then pull at angles θ until gross sliding (docs/experiments.md)");
+  experiment->add_option("case", case_path, "case file (TOML) with [contact] and [experiment]")
+      ->required()
+      ->check(CLI::ExistingFile);
+  experiment->add_option("-o,--output", out_dir, "output directory (tribometer_*.csv, summary.json)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -140,6 +146,7 @@ int main(int argc, char** argv) {
     if (*check_gradient) return run_check_gradient(case_path, design_path, relative_step);
     if (*certify) return run_certify(run_dir, certify_cap);
     if (*identify) return run_identify(case_path, out_dir, identify_generate, identify_seed, identify_noise_free);
+    if (*experiment) return run_experiment(case_path, out_dir);
     if (*export_fclib) return run_export_fclib(case_path, fclib_out, fclib_units, !fclib_no_solution);
     return kExitOk;
   });

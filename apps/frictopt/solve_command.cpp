@@ -21,6 +21,7 @@ namespace frictopt::app {
 int run_solve(const std::filesystem::path& case_path, const std::filesystem::path& out_dir) {
   using namespace frictopt;
   const io::CaseDescription description = io::load_case(case_path);
+  if (description.program) return run_program(case_path, out_dir, description);
   study::ElasticBody body(description.body);
   const auto& mesh = body.mesh();
   fmt::print("{}: {}D body, {} nodes, {} elements, {} unknowns, {} design variables\n", case_path.string(),
@@ -31,7 +32,11 @@ int run_solve(const std::filesystem::path& case_path, const std::filesystem::pat
   io::RunDirectory run(out_dir, io::RunOpening::kOutput, case_path);
 
   study::BodyState state = body.solve(body.definition().initial_design, "initial design");
-  if (state.contact) fmt::print("{}\n", state.contact->summary.brief_report());
+  if (state.contact) {
+    fmt::print("{}\n", state.contact->summary.brief_report());
+    if (state.contact->floating) fmt::print("{}\n", state.contact->floating->brief_report());
+    fmt::print("{}\n", state.contact->resultants.brief_report());
+  }
   fmt::print("{}\n", state.summary.brief_report());
   const io::JsonValue summary = io::solve_summary(case_path.string(), body, state);
   if (state.summary.status != Status::kConverged) {

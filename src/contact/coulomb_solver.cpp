@@ -265,4 +265,23 @@ CoulombSolver::Summary CoulombSolver::solve_split(const Eigen::VectorXd& c, Cont
   return summary;
 }
 
+Eigen::VectorXd shift_by_previous_slip(const Eigen::Ref<const Eigen::VectorXd>& c,
+                                       const Eigen::Ref<const Eigen::VectorXd>& previous_tangential, int dim) {
+  if ((dim != 2 && dim != 3) || c.size() % dim != 0 || previous_tangential.size() != (dim - 1) * (c.size() / dim))
+    throw InvalidInput("shift_by_previous_slip: c has " + std::to_string(c.size()) + " entries and u_t^{k-1} " +
+                       std::to_string(previous_tangential.size()) + " in dim " + std::to_string(dim) +
+                       "; expected dim·p and (dim−1)·p");
+  Eigen::VectorXd shifted = c;
+  const Eigen::Index p = c.size() / dim;
+  for (Eigen::Index i = 0; i < p; ++i)
+    for (int k = 0; k < dim - 1; ++k) shifted(dim * i + k) += previous_tangential((dim - 1) * i + k);
+  return shifted;
+}
+
+FrictionLaw frictionless_law(int dim) {
+  if (dim == 2) return FrictionLaw::interval(0.0, 0.0);
+  if (dim == 3) return FrictionLaw::disc(0.0);
+  throw InvalidInput("frictionless_law: dim = " + std::to_string(dim) + "; expected 2 or 3");
+}
+
 }  // namespace frictopt::contact

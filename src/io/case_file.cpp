@@ -25,6 +25,7 @@
 #include "frictopt/mesh/graded_coordinates.hpp"
 #include "frictopt/study/shape_optimization.hpp"
 #include "case_solver_section.hpp"
+#include "case_program_section.hpp"
 #include "text_input.hpp"
 #include "toml_reader.hpp"
 
@@ -885,7 +886,9 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
 
   const TableReader top(root, "", origin,
                         {"geometry", "mesh", "material", "load", "dirichlet", "design", "contact",
-                         "solver", "cost", "optimization", "output", "identification"});
+                         "solver", "cost", "optimization", "output", "identification",
+                         // issue 12's sections (case_program_section.hpp)
+                         "force", "program", "experiment"});
   const auto table = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
     const toml::table* t = top.optional_table(key);
     if (t == nullptr) top.fail_missing(key, fmt::format("a table [{}]", key));
@@ -909,10 +912,14 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                     dim, body.material.young));
 
   const toml::array* dirichlet = top.optional_table_array("dirichlet");
-  if (dirichlet == nullptr || dirichlet->empty())
+  // Without [[dirichlet]] a body floats: only contact and friction can hold it (issue 12,
+  // spec 07 §2; study::ElasticBody solves it with the kernel-aware dual).
+  const toml::array no_dirichlet;
+  if ((dirichlet == nullptr || dirichlet->empty()) && top.optional_table("contact") == nullptr)
     top.fail_missing("dirichlet",
                      "at least one [[dirichlet]] table (a body without a "
-                     "Dirichlet part has rigid-body modes)");
+                     "Dirichlet part and without [contact] has rigid-body modes)");
+  if (dirichlet == nullptr) dirichlet = &no_dirichlet;
   // (face, component) -> index of the [[dirichlet]] entry that fixes it first.
   std::map<std::pair<std::string, int>, std::size_t> fixed_by;
   for (std::size_t i = 0; i < dirichlet->size(); ++i) {
@@ -932,6 +939,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   }
 
   check_loads_on_fixed_faces(c, dim, fixed_by);
+  detail::read_program_sections(top, origin, dim, c);
 
   read_design(table("design", {"control_points", "initial", "upper_bound", "slope_bound", "volume", "slope_scaling"}),
               geometry, body);

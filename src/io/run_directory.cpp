@@ -26,7 +26,8 @@ namespace fs = std::filesystem;
 constexpr std::string_view kFixedNames[] = {
     RunDirectory::kLockFile, RunDirectory::kCaseCopy, RunDirectory::kCheckpoint, RunDirectory::kHistory,
     RunDirectory::kSummary,  RunDirectory::kFinalDesign, RunDirectory::kCertificate, "fit.csv",
-    "ceres_report.txt",      "measurements.csv"};
+    "ceres_report.txt",      "measurements.csv", "tribometer_ramp.csv", "tribometer_polar.csv",
+    "tribometer_law.csv"};
 
 // K of "<name>_iterK.vtu" (four or more digits), or nullopt.
 std::optional<int> series_index(std::string_view file, std::string_view name) {

@@ -79,6 +79,25 @@ JsonValue to_json(const contact::CoulombSolver::Summary& s) {
   return j;
 }
 
+JsonValue to_json(const contact::ContactResultants& r) {
+  JsonValue j = JsonValue::object();
+  j["total_normal_force"] = r.normal_force;
+  j["total_tangential_force"] = Eigen::VectorXd(r.tangential_force.head(r.dim - 1));
+  j["total_tangential_force_norm"] = r.tangential_force_norm;
+  j["tangential_to_normal_ratio"] = r.force_ratio;
+  j["contact_area"] = r.contact_area;
+  j["num_stick"] = r.num_stick;
+  j["num_slip"] = r.num_slip;
+  j["num_separated"] = r.num_separated;
+  j["stick_area"] = r.stick_area;
+  j["slip_area"] = r.slip_area;
+  j["separated_area"] = r.separated_area;
+  j["stick_centroid"] = Eigen::VectorXd(r.stick_centroid.head(r.dim - 1));
+  j["stick_equivalent_radius"] = r.stick_equivalent_radius;
+  j["contact_equivalent_radius"] = r.contact_equivalent_radius;
+  return j;
+}
+
 JsonValue to_json(const sensitivity::AdjointSensitivity::Summary& s) {
   JsonValue j = status_fields(s.status, s.message);
   j["reciprocal_condition"] = s.reciprocal_condition;
@@ -264,7 +283,19 @@ JsonValue solve_summary(const std::string& case_name, const study::ElasticBody& 
     JsonValue contact = to_json(c.summary);
     contact["num_contact_nodes"] = static_cast<std::int64_t>(c.state.num_nodes());
     contact["dense_delassus"] = c.dense_delassus;
-    contact["total_normal_force"] = c.state.normal_forces().sum();
+    add_members(contact, to_json(c.resultants));
+    contact["min_initial_gap"] = c.gaps.size() ? c.gaps.minCoeff() : 0.0;
+    if (c.floating) {
+      JsonValue f = status_fields(c.floating->status, c.floating->message);
+      f["outer_iterations"] = c.floating->outer_iterations;
+      f["fixed_point_iterations"] = c.floating->fixed_point_iterations;
+      f["qp_iterations"] = c.floating->qp_iterations;
+      f["equality_residual"] = c.floating->equality_residual;
+      f["penalty"] = c.floating->penalty;
+      f["rigid_motion"] = c.rigid_motion;
+      f["time_seconds"] = c.floating->time_seconds;
+      contact["floating"] = f;
+    }
     summary["contact"] = contact;
   }
   if (state.summary.status != Status::kConverged) return summary;  // no energies of a failed state

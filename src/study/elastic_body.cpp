@@ -12,6 +12,7 @@
 #ifdef FRICTOPT_HAVE_PETSC
 #include "frictopt/petsc/contact_newton_solver.hpp"
 #endif
+#include "frictopt/study/floating_body.hpp"
 
 namespace frictopt::study {
 namespace {
@@ -27,18 +28,45 @@ std::string StateSummary::brief_report() const {
 }
 
 ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(definition)) {
-  if (definition_.dirichlet.empty())
+  if (definition_.dirichlet.empty() && !definition_.contact)
     throw InvalidInput(
         "dirichlet: no Dirichlet condition; expected at least one face with prescribed displacement "
         "(otherwise rigid-body motions are free and the stiffness matrix is singular)");
   mesh_ = std::make_unique<const mesh::Mesh>(
       mesh::StructuredMesh(definition_.shape, definition_.height, definition_.resolution).take_mesh());
-  fem_ = std::make_unique<fem::LinearElasticity>(*mesh_, definition_.material,
-                                                 fem::expand_dirichlet(*mesh_, definition_.dirichlet),
-                                                 definition_.tractions, definition_.linear_solver);
+  fem::PrescribedDofs prescribed = fem::expand_dirichlet(*mesh_, definition_.dirichlet);
+  user_prescribed_dofs_ = prescribed.dofs;
+  // A floating body (spec 07 §2): rigid modes the Dirichlet conditions leave free are held by
+  // contact and friction only. Hold r DOFs off Γ_c at 0 so that the factorized block is SPD
+  // (its inverse is a generalized inverse A⁺); the modes come back as Rβ in solve().
+  const Eigen::MatrixXd modes = free_rigid_modes(mesh_->reference_positions(), user_prescribed_dofs_);
+  if (modes.cols() > 0) {
+    if (!definition_.contact)
+      throw InvalidInput(fmt::format(
+          "dirichlet: the Dirichlet conditions leave {} rigid-body mode{} free and the body has no contact to hold "
+          "them; expected conditions that hold the body (the stiffness matrix would be singular)",
+          modes.cols(), modes.cols() == 1 ? "" : "s"));
+    fixing_dofs_ = study::fixing_dofs(modes, user_prescribed_dofs_,
+                               mesh_->boundary(definition_.contact_surface).nodes, mesh_->dim());
+    for (int d : fixing_dofs_) prescribed.dofs.push_back(d), prescribed.values.push_back(0.0);
+  }
+  fem_ = std::make_unique<fem::LinearElasticity>(*mesh_, definition_.material, prescribed, definition_.tractions,
+                                                 definition_.linear_solver);
   admissible_ = shape::make_admissible_set(definition_.shape, definition_.admissible);
   if (definition_.engine.kind == StateEngine::kPetsc && !definition_.contact)
     throw InvalidInput("solver.engine = \"petsc\": the PETSc engine solves contact problems; expected a [contact] table");
+  // The PETSc engine (issue 14) solves the static clamped problem; point forces and floating
+  // bodies (issue 12) exist in the direct engine only so far.
+  if (definition_.engine.kind == StateEngine::kPetsc && (!fixing_dofs_.empty() || !definition_.forces.empty()))
+    throw InvalidInput(fmt::format("solver.engine = \"petsc\": {} supported by the direct engine only; expected "
+                                   "engine = \"direct\" for this case",
+                                   fixing_dofs_.empty() ? "[[force]] tables are" : "a floating body is"));
+  if (!definition_.forces.empty()) {
+    // Checked against the user's conditions (a force on a fixing DOF is carried by the floating
+    // body's equilibrium, not refused).
+    nodal_forces_full_ = fem::nodal_force_load(*mesh_, fem::DofMap(mesh_->num_dofs(), fem::expand_dirichlet(*mesh_, definition_.dirichlet)), definition_.forces);
+    nodal_forces_ = fem_->dofs().restrict(nodal_forces_full_);
+  }
   if (definition_.contact) {
     if (definition_.contact->law.dim() != mesh_->dim())
       throw InvalidInput(fmt::format("contact.friction: a {}D friction law for a {}D body",
@@ -73,6 +101,25 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
 }
 
 BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, const std::string& design_label) {
+  step_alpha_.reset();  // a plain solve refactorizes; the next step solve must not trust the cache
+  return solve_impl(alpha, design_label, nullptr);
+}
+
+BodyState ElasticBody::solve_step(const Eigen::Ref<const Eigen::VectorXd>& alpha, const StepLoads& step,
+                                  const std::string& design_label) {
+  const Eigen::Index n_free = fem_->dofs().num_free();
+  if (step.load_change.size() != n_free || step.prescribed_change.size() != mesh_->num_dofs() ||
+      (boundary_ && step.previous_tangential.size() != (mesh_->dim() - 1) * boundary_->num_nodes()))
+    throw InvalidInput(fmt::format("StepLoads: sizes {}, {}, {}; expected {} free DOFs, {} DOFs and {} tangential "
+                                   "contact components",
+                                   step.load_change.size(), step.prescribed_change.size(),
+                                   step.previous_tangential.size(), n_free, mesh_->num_dofs(),
+                                   boundary_ ? (mesh_->dim() - 1) * boundary_->num_nodes() : 0));
+  return solve_impl(alpha, design_label, &step);
+}
+
+BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha, const std::string& design_label,
+                                  const StepLoads* step) {
   if (alpha.size() != definition_.shape.num_controls())
     throw InvalidInput(fmt::format("{}: has {} control heights; expected {}", design_label, alpha.size(),
                                    definition_.shape.num_controls()));
@@ -82,22 +129,34 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
   mesh_->check_quality(state.positions, design_label);
   state.volume = mesh_->volume(state.positions);
 
-  if (petsc_engine_) return solve_with_petsc(std::move(state));
+  if (petsc_engine_) {
+    if (step != nullptr)
+      throw InvalidInput(design_label + ": solver.engine = \"petsc\": loading programs are supported by the direct "
+                         "engine only; expected engine = \"direct\"");
+    return solve_with_petsc(std::move(state));
+  }
+  // A step at the design of the previous step reuses A(α), its factor and M (spec 07 §1).
+  const bool reuse = step != nullptr && step_alpha_ && *step_alpha_ == alpha;
   auto start = std::chrono::steady_clock::now();
-  fem_->assemble(state.positions);
-  state.summary.assembly_seconds = seconds_since(start);
-  start = std::chrono::steady_clock::now();
-  const Status status = fem_->factorize();
-  state.summary.factorization_seconds = seconds_since(start);
-  if (status != Status::kConverged) {
-    state.summary.status = status;
-    state.summary.message = fem_->factorization().message();
-    return state;
+  if (!reuse) {
+    step_alpha_.reset();
+    fem_->assemble(state.positions);
+    state.summary.assembly_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    const Status status = fem_->factorize();
+    state.summary.factorization_seconds = seconds_since(start);
+    if (status != Status::kConverged) {
+      state.summary.status = status;
+      state.summary.message = fem_->factorization().message();
+      return state;
+    }
   }
   start = std::chrono::steady_clock::now();
   const linalg::SpdSolver& solver = fem_->factorization();
-  Eigen::VectorXd u_free = solver.solve(fem_->load());  // the free body's response A⁻¹l
   Eigen::VectorXd rhs = fem_->load();
+  if (nodal_forces_.size()) rhs += nodal_forces_;
+  if (step) rhs += step->load_change;
+  Eigen::VectorXd u_free = solver.solve(rhs);  // the free body's response A⁻¹l
   if (boundary_) {
     // Dual contact QP (spec 02, §7/§9.2): min ½zᵀMz + zᵀc with c = G A⁻¹ l + (0, g).
     ContactResult result;
@@ -105,9 +164,15 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
     const int dim = mesh_->dim();
     Eigen::VectorXd c = boundary_->times(u_free);
     for (Eigen::Index i = 0; i < boundary_->num_nodes(); ++i) c(dim * i + dim - 1) += result.gaps(i);
+    // The lifting of prescribed values enters c through A⁻¹l; their own motion at contact nodes
+    // is zero (contact nodes have only free DOFs), so c needs no other Dirichlet term.
+    if (step) c = contact::shift_by_previous_slip(c, step->previous_tangential, dim);
     const ContactDefinition& cd = *definition_.contact;
     result.dense_delassus = boundary_->num_unknowns() <= cd.dense_delassus_max_unknowns;
-    if (solver.trailing_size() > 0) {
+    if (reuse) {
+      result.delassus = step_delassus_;
+      result.delassus_matrix = step_delassus_matrix_;
+    } else if (solver.trailing_size() > 0) {
       auto schur = std::make_shared<contact::SchurDelassus>(solver.trailing_factor(), dim);
       if (result.dense_delassus) {
         // One copy of the dense M, shared by the QP operator and readers of delassus_matrix; the
@@ -126,13 +191,90 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
       // how ShapeOracle uses it (the sensitivity reads M only at the last solved design).
       result.delassus = std::make_shared<contact::FactorizedDelassus>(solver, *boundary_);
     }
+    if (step) {
+      step_alpha_ = Eigen::VectorXd(alpha);
+      step_delassus_ = result.delassus;
+      step_delassus_matrix_ = result.delassus_matrix;
+    }
     const linalg::LinearOperator* delassus = result.delassus.get();
     result.state = warm_start_ && warm_start_->z.size() == boundary_->num_unknowns()
                        ? *warm_start_
                        : contact::ContactState(dim, boundary_->num_nodes());
-    const contact::CoulombSolver coulomb(*delassus, cd.law, cd.coulomb);
-    result.summary = coulomb.solve(c, result.state);
+    const bool frictionless = step && !step->friction;
+    const contact::FrictionLaw& law = frictionless ? contact::frictionless_law(dim) : cd.law;
+    Eigen::MatrixXd modes;
+    if (fixing_dofs_.empty()) {
+      const contact::CoulombSolver coulomb(*delassus, law, cd.coulomb);
+      result.summary = coulomb.solve(c, result.state);
+    } else {
+      // Floating body (spec 07 §2): the contact forces must balance the loads, E z = e with
+      // E = (G R)ᵀ and e = −Rᵀ l over every DOF the user does not prescribe, l including the
+      // lifting of the prescribed values: l = f − (A u_d − l_traction) = f − residual(u_d).
+      modes = free_rigid_modes(state.positions, user_prescribed_dofs_);
+      if (modes.cols() != static_cast<Eigen::Index>(fixing_dofs_.size()))
+        throw InvalidInput(fmt::format("{}: the body has {} free rigid-body modes at this design but {} at the "
+                                       "reference; expected the same",
+                                       design_label, modes.cols(), fixing_dofs_.size()));
+      Eigen::VectorXd prescribed = fem_->dofs().prescribed_values();
+      if (step) prescribed += step->prescribed_change;
+      Eigen::VectorXd load = -fem_->residual(state.positions, prescribed);
+      if (nodal_forces_full_.size()) load += nodal_forces_full_;
+      if (step && step->applied_change.size()) load += step->applied_change;
+      for (int d : user_prescribed_dofs_) load(d) = 0.0;  // reactions are not loads
+      const Eigen::VectorXd e = -modes.transpose() * load;
+      Eigen::MatrixXd E(modes.cols(), boundary_->num_unknowns());
+      for (Eigen::Index j = 0; j < modes.cols(); ++j)
+        E.row(j) = boundary_->times(fem_->dofs().restrict(modes.col(j))).transpose();
+      // A priori: when the net load presses the body (vertical translation free), the friction
+      // capacity is known before any iteration: refuse a load beyond it with its excess.
+      std::string excess;
+      Eigen::VectorXd translation = Eigen::VectorXd::Zero(mesh_->num_dofs());
+      Eigen::Vector3d net = Eigen::Vector3d::Zero();
+      bool translations_free = true;
+      for (int comp = 0; comp < dim; ++comp) {
+        translation.setZero();
+        for (int a = 0; a < mesh_->num_nodes(); ++a) translation(a * dim + comp) = 1.0;
+        net(comp) = translation.dot(load);
+        for (int d : user_prescribed_dofs_) translations_free &= d % dim != comp;
+      }
+      if (translations_free) {
+        // Σλ = −F_ν and Σq = F_t (the contact balances the net load).
+        excess = friction_capacity_excess(law, dim == 3 ? Eigen::Vector2d(net(0), net(1)) : Eigen::Vector2d(net(0), 0.0),
+                                          -net(dim - 1), dim);
+      }
+      contact::FloatingCoulombSolver::Options fo;
+      fo.coulomb = cd.coulomb;
+      const contact::FloatingCoulombSolver floating(*delassus, E, law, fo);
+      contact::FloatingCoulombSolver::Summary fs;
+      if (!excess.empty()) {
+        fs.status = Status::kDiverged;
+        fs.message = excess;
+        result.summary.status = Status::kDiverged;
+        result.summary.message = excess;
+        result.rigid_motion = Eigen::VectorXd::Zero(modes.cols());
+        // Not solved: no contact forces, every node reported separated.
+        result.state = contact::ContactState(dim, boundary_->num_nodes());
+        result.state.nodes.assign(static_cast<std::size_t>(boundary_->num_nodes()), contact::NodeClassification{});
+      } else {
+        fs = floating.solve(c, e, result.state, result.rigid_motion);
+        result.summary = fs.inner;
+        if (!fs.converged()) {
+          result.summary.status = fs.status;
+          result.summary.message = fs.message;
+          // A posteriori: with the normal force a result, compare with the capacity at the
+          // last iterate's P.
+          if (dim == 3 || dim == 2) {
+            Eigen::Vector2d tangential(net(0), dim == 3 ? net(1) : 0.0);
+            const std::string report = friction_capacity_excess(law, tangential, result.state.normal_forces().sum(), dim);
+            if (!report.empty()) result.summary.message = fs.message = report;
+          }
+        }
+      }
+      result.floating = fs;
+    }
     if (result.summary.converged()) warm_start_ = result.state;
+    result.resultants = contact::contact_resultants(result.state, boundary_->tributary_areas(),
+                                                    boundary_->plane_coordinates());
     // u_f = A⁻¹(l + Gᵀz): the body under its loads and the contact forces.
     Eigen::VectorXd w = Eigen::VectorXd::Zero(fem_->dofs().num_free());
     boundary_->add_transpose_times(result.state.z, w);
@@ -143,8 +285,15 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
       state.summary.message = "contact: " + result.summary.message;
     }
     state.contact = std::move(result);
+  } else if (step) {
+    step_alpha_ = Eigen::VectorXd(alpha);
   }
   state.displacement = fem_->dofs().expand(u_free);
+  if (step) state.displacement += step->prescribed_change;
+  if (state.contact && state.contact->rigid_motion.size()) {
+    // u = A⁺(l + Gᵀz) + Rβ (spec 07 §2); the rigid motion does not change A u.
+    state.displacement += free_rigid_modes(state.positions, user_prescribed_dofs_) * state.contact->rigid_motion;
+  }
   state.summary.solve_seconds = seconds_since(start);
 
   const double load_norm = rhs.norm();
@@ -152,7 +301,9 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
       (fem_->stiffness() * u_free - rhs).norm() / (load_norm > 0 ? load_norm : 1.0);
   state.stress = fem::recover_stresses(*mesh_, definition_.material, state.positions, state.displacement);
   state.strain_energy = fem_->strain_energy(state.positions, state.displacement);
+  // The work of the definition's tractions (a loading program recomputes it with its step's loads).
   state.external_work = fem_->external_work(state.positions, state.displacement);
+  if (nodal_forces_.size()) state.external_work += nodal_forces_.dot(u_free);
   if (state.summary.status == Status::kNotRun) {
     state.summary.status = Status::kConverged;
     state.summary.message = boundary_ ? "contact with Coulomb friction solved (dual QP fixed point)"

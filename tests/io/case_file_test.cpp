@@ -349,10 +349,13 @@ TEST(ParseCase, MissingRequiredFieldsAreNamed) {
   expect_invalid_case(replaced(kValid3d, "b = 1\n", ""), {"geometry.b is missing", "in 3D"});
 }
 
+// Without [contact]; with it the body floats, held by contact and friction (issue 12; the
+// floating-body tests of tests/study/floating_body_test.cpp and tests/cli/experiment_test.cpp).
 TEST(ParseCase, AtLeastOneDirichletConditionIsRequired) {
   const std::string text = replaced(
-      replaced(kValid2d, "[[dirichlet]]\nface = \"left\"\n", ""),
-      "[[dirichlet]]\nface = \"right\"\ndisplacement = [0.0, 1e-3]\ncomponents = [1]\n", "");
+      replaced(replaced(kValid2d, "[[dirichlet]]\nface = \"left\"\n", ""),
+               "[[dirichlet]]\nface = \"right\"\ndisplacement = [0.0, 1e-3]\ncomponents = [1]\n", ""),
+      "[contact]\n[contact.friction]\nkind = \"isotropic\"\nmu = 0.3\n", "");
   expect_invalid_case(text, {"dirichlet is missing", "rigid-body modes"});
 }
 

@@ -372,6 +372,7 @@ TEST(ElasticBodyInput, NoDirichletConditionThrowsNamingTheCause) {
   s.top_displacement = Eigen::Vector3d(0.0, 0.0, -0.01);
   BodyDefinition def = block_definition(s);
   def.dirichlet.clear();
+  def.contact.reset();  // with contact the body floats (issue 12; tests/study/floating_body_test.cpp)
   try {
     ElasticBody body(def);
     FAIL() << "expected InvalidInput";
@@ -383,9 +384,10 @@ TEST(ElasticBodyInput, NoDirichletConditionThrowsNamingTheCause) {
 }
 
 // Only u_3 fixed on the top leaves three rigid modes (translations along x1, x2, rotation about
-// x3): the stiffness matrix is singular, so the factorization must report kNumericalFailure with
-// a message instead of returning a state built on a meaningless factor.
-TEST(ElasticBodyInput, DirichletConditionsLeavingRigidModesReportNumericalFailure) {
+// x3). Without contact nothing holds them: InvalidInput naming the cause. With contact the body
+// floats (issue 12, spec 07 §2): contact and friction hold it, solved with the kernel-aware dual;
+// with no tangential load it reaches equilibrium with zero friction force.
+TEST(ElasticBodyInput, DirichletConditionsLeavingRigidModes) {
   for (const bool with_contact : {false, true}) {
     BlockSpec s;
     s.cells = 4;
@@ -393,13 +395,23 @@ TEST(ElasticBodyInput, DirichletConditionsLeavingRigidModesReportNumericalFailur
     s.top_displacement = Eigen::Vector3d(0.0, 0.0, -0.01);
     BodyDefinition def = block_definition(s);
     def.dirichlet = {{"top", {2}, Eigen::Vector3d(0.0, 0.0, -0.01)}};
-    if (!with_contact) def.contact.reset();
-    ElasticBody body(def);
-    const BodyState state = body.solve(def.initial_design);
-    std::printf("rigid modes (%s contact): %s\n", with_contact ? "with" : "without", state.summary.brief_report().c_str());
     SCOPED_TRACE(with_contact ? "with contact" : "without contact");
-    EXPECT_EQ(state.summary.status, Status::kNumericalFailure) << state.summary.brief_report();
-    EXPECT_FALSE(state.summary.message.empty());
+    if (!with_contact) {
+      def.contact.reset();
+      try {
+        ElasticBody body(def);
+        FAIL() << "expected InvalidInput";
+      } catch (const InvalidInput& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("3 rigid-body modes"), std::string::npos) << what;
+      }
+      continue;
+    }
+    ElasticBody body(def);
+    EXPECT_EQ(body.num_floating_modes(), 3);
+    const BodyState state = body.solve(def.initial_design);
+    ASSERT_EQ(state.summary.status, Status::kConverged) << state.summary.brief_report();
+    EXPECT_LE(state.contact->resultants.tangential_force_norm, 1e-8 * state.contact->resultants.normal_force);
   }
 }
 

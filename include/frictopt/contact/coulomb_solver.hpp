@@ -107,4 +107,19 @@ class CoulombSolver {
   TrescaSolver tresca_;
 };
 
+/// Quasi-static (incremental) Coulomb friction, spec 07 §1 (docs/theory/loading-program.md):
+/// at step k the friction law acts on the slip increment u_t − u_t^{k−1}, so the dual QP of
+/// step k has the same M and the linear term c with its tangential blocks shifted by the
+/// previous tangential displacement, c_q^k = c_q + u_t^{k−1}; then ∇_q = Mz + c = −(u_t − u_t^{k−1})
+/// and every solver and classification below reads the increment as "the slip". Returns that c.
+/// `previous_tangential` has (dim−1)·p entries, node-interleaved as q. Throws InvalidInput on a
+/// size mismatch.
+[[nodiscard]] Eigen::VectorXd shift_by_previous_slip(const Eigen::Ref<const Eigen::VectorXd>& c,
+                                                     const Eigen::Ref<const Eigen::VectorXd>& previous_tangential,
+                                                     int dim);
+
+/// The frictionless law W = {0} of dimension dim (2: interval [0, 0], 3: disc of radius 0), for
+/// a frictionless load step (e.g. Cattaneo–Mindlin's normal loading).
+[[nodiscard]] FrictionLaw frictionless_law(int dim);
+
 }  // namespace frictopt::contact

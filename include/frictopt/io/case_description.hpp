@@ -13,6 +13,8 @@
 #include "frictopt/optim/bundle_trust.hpp"
 #include "frictopt/study/body_definition.hpp"
 #include "frictopt/study/identification.hpp"
+#include "frictopt/study/loading_program.hpp"
+#include "frictopt/study/tribometer.hpp"
 
 namespace frictopt::io {
 
@@ -46,6 +48,10 @@ struct CaseDescription {
   optim::BundleTrust::Options optimization;
   OutputSpec output;
   std::optional<IdentificationSetup> identification;  ///< [identification], absent: no `identify`
+  /// [[program.step]]: a quasi-static loading program (`solve` runs it step by step).
+  std::optional<study::LoadingProgramDefinition> program;
+  /// [experiment]: the virtual tribometer (`frictopt experiment`).
+  std::optional<study::TribometerDefinition> experiment;
   /// The problem the case defines, normalized: every key of the file except the run controls
   /// [optimization] and [output], as dotted key ("material.young", "load[0].traction") ->
   /// canonical value text (numbers in shortest round-trip form, so 7e10 and 70000000000.0

@@ -4,6 +4,7 @@
 // in their report spelling, so summary.json files and tests read the same names as the code.
 #pragma once
 
+#include "frictopt/contact/contact_resultants.hpp"
 #include "frictopt/contact/coulomb_solver.hpp"
 #include "frictopt/contact/tresca_solver.hpp"
 #include "frictopt/io/json.hpp"
@@ -27,6 +28,8 @@ void add_members(JsonValue& into, const JsonValue& members);
                                       const study::BodyState& state);
 [[nodiscard]] JsonValue to_json(const contact::TrescaSolver::Summary& summary);
 [[nodiscard]] JsonValue to_json(const contact::CoulombSolver::Summary& summary);
+/// Totals, areas, counts and the stick zone (the members of solve's "contact" object).
+[[nodiscard]] JsonValue to_json(const contact::ContactResultants& resultants);
 [[nodiscard]] JsonValue to_json(const sensitivity::AdjointSensitivity::Summary& summary);
 /// Without the per-iteration history (history.csv holds it) and the last state (checkpoint.json).
 [[nodiscard]] JsonValue to_json(const optim::BundleTrust::Summary& summary);

@@ -14,6 +14,7 @@
 #include "frictopt/cost/cost_kind.hpp"
 #include "frictopt/fem/boundary_conditions.hpp"
 #include "frictopt/fem/material.hpp"
+#include "frictopt/fem/node_selection.hpp"
 #include "frictopt/linalg/spd_solver.hpp"
 #include "frictopt/mesh/grid_resolution.hpp"
 #include "frictopt/shape/admissible_set.hpp"
@@ -81,6 +82,7 @@ struct BodyDefinition {
   std::string contact_surface = "bottom";
   std::vector<fem::FaceDirichlet> dirichlet;  ///< Γ_u
   std::vector<fem::FaceTraction> tractions;   ///< Γ_p
+  std::vector<fem::NodalForce> forces;        ///< point / node-set forces [N] (issue 12, item 3)
   shape::AdmissibleSetParameters admissible;  ///< Υ
   Eigen::VectorXd initial_design;             ///< α⁰
   std::optional<ContactDefinition> contact;   ///< absent: no foundation (pure elasticity)

@@ -9,9 +9,11 @@
 #include <string>
 
 #include "frictopt/contact/contact_boundary.hpp"
+#include "frictopt/contact/contact_resultants.hpp"
 #include "frictopt/contact/contact_state.hpp"
 #include "frictopt/contact/coulomb_solver.hpp"
 #include "frictopt/contact/delassus.hpp"
+#include "frictopt/contact/floating_coulomb_solver.hpp"
 #include "frictopt/core/status.hpp"
 #include "frictopt/fem/linear_elasticity.hpp"
 #include "frictopt/fem/stress_recovery.hpp"
@@ -41,11 +43,18 @@ struct ContactResult {
   contact::ContactState state;       ///< z = (q, λ) per node, u_t and u_ν + g, node statuses
   Eigen::VectorXd gaps;              ///< initial gaps g = B̃α at the contact nodes [m]
   contact::CoulombSolver::Summary summary;
+  /// Total forces, areas, stick zone (issue 12, item 6), from `state` and the tributary areas.
+  contact::ContactResultants resultants;
   bool dense_delassus = false;       ///< used: dense M (true) or the Schur-factor operator
   /// M = G A⁻¹ Gᵀ at this design (dense or from the Schur factor), reused by the sensitivity.
   std::shared_ptr<const contact::DelassusMatrix> delassus;
   /// The dense M when dense_delassus (else null).
   std::shared_ptr<const Eigen::MatrixXd> delassus_matrix;
+  /// A floating body (ElasticBody::num_floating_modes() > 0): the augmented-Lagrangian report
+  /// (spec 07 §2); `summary` is then its last inner Coulomb solve.
+  std::optional<contact::FloatingCoulombSolver::Summary> floating;
+  /// β: the rigid motion R β added to A⁺(l + Gᵀz) (empty for a held body).
+  Eigen::VectorXd rigid_motion;
 };
 
 /// The state of the body at one design.
@@ -61,6 +70,23 @@ struct BodyState {
   StateSummary summary;
 };
 
+/// The loads of one step of a loading program (study/loading_program.hpp) in place of the
+/// definition's: the step's free-DOF load, its prescribed values, and the slip reference of
+/// incremental Coulomb friction (spec 07 §1; docs/theory/loading-program.md).
+struct StepLoads {
+  /// The difference l^k − l(α) of the step's free-DOF load (tractions, nodal forces and the
+  /// lifting −A_fd u_d^k of its prescribed displacements) from the definition's load.
+  Eigen::VectorXd load_change;
+  /// The difference u_d^k − u_d of the prescribed values (full DOF vector, zero at free DOFs).
+  Eigen::VectorXd prescribed_change;
+  /// u_t^{k−1} of the contact nodes ((dim−1)·p, node-interleaved): friction acts on u_t − u_t^{k−1}.
+  Eigen::VectorXd previous_tangential;
+  bool friction = true;  ///< false: this step is frictionless (W = {0})
+  /// The change of the applied forces (tractions + point forces) as a full DOF vector, for the
+  /// equilibrium of a floating body (empty: none).
+  Eigen::VectorXd applied_change;
+};
+
 /// Lifetime: holds the mesh and the FE problem; not thread-safe (the factorization is reused).
 class ElasticBody {
  public:
@@ -74,6 +100,11 @@ class ElasticBody {
   const std::string& contact_surface() const { return definition_.contact_surface; }
   const fem::LinearElasticity& elasticity() const { return *fem_; }
   const shape::LinearConstraints& admissible_set() const { return admissible_; }
+  /// The number r of rigid-body modes the Dirichlet conditions leave free (0: a held body). A
+  /// floating body (r > 0, only with contact) is solved with the kernel-aware dual of spec 07 §2.
+  int num_floating_modes() const { return static_cast<int>(fixing_dofs_.size()); }
+  /// The DOFs held at 0 to factorize the floating body's stiffness (its generalized inverse).
+  const std::vector<int>& fixing_dofs() const { return fixing_dofs_; }
   /// The contact nodes (null without a foundation).
   const contact::ContactBoundary* contact_boundary() const { return boundary_.get(); }
 
@@ -83,6 +114,11 @@ class ElasticBody {
   /// `design_label`); a failed factorization or contact solve is a status.
   [[nodiscard]] BodyState solve(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                 const std::string& design_label = "design");
+  /// One step of a loading program: as solve(), with the step's loads. When α is the design of
+  /// the last step solve, the assembled A(α), its factorization and the Delassus operator are
+  /// reused (the stiffness does not change between steps): only the contact right-hand side does.
+  [[nodiscard]] BodyState solve_step(const Eigen::Ref<const Eigen::VectorXd>& alpha, const StepLoads& step,
+                                     const std::string& design_label = "design");
 
   /// The contact state the next solve starts from (the last converged one; only its z is
   /// read). A run's checkpoint stores it so that a resumed run repeats the uninterrupted one
@@ -101,6 +137,16 @@ class ElasticBody {
   std::shared_ptr<petsc::ContactNewtonSolver> petsc_engine_;
   Eigen::VectorXd petsc_displacement_;
   BodyState solve_with_petsc(BodyState state);
+  Eigen::VectorXd nodal_forces_;  // free-DOF load of definition_.forces (empty: none)
+  Eigen::VectorXd nodal_forces_full_;       // the same, full DOF vector
+  std::vector<int> user_prescribed_dofs_;   // the DOFs the Dirichlet conditions prescribe
+  std::vector<int> fixing_dofs_;            // floating body: DOFs held for A⁺ (spec 07 §2)
+  // solve_step's reuse: the design whose A is factorized and its Delassus operator/matrix.
+  std::optional<Eigen::VectorXd> step_alpha_;
+  std::shared_ptr<const contact::DelassusMatrix> step_delassus_;
+  std::shared_ptr<const Eigen::MatrixXd> step_delassus_matrix_;
+  BodyState solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha, const std::string& design_label,
+                       const StepLoads* step);
 };
 
 }  // namespace frictopt::study

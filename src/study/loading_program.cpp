@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/study/loading_program.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "frictopt/core/error.hpp"
+#include "frictopt/fem/node_selection.hpp"
+
+namespace frictopt::study {
+namespace {
+
+void check_scales(const std::vector<double>& scales, std::size_t expected, std::size_t step, const char* field,
+                  const char* table) {
+  if (scales.empty()) return;
+  if (scales.size() != expected)
+    throw InvalidInput(fmt::format("program.step[{}].{} has {} entries, but the case has {} [[{}]] table{}; "
+                                   "expected one scale per [[{}]] (or none, to keep the previous step's)",
+                                   step, field, scales.size(), expected, table, expected == 1 ? "" : "s", table));
+  for (std::size_t j = 0; j < scales.size(); ++j)
+    if (!std::isfinite(scales[j]))
+      throw InvalidInput(fmt::format("program.step[{}].{}[{}] = {}; expected a finite number", step, field, j,
+                                     scales[j]));
+}
+
+// The scales in force at each step: empty lists carry the previous step's over.
+std::vector<double> carried(const std::vector<double>& given, std::vector<double>& current) {
+  if (!given.empty()) current = given;
+  return current;
+}
+
+}  // namespace
+
+StepLoadBuilder::StepLoadBuilder(const ElasticBody& body, const Eigen::Ref<const Eigen::MatrixXd>& X)
+    : body_(body), X_(X) {
+  const BodyDefinition& def = body.definition();
+  for (const fem::FaceTraction& t : def.tractions) traction_loads_.push_back(fem::face_traction_load(body.mesh(), X_, t));
+  for (const fem::NodalForce& f : def.forces)
+    force_loads_.push_back(fem::nodal_force_load(body.mesh(), body.elasticity().dofs(), {f}));
+  case_prescribed_ = fem::expand_dirichlet(body.mesh(), def.dirichlet);
+}
+
+Eigen::VectorXd StepLoadBuilder::applied(const std::vector<double>& load_scale,
+                                         const std::vector<double>& force_scale) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(body_.mesh().num_dofs());
+  for (std::size_t j = 0; j < traction_loads_.size(); ++j) f += load_scale.at(j) * traction_loads_[j];
+  for (std::size_t j = 0; j < force_loads_.size(); ++j) f += force_scale.at(j) * force_loads_[j];
+  return f;
+}
+
+StepLoads StepLoadBuilder::build(const std::vector<double>& load_scale, const std::vector<double>& force_scale,
+                                 const std::vector<fem::FaceDirichlet>& dirichlet,
+                                 const Eigen::VectorXd& previous_tangential, bool friction) const {
+  const mesh::Mesh& mesh = body_.mesh();
+  const fem::LinearElasticity& fem = body_.elasticity();
+  FRICTOPT_ASSERT(load_scale.size() == traction_loads_.size() && force_scale.size() == force_loads_.size(),
+                  "StepLoadBuilder::build: one scale per load");
+  // l^k − l: each load enters with (scale − 1), so a step at the case's own scales adds exact
+  // zeros and reproduces the static solve bit for bit.
+  Eigen::VectorXd change = Eigen::VectorXd::Zero(mesh.num_dofs());
+  for (std::size_t j = 0; j < traction_loads_.size(); ++j)
+    if (load_scale[j] != 1.0) change += (load_scale[j] - 1.0) * traction_loads_[j];
+  for (std::size_t j = 0; j < force_loads_.size(); ++j)
+    if (force_scale[j] != 1.0) change += (force_scale[j] - 1.0) * force_loads_[j];
+  const fem::PrescribedDofs prescribed = fem::expand_dirichlet(mesh, dirichlet);
+  if (prescribed.dofs != case_prescribed_.dofs)
+    throw InvalidInput("StepLoadBuilder: the step's Dirichlet conditions prescribe other DOFs than the body's; "
+                       "expected the same faces and components with other values (one factorization)");
+  StepLoads step;
+  step.prescribed_change = Eigen::VectorXd::Zero(mesh.num_dofs());
+  for (std::size_t d = 0; d < prescribed.dofs.size(); ++d)
+    step.prescribed_change(prescribed.dofs[d]) = prescribed.values[d] - case_prescribed_.values[d];
+  step.load_change = fem.dofs().restrict(change);
+  if (!step.prescribed_change.isZero(0.0)) {
+    // Lifting of the change of prescribed values: −A_fd Δu_d, with A_full Δu_d from the
+    // element-by-element residual (A_full u − l_traction) + l_traction.
+    const Eigen::VectorXd lifted = fem.residual(X_, step.prescribed_change) + fem.traction_load(X_);
+    step.load_change -= fem.dofs().restrict(lifted);
+  }
+  step.previous_tangential = previous_tangential;
+  step.friction = friction;
+  step.applied_change = std::move(change);
+  return step;
+}
+
+Eigen::VectorXd StepLoadBuilder::tangential_displacement(const Eigen::VectorXd& displacement) const {
+  const contact::ContactBoundary* boundary = body_.contact_boundary();
+  const int dim = body_.mesh().dim();
+  const Eigen::Index p = boundary ? boundary->num_nodes() : 0;
+  Eigen::VectorXd ut = Eigen::VectorXd::Zero((dim - 1) * p);
+  for (Eigen::Index i = 0; i < p; ++i)
+    for (int c = 0; c < dim - 1; ++c)
+      ut((dim - 1) * i + c) = displacement(boundary->nodes()[static_cast<std::size_t>(i)] * dim + c);
+  return ut;
+}
+
+void LoadingProgramDefinition::validate(const BodyDefinition& body) const {
+  if (steps.empty())
+    throw InvalidInput("program.step: the program has no steps; expected at least one [[program.step]] table");
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    check_scales(steps[k].load_scale, body.tractions.size(), k, "load_scale", "load");
+    check_scales(steps[k].dirichlet_scale, body.dirichlet.size(), k, "dirichlet_scale", "dirichlet");
+    check_scales(steps[k].force_scale, body.forces.size(), k, "force_scale", "force");
+  }
+}
+
+std::string LoadingProgram::Summary::brief_report() const {
+  return fmt::format("loading program: {} ({}); {} steps solved, {} factorization{} ({:.3f} s), contact {:.3f} s, "
+                     "total {:.3f} s",
+                     to_string(status), message, steps_solved, factorizations, factorizations == 1 ? "" : "s",
+                     factorization_seconds, contact_seconds, time_seconds);
+}
+
+LoadingProgram::LoadingProgram(ElasticBody& body, LoadingProgramDefinition program)
+    : body_(body), program_(std::move(program)) {
+  program_.validate(body_.definition());
+}
+
+LoadingProgram::Summary LoadingProgram::run(const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                                            const StepCallback& on_step) {
+  const auto start = std::chrono::steady_clock::now();
+  const BodyDefinition& def = body_.definition();
+  const mesh::Mesh& mesh = body_.mesh();
+  const int dim = mesh.dim();
+  if (alpha.size() != def.shape.num_controls())
+    throw InvalidInput(fmt::format("design: has {} control heights; expected {}", alpha.size(),
+                                   def.shape.num_controls()));
+  const StepLoadBuilder builder(body_, mesh.positions(alpha));
+  const contact::ContactBoundary* boundary = body_.contact_boundary();
+  const Eigen::Index p = boundary ? boundary->num_nodes() : 0;
+  body_.set_warm_start(std::nullopt);  // u⁰ = 0: the program starts from the unloaded body
+  Eigen::VectorXd previous_tangential = Eigen::VectorXd::Zero((dim - 1) * p);
+
+  std::vector<double> load_scale(def.tractions.size(), 1.0), dirichlet_scale(def.dirichlet.size(), 1.0),
+      force_scale(def.forces.size(), 1.0);
+  Summary summary;
+  summary.status = Status::kConverged;
+  for (std::size_t k = 0; k < program_.steps.size(); ++k) {
+    const LoadStepDefinition& sd = program_.steps[k];
+    const std::vector<double> ls = carried(sd.load_scale, load_scale);
+    const std::vector<double> ds = carried(sd.dirichlet_scale, dirichlet_scale);
+    const std::vector<double> fs = carried(sd.force_scale, force_scale);
+    std::vector<fem::FaceDirichlet> scaled = def.dirichlet;
+    for (std::size_t j = 0; j < scaled.size(); ++j) scaled[j].displacement *= ds[j];
+    const StepLoads step = builder.build(ls, fs, scaled, previous_tangential, sd.friction);
+
+    LoadStepResult result;
+    result.step = static_cast<int>(k) + 1;
+    result.label = sd.label.empty() ? fmt::format("step {}", k + 1) : sd.label;
+    result.state = body_.solve_step(alpha, step, result.label);
+    if (result.state.summary.factorization_seconds > 0.0) ++summary.factorizations;
+    summary.factorization_seconds += result.state.summary.factorization_seconds;
+    if (result.state.contact) summary.contact_seconds += result.state.contact->summary.time_seconds;
+    result.external_work = builder.applied(ls, fs).dot(result.state.displacement);
+    result.tangential_displacement = builder.tangential_displacement(result.state.displacement);
+    const bool ok = result.state.summary.status == Status::kConverged;
+    if (on_step) on_step(result);
+    if (!ok) {
+      summary.status = result.state.summary.status;
+      summary.message = fmt::format("{}: {}", result.label, result.state.summary.message);
+      break;
+    }
+    ++summary.steps_solved;
+    previous_tangential = result.tangential_displacement;
+  }
+  if (summary.status == Status::kConverged)
+    summary.message = fmt::format("all {} steps solved on one factorization", summary.steps_solved);
+  summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace frictopt::study
