@@ -54,5 +54,6 @@ function(frictopt_install)
                                    COMPATIBILITY SameMinorVersion)
   install(FILES ${PROJECT_BINARY_DIR}/frictoptConfig.cmake ${PROJECT_BINARY_DIR}/frictoptConfigVersion.cmake
                 ${PROJECT_BINARY_DIR}/frictopt-components.cmake ${PROJECT_SOURCE_DIR}/cmake/FindCholmod.cmake
+                ${PROJECT_SOURCE_DIR}/cmake/FindGmsh.cmake
           DESTINATION ${package_dir})
 endfunction()

@@ -51,6 +51,16 @@ Eigen::VectorXd ContactBoundary::gaps(const Eigen::Ref<const Eigen::MatrixXd>& X
   return g;
 }
 
+Eigen::MatrixXd ContactBoundary::gap_jacobian(const mesh::Mesh& mesh) const {
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> V = mesh.design_jacobian();
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(num_nodes(), V.cols());
+  for (Eigen::Index i = 0; i < num_nodes(); ++i) {
+    const Eigen::Index row = static_cast<Eigen::Index>(nodes_[static_cast<std::size_t>(i)]) * dim_ + dim_ - 1;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(V, row); it; ++it) B(i, it.col()) = it.value();
+  }
+  return B;
+}
+
 void ContactBoundary::add_transpose_times(const Eigen::Ref<const Eigen::VectorXd>& z,
                                           Eigen::Ref<Eigen::VectorXd> w_free) const {
   for (Eigen::Index k = 0; k < num_unknowns(); ++k) {

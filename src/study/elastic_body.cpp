@@ -8,7 +8,7 @@
 #include "frictopt/contact/delassus.hpp"
 #include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/core/error.hpp"
-#include "frictopt/mesh/structured_mesh.hpp"
+#include "frictopt/study/build_mesh.hpp"
 
 namespace frictopt::study {
 namespace {
@@ -28,8 +28,7 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
     throw InvalidInput(
         "dirichlet: no Dirichlet condition; expected at least one face with prescribed displacement "
         "(otherwise rigid-body motions are free and the stiffness matrix is singular)");
-  mesh_ = std::make_unique<const mesh::Mesh>(
-      mesh::StructuredMesh(definition_.shape, definition_.height, definition_.resolution).take_mesh());
+  mesh_ = std::make_unique<const mesh::Mesh>(build_mesh(definition_));
   fem_ = std::make_unique<fem::LinearElasticity>(*mesh_, definition_.material,
                                                  fem::expand_dirichlet(*mesh_, definition_.dirichlet),
                                                  definition_.tractions, definition_.linear_solver);

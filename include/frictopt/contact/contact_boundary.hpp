@@ -47,6 +47,11 @@ class ContactBoundary {
   const Eigen::VectorXd& tributary_areas() const { return areas_; }
   /// Initial gaps g_i = G_α(x'_i) = X(node_i, dim−1) (spec 01, §2.4).
   Eigen::VectorXd gaps(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
+  /// The constant gap matrix B̃ = ∂g/∂α (p × d): the rows of the mesh's V at the contact nodes'
+  /// normal components. For the structured grid these are the Bézier basis at the nodes (the
+  /// bottom layer has ŝ = 0), bit for bit BezierShape::gap_matrix(plane_coordinates()); for an
+  /// imported body they are the patch's motion (zero off the patch, spec 07 §5).
+  Eigen::MatrixXd gap_jacobian(const mesh::Mesh& mesh) const;
 
   /// w_free += Gᵀ z.
   void add_transpose_times(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> w_free) const;
