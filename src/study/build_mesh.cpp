@@ -27,7 +27,13 @@ mesh::Mesh build_mesh(const BodyDefinition& definition) {
                                      "patch whose nodes all lie on the contact surface",
                                      imported.file.string(), patch, definition.contact_surface));
   }
-  return mesh::with_design_motion(reference, definition.shape, imported.motion);
+  // The extension holds the Dirichlet parts and the contact surface off the patch (their nodes
+  // do not move; patch nodes on them move with the patch): the body's clamps stay where the
+  // case puts them, and a contact node off the patch keeps its gap.
+  mesh::DesignMotion motion = imported.motion;
+  for (const fem::FaceDirichlet& d : definition.dirichlet) motion.fixed.push_back(d.boundary);
+  if (definition.contact && definition.contact_surface != patch) motion.fixed.push_back(definition.contact_surface);
+  return mesh::with_design_motion(reference, definition.shape, motion);
 }
 
 }  // namespace frictopt::study
