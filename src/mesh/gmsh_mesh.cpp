@@ -344,9 +344,16 @@ ReadResult read(const std::filesystem::path& file, const GmshMeshOptions& option
   diagnostics.location = [tags = cell_tags, name](Eigen::Index e) {
     return fmt::format("Gmsh element {} of {}", tags[static_cast<std::size_t>(e)], name);
   };
+  // The mesh as read must be valid before any design moves it: Gmsh can return a cell with an
+  // inverted corner (seen when simplices are subdivided near a curved surface, e.g. the fillets
+  // of cases3d/gmsh-die at size 0.007).
+  diagnostics.inverted_hint = subdivided ? " — try another mesh size, or Recombine/Transfinite in the .geo"
+                                         : " — the file's cell is not a valid hexahedron/quadrilateral";
+  const Eigen::Index num_dofs = X.rows() * dim;
+  const Mesh as_read(kind, X, cells, Eigen::SparseMatrix<double>(num_dofs, 0), boundaries, diagnostics);
+  as_read.check_quality(X, "mesh as read");
   diagnostics.inverted_hint = " — the design moves the patch too far for the cells around it (smaller bounds or a "
                               "finer mesh near the patch)";
-  const Eigen::Index num_dofs = X.rows() * dim;
   Mesh mesh(kind, std::move(X), std::move(cells), Eigen::SparseMatrix<double>(num_dofs, 0), std::move(boundaries),
             std::move(diagnostics));
   return ReadResult{std::move(mesh), subdivided, cell_tags};

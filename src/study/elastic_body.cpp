@@ -58,6 +58,7 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
   state.alpha = alpha;
   state.positions = mesh_->positions(alpha);
   mesh_->check_quality(state.positions, design_label);
+  state.min_scaled_jacobian = mesh_->min_scaled_jacobian(state.positions);
   state.volume = mesh_->volume(state.positions);
 
   auto start = std::chrono::steady_clock::now();

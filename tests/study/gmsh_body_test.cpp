@@ -59,6 +59,8 @@ TEST(GmshBody, PatchTestOnAnUnstructuredImportedMesh) {
     error = std::max(error, (state.displacement.segment<3>(3 * i) - exact).cwiseAbs().maxCoeff());
   }
   EXPECT_LT(error, 1e-12 * delta);
+  EXPECT_EQ(state.min_scaled_jacobian, body.mesh().min_scaled_jacobian(X));
+  EXPECT_GT(state.min_scaled_jacobian, 0.0);
   EXPECT_NEAR(state.strain_energy, 0.5 * 1e9 * (delta / 0.4) * (delta / 0.4) * state.volume, 1e-9 * state.strain_energy);
 }
 
