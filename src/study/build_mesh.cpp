@@ -5,7 +5,11 @@
 
 #include <algorithm>
 
+#include <Eigen/Geometry>
+#include <Eigen/QR>
+
 #include "frictopt/core/error.hpp"
+#include "frictopt/fem/boundary_conditions.hpp"
 #include "frictopt/mesh/design_extension.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
 
@@ -33,7 +37,47 @@ mesh::Mesh build_mesh(const BodyDefinition& definition) {
   mesh::DesignMotion motion = imported.motion;
   for (const fem::FaceDirichlet& d : definition.dirichlet) motion.fixed.push_back(d.boundary);
   if (definition.contact && definition.contact_surface != patch) motion.fixed.push_back(definition.contact_surface);
-  return mesh::with_design_motion(reference, definition.shape, motion);
+  mesh::Mesh mesh = mesh::with_design_motion(reference, definition.shape, motion);
+  check_rigid_modes_removed(mesh, definition.dirichlet, imported.file.string());
+  return mesh;
+}
+
+void check_rigid_modes_removed(const mesh::Mesh& mesh, const std::vector<fem::FaceDirichlet>& dirichlet,
+                               const std::string& file) {
+  // The rigid motions r(x) = t + ω × x (3D: 6, 2D: 3) restricted to the prescribed DOFs: the
+  // stiffness matrix of a connected body is nonsingular iff no rigid motion vanishes on all of
+  // them, i.e. iff this restriction has full column rank.
+  const int dim = mesh.dim();
+  const int modes = dim == 3 ? 6 : 3;
+  const fem::PrescribedDofs prescribed = fem::expand_dirichlet(mesh, dirichlet);
+  const Eigen::MatrixXd& X = mesh.reference_positions();
+  const Eigen::RowVectorXd centre = X.colwise().mean();
+  const double size = (X.colwise().maxCoeff() - X.colwise().minCoeff()).maxCoeff();
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(prescribed.dofs.size()), modes);
+  for (std::size_t k = 0; k < prescribed.dofs.size(); ++k) {
+    const int node = prescribed.dofs[k] / dim, c = prescribed.dofs[k] % dim;
+    const Eigen::VectorXd x = (X.row(node) - centre).transpose() / size;  // scaled: rank is unit-free
+    const auto row = static_cast<Eigen::Index>(k);
+    R(row, c) = 1.0;  // translation along c
+    if (dim == 2) {
+      R(row, 2) = c == 0 ? -x(1) : x(0);  // rotation about x3
+    } else {
+      // ω_j e_j × x, component c: (e_j × x)_c for j = 0, 1, 2.
+      const Eigen::Vector3d y = x;
+      for (int j = 0; j < 3; ++j) R(row, 3 + j) = Eigen::Vector3d::Unit(j).cross(y)(c);
+    }
+  }
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(R);
+  qr.setThreshold(1e-10);
+  const Eigen::Index rank = R.rows() == 0 ? 0 : qr.rank();
+  if (rank < modes) {
+    std::string names;
+    for (const fem::FaceDirichlet& d : dirichlet) names += (names.empty() ? "'" : ", '") + d.boundary + "'";
+    throw InvalidInput(fmt::format("{}: the Dirichlet parts ({}) leave {} of the body's {} rigid-body motions free "
+                                   "(the stiffness matrix would be singular); expected conditions that fix every "
+                                   "translation and rotation, e.g. all components on one group",
+                                   file, names, modes - rank, modes));
+  }
 }
 
 }  // namespace frictopt::study
