@@ -11,6 +11,9 @@ find_package(fmt REQUIRED)
 # linalg: the sparse Cholesky backend and the dense kernels (private). Debian's SuiteSparse 5.x
 # ships no CMake config; CHOLMOD is found through our small module cmake/FindCholmod.cmake.
 find_package(Cholmod REQUIRED)
+# mesh: the Gmsh library reads .msh files and meshes .geo files (issue 11; private). Debian's
+# libgmsh-dev ships no CMake config: cmake/FindGmsh.cmake finds gmsh.h and libgmsh.
+find_package(Gmsh REQUIRED)
 # The generic libblas/liblapack names, which Debian's alternatives point at OpenBLAS — the BLAS
 # that CHOLMOD itself is linked against. Without a vendor FindBLAS may pick ATLAS
 # (libf77blas + libatlas) when it is installed; linked ahead of libblas it also captured
@@ -68,6 +71,7 @@ endif()
 set(FRICTOPT_PACKAGE_OF_Eigen3::Eigen "Eigen3;3.4;NO_MODULE")
 set(FRICTOPT_PACKAGE_OF_fmt::fmt "fmt")
 set(FRICTOPT_PACKAGE_OF_SuiteSparse::cholmod "Cholmod")
+set(FRICTOPT_PACKAGE_OF_Gmsh::gmsh "Gmsh")
 set(FRICTOPT_PACKAGE_OF_BLAS::BLAS "BLAS")
 set(FRICTOPT_PACKAGE_OF_LAPACK::LAPACK "LAPACK")
 set(FRICTOPT_PACKAGE_OF_Ceres::ceres "Ceres")

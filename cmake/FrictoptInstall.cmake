@@ -54,6 +54,7 @@ function(frictopt_install)
                                    COMPATIBILITY SameMinorVersion)
   install(FILES ${PROJECT_BINARY_DIR}/frictoptConfig.cmake ${PROJECT_BINARY_DIR}/frictoptConfigVersion.cmake
                 ${PROJECT_BINARY_DIR}/frictopt-components.cmake ${PROJECT_SOURCE_DIR}/cmake/FindCholmod.cmake
+                ${PROJECT_SOURCE_DIR}/cmake/FindGmsh.cmake
           DESTINATION ${package_dir})
   if(FRICTOPT_HAVE_PETSC)  # the petsc module's dependencies (issue 14)
     install(FILES ${PROJECT_SOURCE_DIR}/cmake/FindPETScMPI.cmake DESTINATION ${package_dir})

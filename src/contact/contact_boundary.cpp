@@ -4,6 +4,10 @@
 #include <cmath>
 #include <map>
 
+#include <Eigen/LU>
+
+#include "frictopt/mesh/q1_element.hpp"
+
 namespace frictopt::contact {
 
 ContactBoundary::ContactBoundary(const mesh::Mesh& mesh, const fem::DofMap& dofs, std::string_view surface)
@@ -33,14 +37,34 @@ ContactBoundary::ContactBoundary(const mesh::Mesh& mesh, const fem::DofMap& dofs
   const mesh::Connectivity& facets = contact_surface.facets;
   for (Eigen::Index f = 0; f < facets.rows(); ++f) {
     const auto x = [&](Eigen::Index k) { return plane.row(bottom_row.at(facets(f, k))); };
-    // Projected length (2D) or parallelogram area |e1 × e3| (3D) of the facet in the x'-plane;
-    // for the grid's axis-parallel facets the second product is exactly zero.
-    const double area = dim_ == 2 ? std::abs(x(1)(0) - x(0)(0))
-                                  : std::abs((x(1)(0) - x(0)(0)) * (x(3)(1) - x(0)(1)) -
-                                             (x(1)(1) - x(0)(1)) * (x(3)(0) - x(0)(0)));
-    for (Eigen::Index k = 0; k < facets.cols(); ++k) {
-      const auto it = index.find(facets(f, k));
-      if (it != index.end()) areas_(it->second) += area / static_cast<double>(facets.cols());
+    const bool parallelogram = dim_ == 2 || x(0) + x(2) == x(1) + x(3);
+    if (parallelogram) {
+      // Projected length (2D) or parallelogram area |e1 × e3| (3D) of the facet in the x'-plane,
+      // shared equally (∫N_a = area/4 on a parallelogram); for the grid's axis-parallel facets
+      // the second product is exactly zero.
+      const double area = dim_ == 2 ? std::abs(x(1)(0) - x(0)(0))
+                                    : std::abs((x(1)(0) - x(0)(0)) * (x(3)(1) - x(0)(1)) -
+                                               (x(1)(1) - x(0)(1)) * (x(3)(0) - x(0)(0)));
+      for (Eigen::Index k = 0; k < facets.cols(); ++k) {
+        const auto it = index.find(facets(f, k));
+        if (it != index.end()) areas_(it->second) += area / static_cast<double>(facets.cols());
+      }
+      continue;
+    }
+    // A general quadrilateral of an imported mesh: node a gets ∫ N_a over the projected
+    // bilinear facet (2 × 2 Gauss, exact: N_a·det J has degree <= 2 in each variable), the consistent nodal weight of a pressure on Γ_c.
+    Eigen::Matrix<double, 4, 2> corners;
+    for (int k = 0; k < 4; ++k) corners.row(k) = x(k);
+    Eigen::Matrix<double, 4, 1> N;
+    Eigen::Matrix<double, 4, 2> dN;
+    for (int q = 0; q < mesh::Q1Facet<3>::kPoints; ++q) {
+      double weight = 0.0;
+      mesh::Q1Facet<3>::shape(q, N, dN, weight);
+      const double det = std::abs((corners.transpose() * dN).determinant());
+      for (int k = 0; k < 4; ++k) {
+        const auto it = index.find(facets(f, k));
+        if (it != index.end()) areas_(it->second) += weight * det * N(k);
+      }
     }
   }
 }
@@ -49,6 +73,16 @@ Eigen::VectorXd ContactBoundary::gaps(const Eigen::Ref<const Eigen::MatrixXd>& X
   Eigen::VectorXd g(num_nodes());
   for (Eigen::Index i = 0; i < num_nodes(); ++i) g(i) = X(nodes_[static_cast<std::size_t>(i)], dim_ - 1);
   return g;
+}
+
+Eigen::MatrixXd ContactBoundary::gap_jacobian(const mesh::Mesh& mesh) const {
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> V = mesh.design_jacobian();
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(num_nodes(), V.cols());
+  for (Eigen::Index i = 0; i < num_nodes(); ++i) {
+    const Eigen::Index row = static_cast<Eigen::Index>(nodes_[static_cast<std::size_t>(i)]) * dim_ + dim_ - 1;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(V, row); it; ++it) B(i, it.col()) = it.value();
+  }
+  return B;
 }
 
 void ContactBoundary::add_transpose_times(const Eigen::Ref<const Eigen::VectorXd>& z,

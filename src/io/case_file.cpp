@@ -26,6 +26,7 @@
 #include "frictopt/study/shape_optimization.hpp"
 #include "case_solver_section.hpp"
 #include "case_program_section.hpp"
+#include "case_mesh_section.hpp"
 #include "text_input.hpp"
 #include "toml_reader.hpp"
 
@@ -262,9 +263,21 @@ fem::IsotropicMaterial read_material(const TableReader& r, int dim) {
 }
 
 // A traction above Young's modulus means a strain above 1: outside linear elasticity.
-fem::FaceTraction read_load(const TableReader& r, int dim, double young) {
+// The part of the boundary a [[load]] or [[dirichlet]] table names: `face` on the structured
+// box, `boundary` (a physical group) on an imported body (issue 11; null: the box).
+std::string read_part(const TableReader& r, int dim, const mesh::Mesh* imported) {
+  const std::string_view other = imported ? "face" : "boundary";
+  if (r.has(other))
+    r.fail(other, fmt::format("{} is for {}; this case's body {}", r.field(other),
+                              imported ? "the structured box" : "a body imported from a mesh file ([mesh] file)",
+                              imported ? "comes from [mesh] file: name a physical group with boundary = \"...\""
+                                       : "is the structured box: name a face with face = \"...\""));
+  return imported ? detail::read_boundary_group(r, *imported) : read_face(r, dim);
+}
+
+fem::FaceTraction read_load(const TableReader& r, int dim, double young, const mesh::Mesh* imported) {
   fem::FaceTraction load;
-  load.boundary = read_face(r, dim);
+  load.boundary = read_part(r, dim, imported);
   load.traction = read_dim_vector(r, "traction", dim, "traction, N/m²");
   for (Eigen::Index i = 0; i < dim; ++i)
     if (!(std::abs(load.traction(i)) <= young))
@@ -276,9 +289,9 @@ fem::FaceTraction read_load(const TableReader& r, int dim, double young) {
 }
 
 // A prescribed displacement larger than the body is outside small-strain elasticity.
-fem::FaceDirichlet read_dirichlet(const TableReader& r, int dim, double body_size) {
+fem::FaceDirichlet read_dirichlet(const TableReader& r, int dim, double body_size, const mesh::Mesh* imported) {
   fem::FaceDirichlet d;
-  d.boundary = read_face(r, dim);
+  d.boundary = read_part(r, dim, imported);
   d.displacement = r.has("displacement")
                        ? read_dim_vector(r, "displacement", dim, "displacement, m")
                        : Eigen::VectorXd::Zero(dim);
@@ -898,18 +911,35 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   CaseDescription c;
   c.origin = origin;
   study::BodyDefinition& body = c.body;
-  const Geometry geometry = read_geometry(table("geometry", {"dim", "a", "b", "height"}));
+  // An imported body (issue 11, [mesh] file = ...): the geometry's extents come from its mesh.
+  const bool imported = detail::names_mesh_file(root);
+  Geometry geometry;
+  const mesh::Mesh* imported_mesh = nullptr;
+  if (imported) {
+    const TableReader g = table("geometry", {"dim"});
+    geometry.dim = g.required_int("dim", "2 or 3");
+    if (geometry.dim != 2 && geometry.dim != 3) g.fail_value("dim", "2 or 3");
+    detail::ImportedBody ib = detail::read_imported_mesh(table("mesh", {"file", "size", "contact", "patch", "extension"}), geometry.dim, origin);
+    geometry.a = ib.a;
+    geometry.b = ib.b;
+    geometry.height = ib.height;
+    body.contact_surface = ib.contact_surface;
+    body.imported_mesh = std::move(ib.definition);
+    imported_mesh = body.imported_mesh->reference.get();
+  } else {
+    geometry = read_geometry(table("geometry", {"dim", "a", "b", "height"}));
+  }
   const int dim = geometry.dim;
   body.height = geometry.height;
-  body.resolution = read_mesh(table("mesh", {"cells", "grading", "growth", "refine_box"}), geometry);
+  if (!imported) body.resolution = read_mesh(table("mesh", {"cells", "grading", "growth", "refine_box"}), geometry);
   body.material = read_material(table("material", {"young", "poisson", "model"}), dim);
 
   if (const toml::array* loads = top.optional_table_array("load"))
     for (std::size_t i = 0; i < loads->size(); ++i)
       body.tractions.push_back(
           read_load(TableReader(*loads->get(i)->as_table(), fmt::format("load[{}]", i), origin,
-                                {"face", "traction"}),
-                    dim, body.material.young));
+                                {"face", "boundary", "traction"}),
+                    dim, body.material.young, imported_mesh));
 
   const toml::array* dirichlet = top.optional_table_array("dirichlet");
   // Without [[dirichlet]] a body floats: only contact and friction can hold it (issue 12,
@@ -924,9 +954,9 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   std::map<std::pair<std::string, int>, std::size_t> fixed_by;
   for (std::size_t i = 0; i < dirichlet->size(); ++i) {
     const TableReader r(*dirichlet->get(i)->as_table(), fmt::format("dirichlet[{}]", i), origin,
-                        {"face", "displacement", "components"});
+                        {"face", "boundary", "displacement", "components"});
     fem::FaceDirichlet d =
-        read_dirichlet(r, dim, std::max({geometry.a, geometry.b, geometry.height}));
+        read_dirichlet(r, dim, std::max({geometry.a, geometry.b, geometry.height}), imported_mesh);
     for (int comp : d.components) {
       const auto [it, inserted] = fixed_by.emplace(std::pair{d.boundary, comp}, i);
       if (!inserted)
@@ -958,7 +988,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     contact_definition.coulomb = coulomb;
     body.contact = std::move(contact_definition);
   }
-  check_free_unknowns(c, dim, fixed_by);
+  if (!imported) check_free_unknowns(c, dim, fixed_by);  // the structured grid's layers
 
   if (const toml::table* cost = top.optional_table("cost")) {
     if (!body.contact)

@@ -117,7 +117,34 @@ void check_elements(const Connectivity& elements, const ElementDiagnostics& diag
     }
   }
 }
+template <class Element>
+double smallest_scaled_jacobian(const Connectivity& elements, const Eigen::Ref<const Eigen::MatrixXd>& X) {
+  constexpr int Dim = Element::kDim;
+  const auto corners = Element::corners();
+  Eigen::Matrix<double, Element::kNodes, Dim> Xe;
+  double smallest = 1.0;
+  for (Eigen::Index e = 0; e < elements.rows(); ++e) {
+    for (int a = 0; a < Element::kNodes; ++a) Xe.row(a) = X.row(elements(e, a));
+    for (int a = 0; a < Element::kNodes; ++a) {
+      const Eigen::Matrix<double, Dim, 1> xi = corners.row(a).transpose();
+      Eigen::Matrix<double, Dim, Dim> J = Xe.transpose() * Element::gradients(xi);
+      const Eigen::Matrix<double, 1, Dim> lengths = J.colwise().norm();
+      if (!(lengths.minCoeff() > 0)) return 0.0;  // a collapsed edge
+      for (int c = 0; c < Dim; ++c) J.col(c) /= lengths(c);
+      smallest = std::min(smallest, J.determinant());
+    }
+  }
+  return smallest;
+}
 }  // namespace
+
+double Mesh::min_scaled_jacobian(const Eigen::Ref<const Eigen::MatrixXd>& X) const {
+  return with_element(kind_, [&](auto element) { return smallest_scaled_jacobian<decltype(element)>(elements_, X); });
+}
+
+Mesh Mesh::with_design_jacobian(Eigen::SparseMatrix<double> design_jacobian) const {
+  return Mesh(kind_, reference_, elements_, std::move(design_jacobian), boundaries_, diagnostics_);
+}
 
 double Mesh::volume(const Eigen::Ref<const Eigen::MatrixXd>& X) const {
   return with_element(kind_, [&](auto element) { return element_volume_sum<decltype(element)>(elements_, X); });

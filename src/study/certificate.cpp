@@ -165,7 +165,7 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   Eigen::MatrixXd solved_M;
   if (!state.contact->delassus_matrix) solved_M = contact::dense_delassus(fem.factorization(), boundary);
   const Eigen::MatrixXd& M = state.contact->delassus_matrix ? *state.contact->delassus_matrix : solved_M;
-  const Eigen::MatrixXd B = body.definition().shape.gap_matrix(boundary.plane_coordinates());
+  const Eigen::MatrixXd B = boundary.gap_jacobian(body.mesh());  // B̃ from V: any mesh producer
   Eigen::MatrixXd R_alpha(fem.dofs().num_free(), d);  // r_α e_k, one column per control point
   for (Eigen::Index k = 0; k < d; ++k) {
     const Eigen::VectorXd Vh = fem.mesh().design_jacobian().col(k);

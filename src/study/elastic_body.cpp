@@ -13,6 +13,7 @@
 #include "frictopt/petsc/contact_newton_solver.hpp"
 #endif
 #include "frictopt/study/floating_body.hpp"
+#include "frictopt/study/build_mesh.hpp"
 
 namespace frictopt::study {
 namespace {
@@ -32,8 +33,7 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
     throw InvalidInput(
         "dirichlet: no Dirichlet condition; expected at least one face with prescribed displacement "
         "(otherwise rigid-body motions are free and the stiffness matrix is singular)");
-  mesh_ = std::make_unique<const mesh::Mesh>(
-      mesh::StructuredMesh(definition_.shape, definition_.height, definition_.resolution).take_mesh());
+  mesh_ = std::make_unique<const mesh::Mesh>(build_mesh(definition_));
   fem::PrescribedDofs prescribed = fem::expand_dirichlet(*mesh_, definition_.dirichlet);
   user_prescribed_dofs_ = prescribed.dofs;
   // A floating body (spec 07 §2): rigid modes the Dirichlet conditions leave free are held by
@@ -127,6 +127,7 @@ BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha
   state.alpha = alpha;
   state.positions = mesh_->positions(alpha);
   mesh_->check_quality(state.positions, design_label);
+  state.min_scaled_jacobian = mesh_->min_scaled_jacobian(state.positions);
   state.volume = mesh_->volume(state.positions);
 
   if (petsc_engine_) {

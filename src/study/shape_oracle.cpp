@@ -67,7 +67,7 @@ ShapeOracle::ShapeOracle(ElasticBody& body, std::unique_ptr<cost::CostFunctional
     : body_(body), cost_(std::move(cost)) {
   if (!body_.contact_boundary())
     throw InvalidInput("the shape oracle needs a body in contact: add a [contact] table to the case");
-  gap_matrix_ = body_.definition().shape.gap_matrix(body_.contact_boundary()->plane_coordinates());
+  gap_matrix_ = body_.contact_boundary()->gap_jacobian(body_.mesh());  // B̃ from V: any mesh producer
 }
 
 ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : ShapeOracle(body, nullptr) {

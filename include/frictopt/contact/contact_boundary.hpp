@@ -42,11 +42,18 @@ class ContactBoundary {
   const Eigen::MatrixXd& plane_coordinates() const { return plane_; }
   /// Projected (x'-plane) area of Γ_c attributed to each contact node [m²; 2D: m per metre of
   /// thickness]: a quarter (3D) or half (2D) of each adjacent bottom facet. The foundation
-  /// normal is e_dim, so the pressure at node i is λ_i / area_i. Constant in α. Facets are taken
-  /// as parallelograms spanned by their first edges (exact for the structured grid's facets).
+  /// normal is e_dim, so the pressure at node i is λ_i / area_i. Constant in α. A facet that is a
+  /// parallelogram in the plane (the structured grid's) gives each node a quarter; any other
+  /// quadrilateral (imported meshes) gives node a the integral of its shape function N_a over the
+  /// projected facet.
   const Eigen::VectorXd& tributary_areas() const { return areas_; }
   /// Initial gaps g_i = G_α(x'_i) = X(node_i, dim−1) (spec 01, §2.4).
   Eigen::VectorXd gaps(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
+  /// The constant gap matrix B̃ = ∂g/∂α (p × d): the rows of the mesh's V at the contact nodes'
+  /// normal components. For the structured grid these are the Bézier basis at the nodes (the
+  /// bottom layer has ŝ = 0), bit for bit BezierShape::gap_matrix(plane_coordinates()); for an
+  /// imported body they are the patch's motion (zero off the patch, spec 07 §5).
+  Eigen::MatrixXd gap_jacobian(const mesh::Mesh& mesh) const;
 
   /// w_free += Gᵀ z.
   void add_transpose_times(const Eigen::Ref<const Eigen::VectorXd>& z, Eigen::Ref<Eigen::VectorXd> w_free) const;

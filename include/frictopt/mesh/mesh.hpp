@@ -84,6 +84,14 @@ class Mesh {
   /// and det J when a cell of X is inverted or degenerate (det J at a corner <= 1e-12 × the
   /// cell's reference size). `design_label` says which design is meant, e.g. "design 12".
   void check_quality(const Eigen::Ref<const Eigen::MatrixXd>& X, const std::string& design_label) const;
+  /// The smallest scaled Jacobian over the cells' corners at positions X: at a corner, det of
+  /// the Jacobian with its columns (the edge directions there) normalized; 1 for a rectangle
+  /// or box, 0 for a degenerate corner, < 0 for an inverted one (the Verdict library's
+  /// measure for quads and hexes).
+  double min_scaled_jacobian(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
+  /// The same mesh with another design Jacobian V ((num_nodes·dim) × d): how a design motion
+  /// (design_extension.hpp) is attached to a mesh read without one.
+  Mesh with_design_jacobian(Eigen::SparseMatrix<double> design_jacobian) const;
 
  private:
   ElementKind kind_;

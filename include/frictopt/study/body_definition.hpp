@@ -4,7 +4,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <filesystem>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,7 +18,9 @@
 #include "frictopt/fem/material.hpp"
 #include "frictopt/fem/node_selection.hpp"
 #include "frictopt/linalg/spd_solver.hpp"
+#include "frictopt/mesh/design_extension.hpp"
 #include "frictopt/mesh/grid_resolution.hpp"
+#include "frictopt/mesh/mesh.hpp"
 #include "frictopt/shape/admissible_set.hpp"
 #include "frictopt/shape/bezier_shape.hpp"
 
@@ -72,6 +76,14 @@ struct EngineDefinition {
   int max_iterations = 60;
 };
 
+/// A body brought as a mesh file (issue 11) instead of the structured grid: the mesh as read
+/// (mesh::GmshMesh, no design variables) and how the design moves it (build_mesh.hpp).
+struct ImportedMeshDefinition {
+  std::filesystem::path file;                   ///< where the mesh came from (for messages)
+  std::shared_ptr<const mesh::Mesh> reference;  ///< never null; shared, the mesh is read once
+  mesh::DesignMotion motion;                    ///< the design patch, the chart's frame, the extension
+};
+
 struct BodyDefinition {
   std::string name = "body";                 ///< used in output file names
   shape::BezierShape shape = shape::BezierShape::curve(1.0, 2);
@@ -88,6 +100,10 @@ struct BodyDefinition {
   std::optional<ContactDefinition> contact;   ///< absent: no foundation (pure elasticity)
   linalg::SpdSolver::Options linear_solver;   ///< the backend that factorizes the stiffness
   EngineDefinition engine;                    ///< [solver] engine (direct or PETSc)
+  /// Absent: the structured grid of shape, height and resolution. Present: an imported body;
+  /// shape then spans the design patch's chart (mesh::patch_chart) and height is the body's
+  /// extent along the foundation normal.
+  std::optional<ImportedMeshDefinition> imported_mesh;
 };
 
 }  // namespace frictopt::study

@@ -66,6 +66,9 @@ struct BodyState {
   double strain_energy = kNaN;   ///< ½ uᵀAu [J] (2D: per metre of thickness)
   double external_work = kNaN;   ///< lᵀu [J]
   double volume = kNaN;          ///< meas Ω(α) of the mesh [m³ or m²]
+  /// The smallest scaled Jacobian of the cells at X(α) (mesh::Mesh::min_scaled_jacobian): 1 for
+  /// boxes, → 0 as a trial design distorts the cells (an inverted one is refused before).
+  double min_scaled_jacobian = kNaN;
   std::optional<ContactResult> contact;  ///< present when the body has a foundation
   StateSummary summary;
 };

@@ -1,0 +1,13 @@
+# SPDX-License-Identifier: MIT
+# Finds the Gmsh library (Debian's libgmsh-dev ships neither a CMake config nor a .pc file) and
+# defines the imported target Gmsh::gmsh.
+find_path(GMSH_INCLUDE_DIR gmsh.h)
+find_library(GMSH_LIBRARY gmsh)
+include(FindPackageHandleStandardArgs)
+find_package_handle_standard_args(Gmsh REQUIRED_VARS GMSH_LIBRARY GMSH_INCLUDE_DIR)
+if(Gmsh_FOUND AND NOT TARGET Gmsh::gmsh)
+  add_library(Gmsh::gmsh UNKNOWN IMPORTED)
+  set_target_properties(Gmsh::gmsh PROPERTIES
+    IMPORTED_LOCATION "${GMSH_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${GMSH_INCLUDE_DIR}")
+endif()

@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+#include "case_mesh_section.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "frictopt/core/error.hpp"
+#include "frictopt/mesh/design_extension.hpp"
+#include "frictopt/mesh/gmsh_mesh.hpp"
+
+namespace frictopt::io::detail {
+namespace {
+
+std::string group_list(const mesh::Mesh& mesh) {
+  std::string names;
+  for (const std::string& name : mesh.boundary_names()) names += (names.empty() ? "\"" : ", \"") + name + "\"";
+  return names.empty() ? "none: the file has no named physical groups of the boundary's dimension" : names;
+}
+
+std::string read_group(const TableReader& r, std::string_view key, const mesh::Mesh& mesh, std::string_view meaning,
+                       const std::string& file) {
+  const std::string group =
+      r.required_string(key, fmt::format("the name of a physical group of {} ({})", file, meaning));
+  if (!mesh.has_boundary(group))
+    r.fail_value(key, fmt::format("the name of a physical group of dimension {} in {} ({}); the file has {}",
+                                  mesh.dim() - 1, file, meaning, group_list(mesh)));
+  return group;
+}
+
+}  // namespace
+
+bool names_mesh_file(const toml::table& root) {
+  const toml::table* mesh = root["mesh"].as_table();
+  return mesh != nullptr && mesh->contains("file");
+}
+
+ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view case_origin) {
+  const std::string file_text = r.required_string("file", "a Gmsh .msh or .geo file, relative to the case file");
+  std::filesystem::path file(file_text);
+  if (file.is_relative()) file = std::filesystem::path(case_origin).parent_path() / file;
+  mesh::GmshMeshOptions options;
+  if (const auto size = r.optional_number("size")) {
+    if (!(*size > 0 && std::isfinite(*size))) r.fail_value("size", "a mesh size > 0 [m] for the .geo file");
+    if (file.extension() != ".geo")
+      r.fail("size", fmt::format("{} = {} is only for a .geo file, which frictopt meshes; {} is read as it is",
+                                 r.field("size"), *size, file_text));
+    options.size = *size;
+  }
+  std::shared_ptr<const mesh::Mesh> reference;
+  try {
+    reference = std::make_shared<const mesh::Mesh>(mesh::GmshMesh(file, options).take_mesh());
+  } catch (const InvalidInput& e) {
+    r.fail("file", fmt::format("{}: {}", r.field("file"), e.what()));
+  }
+  if (reference->dim() != dim)
+    r.fail_value("file", fmt::format("a {}D mesh as geometry.dim = {}; {} holds a {}D body", dim, dim, file_text,
+                                     reference->dim()));
+
+  ImportedBody body;
+  body.contact_surface = read_group(r, "contact", *reference, "the contact surface Γ_c", file_text);
+  study::ImportedMeshDefinition& definition = body.definition;
+  definition.file = file;
+  definition.motion.patch = r.has("patch") ? read_group(r, "patch", *reference, "the design patch", file_text)
+                                           : body.contact_surface;
+  definition.motion.frame = mesh::PlaneFrame::standard(dim);
+  if (const auto extension = r.optional_string("extension")) {
+    try {
+      definition.motion.extension = mesh::parse_extension_kind(*extension);
+    } catch (const InvalidInput&) {
+      r.fail_value("extension", "one of laplace, sweep");
+    }
+  }
+  mesh::PatchChart chart;
+  try {
+    chart = mesh::patch_chart(*reference, definition.motion.patch, definition.motion.frame);
+  } catch (const InvalidInput& e) {
+    r.fail("patch", fmt::format("{}: {}", file_text, e.what()));
+  }
+  body.a = chart.extents(0);
+  body.b = dim == 3 ? chart.extents(1) : 1.0;
+  const Eigen::VectorXd t = reference->reference_positions() * definition.motion.frame.normal;
+  double t_patch = INFINITY;
+  for (int node : reference->boundary(definition.motion.patch).nodes) t_patch = std::min(t_patch, t(node));
+  body.height = t.maxCoeff() - t_patch;
+  definition.reference = std::move(reference);
+  return body;
+}
+
+std::string read_boundary_group(const TableReader& r, const mesh::Mesh& mesh) {
+  const std::string group = r.required_string("boundary", "the name of a physical group of the mesh file");
+  if (!mesh.has_boundary(group))
+    r.fail_value("boundary", fmt::format("the name of a physical group of the mesh file; it has {}", group_list(mesh)));
+  return group;
+}
+
+}  // namespace frictopt::io::detail

@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: MIT
+// The [mesh] table of a case that imports its body from a Gmsh file (issue 11), and the names
+// of the body's boundary groups in [[load]] / [[dirichlet]] tables. Private to io.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <toml++/toml.h>
+
+#include "frictopt/mesh/mesh.hpp"
+#include "frictopt/study/body_definition.hpp"
+#include "toml_reader.hpp"
+
+namespace frictopt::io::detail {
+
+/// Whether the root's [mesh] table names a file (an imported body) rather than grid cells.
+bool names_mesh_file(const toml::table& root);
+
+/// An imported body, read and checked, with the numbers the rest of the case reader needs.
+struct ImportedBody {
+  study::ImportedMeshDefinition definition;
+  std::string contact_surface;  ///< the physical group that is Γ_c
+  double a = 0.0, b = 1.0;      ///< the design patch's chart extents [m] (b = 1 in 2D)
+  double height = 0.0;          ///< the body's extent above the patch along the normal [m]
+};
+
+/// Reads [mesh] file (relative to the case file's directory), size, contact, patch and
+/// extension, and reads the mesh (mesh::GmshMesh). Throws InvalidInput naming the field: a
+/// missing file, a mesh of another dimension than geometry.dim, an unknown group (the message
+/// lists the groups the file has), a patch without extent on the foundation plane.
+ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view case_origin);
+
+/// `boundary = "Group"` of a [[load]] or [[dirichlet]] table on an imported body: the name of
+/// one of the mesh's boundary groups (else InvalidInput listing them).
+std::string read_boundary_group(const TableReader& r, const mesh::Mesh& mesh);
+
+}  // namespace frictopt::io::detail
