@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "frictopt/contact/delassus.hpp"
+#include "frictopt/contact/working_set_coulomb.hpp"
 #include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
@@ -108,8 +109,13 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
     result.state = warm_start_ && warm_start_->z.size() == boundary_->num_unknowns()
                        ? *warm_start_
                        : contact::ContactState(dim, boundary_->num_nodes());
-    const contact::CoulombSolver coulomb(*delassus, cd.law, cd.coulomb);
-    result.summary = coulomb.solve(c, result.state);
+    if (const auto* schur = dynamic_cast<const contact::SchurDelassus*>(delassus)) {
+      // Above the dense bound: the Coulomb problem on the nodes in contact (docs/contact.md §2).
+      result.summary = contact::WorkingSetCoulombSolver(*schur, cd.law, cd.coulomb).solve(c, result.state).coulomb;
+    } else {
+      const contact::CoulombSolver coulomb(*delassus, cd.law, cd.coulomb);
+      result.summary = coulomb.solve(c, result.state);
+    }
     if (result.summary.converged()) warm_start_ = result.state;
     // u_f = A⁻¹(l + Gᵀz): the body under its loads and the contact forces.
     Eigen::VectorXd w = Eigen::VectorXd::Zero(fem_->dofs().num_free());

@@ -61,10 +61,36 @@ class SchurDelassus final : public DelassusMatrix {
   /// The dense M = D (L Lᵀ)⁻¹ D by LAPACK dpotri (m² memory, 2m³/3 flops: 2.7 s at m = 5,043).
   Eigen::MatrixXd dense() const;
 
+  /// The principal block M[idx, idx] (idx: distinct indices, any order; the block is in that
+  /// order). M[r, c] = D_r (L⁻¹e_r)ᵀ(L⁻¹e_c) D_c, so the block is XᵀX with X = L⁻¹E_idx. Column
+  /// k of L⁻¹E is zero above row k, so the columns are solved in groups sorted by index, each
+  /// group with the trailing triangle of L below its first index only (BLAS-3 dtrsm), then one
+  /// dsyrk. The columns X are kept: a later call with more indices solves only the new ones,
+  /// and block() answers requests inside the cached indices from the cached block (the
+  /// adjoint's block of the nodes in contact is then free). release_block_cache() frees X
+  /// ((m − first index)·|idx| doubles) and the block.
+  Eigen::MatrixXd principal_block(const std::vector<Eigen::Index>& idx) const;
+  void release_block_cache() const;
+  /// Indices whose columns are cached (in cache order).
+  const std::vector<Eigen::Index>& cached_indices() const { return cache_.indices; }
+
  private:
+  /// X = L⁻¹E for `indices` (rows from `first_row` on: the rows above are zero) and
+  /// block = D XᵀX D, both in the order of `indices`.
+  struct BlockCache {
+    std::vector<Eigen::Index> indices;
+    std::vector<Eigen::Index> position;  ///< position[k] in indices, or −1 (size m once used)
+    Eigen::Index first_row = 0;
+    Eigen::MatrixXd columns;
+    Eigen::MatrixXd block;
+  };
+  void extend_cache(const std::vector<Eigen::Index>& fresh) const;
+  bool cached(const std::vector<Eigen::Index>& idx) const;
+
   Eigen::MatrixXd L_;
   Eigen::VectorXd signs_;
   mutable Eigen::VectorXd diagonal_;
+  mutable BlockCache cache_;
 };
 
 /// y = G A⁻¹ Gᵀ x with one sparse forward/back substitution per application (no extra memory).
