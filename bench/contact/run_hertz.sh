@@ -7,7 +7,8 @@
 # ratios new / previous (docs/contact.md §7).
 #
 #   bench/contact/run_hertz.sh [SET] [REPEATS] [PREVIOUS_BENCH]
-#     SET = accuracy (default: uniform and graded 24/32/40 cells, layers = cells/3),
+#     SET = accuracy (default: uniform 24/32/40 cells with layers = cells/3, and graded
+#           24/32/32 cells with 16/16/22 layers: docs/contact-validation.md §1b),
 #           large (80 × 80 × 11 uniform: 19,683 contact unknowns), or a quoted list of
 #           "CELLS LAYERS GROWTH MU SHIFT" configurations separated by commas.
 #     PREVIOUS_BENCH: e.g. /work/contactperf-base/build/bench/contact/hertz_bench (966f3ca with
@@ -21,8 +22,11 @@ repeats="${2:-1}"
 previous="${3:-}"
 case "$set_name" in
   accuracy)
-    configs="24 8 1 0 0,32 11 1 0 0,40 13 1 0 0,24 8 1.2 0 0,32 11 1.2 0 0,40 13 1.2 0 0,"
-    configs+="24 8 1 0.3 0.002,32 11 1 0.3 0.002,40 13 1 0.3 0.002,24 8 1.2 0.3 0.002,32 11 1.2 0.3 0.002,40 13 1.2 0.3 0.002" ;;
+    configs=""
+    for mu in "0 0" "0.3 0.002"; do
+      for grid in "24 8 1" "32 11 1" "40 13 1" "24 16 1.2" "32 16 1.2" "32 22 1.2"; do configs+="$grid $mu,"; done
+    done
+    configs=${configs%,} ;;
   large) configs="80 11 1 0 0,80 11 1 0.3 0.002" ;;
   *) configs="$set_name" ;;
 esac

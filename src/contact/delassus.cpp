@@ -103,8 +103,12 @@ bool SchurDelassus::cached(const std::vector<Eigen::Index>& idx) const {
 
 void SchurDelassus::release_block_cache() const { cache_ = BlockCache{}; }
 
+void SchurDelassus::release_block_columns() const { cache_.columns = Eigen::MatrixXd(); }
+
 Eigen::MatrixXd SchurDelassus::principal_block(const std::vector<Eigen::Index>& idx) const {
   const Eigen::Index m = L_.rows();
+  // Without its columns the cache cannot grow: start over unless it already holds idx.
+  if (!cache_.indices.empty() && cache_.columns.size() == 0 && !cached(idx)) release_block_cache();
   if (cache_.position.empty()) cache_.position.assign(static_cast<std::size_t>(m), -1);
   std::vector<Eigen::Index> fresh;
   for (const Eigen::Index k : idx) {

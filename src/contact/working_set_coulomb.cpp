@@ -26,7 +26,7 @@ std::string fmt_seconds(double t) {
 }
 }  // namespace
 
-WorkingSetCoulombSolver::WorkingSetCoulombSolver(const SchurDelassus& delassus, const FrictionLaw& law,
+WorkingSetCoulombSolver::WorkingSetCoulombSolver(const DelassusMatrix& delassus, const FrictionLaw& law,
                                                  CoulombSolver::Options options)
     : delassus_(delassus), law_(law), options_(std::move(options)) {
   options_.validate();
@@ -111,6 +111,8 @@ WorkingSetCoulombSolver::Summary WorkingSetCoulombSolver::solve(const Eigen::Ref
     if (round >= kMaxRoundsBeforeFullSet) std::fill(in_set.begin(), in_set.end(), 1);
     for (const Eigen::Index i : joining) in_set[static_cast<std::size_t>(i)] = 1;
   }
+  // The block M[W, W] stays for the adjoint; the columns L⁻¹E_W were needed only to grow W.
+  delassus_.release_block_columns();
   // The full problem's state and Coulomb residuals (s = λ), as CoulombSolver::solve reports them.
   state = ContactState(dim, p);
   state.z = z;

@@ -13,6 +13,10 @@
 
 namespace frictopt::study {
 namespace {
+// From this many contact unknowns the Coulomb problem is solved on a working set of nodes: below,
+// a QP product with the whole M costs microseconds and the restriction would not pay.
+constexpr Eigen::Index kWorkingSetMinUnknowns = 1000;
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -109,9 +113,10 @@ BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, con
     result.state = warm_start_ && warm_start_->z.size() == boundary_->num_unknowns()
                        ? *warm_start_
                        : contact::ContactState(dim, boundary_->num_nodes());
-    if (const auto* schur = dynamic_cast<const contact::SchurDelassus*>(delassus)) {
-      // Above the dense bound: the Coulomb problem on the nodes in contact (docs/contact.md §2).
-      result.summary = contact::WorkingSetCoulombSolver(*schur, cd.law, cd.coulomb).solve(c, result.state).coulomb;
+    if (boundary_->num_unknowns() >= kWorkingSetMinUnknowns) {
+      // The Coulomb problem on the nodes that can touch (docs/contact.md, "Large contact surfaces").
+      result.summary =
+          contact::WorkingSetCoulombSolver(*result.delassus, cd.law, cd.coulomb).solve(c, result.state).coulomb;
     } else {
       const contact::CoulombSolver coulomb(*delassus, cd.law, cd.coulomb);
       result.summary = coulomb.solve(c, result.state);

@@ -80,6 +80,12 @@ TEST_F(WorkingSet, PrincipalBlocksMatchTheDenseMatrixAndGrow) {
   expect_block(rows, cols, schur_->block(rows, cols));
   const std::vector<Eigen::Index> outside{3, 7};
   expect_block(outside, rows, schur_->block(outside, rows));
+  // Without the columns the block still answers; a request outside it starts the cache over.
+  schur_->release_block_columns();
+  expect_block(rows, cols, schur_->block(rows, cols));
+  const std::vector<Eigen::Index> third{3, 1, 7};
+  expect_block(third, third, schur_->principal_block(third));
+  EXPECT_EQ(schur_->cached_indices().size(), 3u);
   schur_->release_block_cache();
   EXPECT_TRUE(schur_->cached_indices().empty());
   expect_block(rows, cols, schur_->block(rows, cols));

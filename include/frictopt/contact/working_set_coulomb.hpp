@@ -5,9 +5,10 @@
 // (spec 02, §7/§9.2) iff it solves the QP restricted to any node set W that contains them and
 // every node outside W has a non-negative gap w_i = (Mz + c)_ν,i (its KKT conditions are then
 // λ_i = 0 ⟂ w_i >= 0, q_i = 0 ∈ 0·W). The restricted QP needs only the principal block M[W, W]
-// (SchurDelassus::principal_block: triangular solves for |W|·dim columns, no m³ work) and is
-// solved by CoulombSolver on that dense block; one product with the full M checks the gaps
-// outside W, and nodes that would penetrate join W until none does.
+// (from a dense M: read; from the Schur factor: triangular solves for |W|·dim columns, no m³
+// work) and is solved by CoulombSolver on that dense block, whose products cost (|W|·dim)²
+// instead of m²; one product with the full M checks the gaps outside W, and nodes that would
+// penetrate join W until none does.
 #pragma once
 
 #include <Eigen/Core>
@@ -17,9 +18,11 @@
 
 namespace frictopt::contact {
 
-/// CoulombSolver's problem for M given by its Schur factor, solved on a growing working set.
-/// `delassus` must outlive the solver; its block cache holds X = L⁻¹E_W for the final working
-/// set after solve() (so that the sensitivity's block of the nodes in contact is free).
+/// CoulombSolver's problem solved on a growing working set of nodes (any DelassusMatrix; the
+/// Schur-factor one forms only the block).
+/// `delassus` must outlive the solver; after solve() its block cache holds M[W, W] for the final
+/// working set W (so that the sensitivity's block of the nodes in contact is free), not the
+/// columns L⁻¹E_W.
 class WorkingSetCoulombSolver {
  public:
   struct Summary {
@@ -31,7 +34,7 @@ class WorkingSetCoulombSolver {
     double check_seconds = 0.0;      ///< the products with the full M that check the gaps outside W
   };
 
-  WorkingSetCoulombSolver(const SchurDelassus& delassus, const FrictionLaw& law, CoulombSolver::Options options);
+  WorkingSetCoulombSolver(const DelassusMatrix& delassus, const FrictionLaw& law, CoulombSolver::Options options);
 
   /// As CoulombSolver::solve (same warm start, same outputs in `state`, residuals of the full
   /// problem). The first working set: the nodes with λ_i > 0 in a warm start and the nodes that
@@ -43,7 +46,7 @@ class WorkingSetCoulombSolver {
   [[nodiscard]] Summary solve(const Eigen::Ref<const Eigen::VectorXd>& c, ContactState& state) const;
 
  private:
-  const SchurDelassus& delassus_;
+  const DelassusMatrix& delassus_;
   FrictionLaw law_;
   CoulombSolver::Options options_;
 };
