@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "frictopt/contact/delassus.hpp"
+#include "frictopt/contact/working_set_coulomb.hpp"
 #include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
@@ -17,6 +18,10 @@
 
 namespace frictopt::study {
 namespace {
+// From this many contact unknowns the Coulomb problem is solved on a working set of nodes: below,
+// a QP product with the whole M costs microseconds and the restriction would not pay.
+constexpr Eigen::Index kWorkingSetMinUnknowns = 1000;
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -204,7 +209,11 @@ BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha
     const bool frictionless = step && !step->friction;
     const contact::FrictionLaw& law = frictionless ? contact::frictionless_law(dim) : cd.law;
     Eigen::MatrixXd modes;
-    if (fixing_dofs_.empty()) {
+    if (fixing_dofs_.empty() && boundary_->num_unknowns() >= kWorkingSetMinUnknowns) {
+      // The Coulomb problem on the nodes that can touch (docs/contact.md, "Large contact surfaces").
+      result.summary =
+          contact::WorkingSetCoulombSolver(*result.delassus, law, cd.coulomb).solve(c, result.state).coulomb;
+    } else if (fixing_dofs_.empty()) {
       const contact::CoulombSolver coulomb(*delassus, law, cd.coulomb);
       result.summary = coulomb.solve(c, result.state);
     } else {
