@@ -22,6 +22,10 @@
 namespace frictopt::mesh {
 namespace {
 
+// The finest .geo meshing accepted: extent/size cells along the body's largest extent.
+constexpr double kMaxCellsPerExtent3d = 200.0;
+constexpr double kMaxCellsPerExtent2d = 2000.0;
+
 // Gmsh element type numbers (Gmsh's reference manual, "MSH file format").
 constexpr int kGmshLine2 = 1;
 constexpr int kGmshTriangle3 = 2;
@@ -186,6 +190,17 @@ ReadResult read(const std::filesystem::path& file, const GmshMeshOptions& option
       throw InvalidInput(fmt::format("{}: the geometry has no {}; expected a 2D surface or a 3D volume", name,
                                      dim < 0 ? "entities" : "surface or volume"));
     if (has_size) {
+      // Bounded before meshing, so that a mistyped size (1e-9 m) is an error and not hours of
+      // Gmsh and an exhausted memory: (extent/size)^dim cells stay near the case files' limit
+      // of 2,000,000 unknowns (docs/case-format.md, "Size limits").
+      double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
+      gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+      const double extent = std::max({x1 - x0, y1 - y0, z1 - z0});
+      const double max_ratio = dim == 3 ? kMaxCellsPerExtent3d : kMaxCellsPerExtent2d;
+      if (extent / options.size > max_ratio)
+        throw InvalidInput(fmt::format("{}: mesh size {:.3g} m for a body of extent {:.3g} m; expected size >= extent/{} = "
+                                       "{:.3g} m (larger meshes exceed the limit of about 2,000,000 unknowns)",
+                                       name, options.size, extent, max_ratio, extent / max_ratio));
       gmsh::option::setNumber("Mesh.MeshSizeMax", options.size);
       gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
     }

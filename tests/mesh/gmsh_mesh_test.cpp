@@ -140,6 +140,10 @@ TEST(GmshMesh, BadFilesAreInvalidInputNamingTheFile) {
   const std::string negative = invalid_input_message([] { GmshMesh(kData / "block.geo", {.size = -1.0}); });
   EXPECT_NE(negative.find("expected a number > 0"), std::string::npos) << negative;
 
+  // Regression (found by review): a mistyped size meshed for hours; it is bounded by the extent.
+  const std::string tiny = invalid_input_message([] { GmshMesh(kData / "cylinder.geo", {.size = 1e-9}); });
+  EXPECT_NE(tiny.find("expected size >= extent/200 = 0.005 m"), std::string::npos) << tiny;
+
   const std::string extension = invalid_input_message([] { GmshMesh(kData / "block.geo.txt"); });
   EXPECT_NE(extension.find("not found"), std::string::npos) << extension;
 }
