@@ -50,7 +50,8 @@ struct NodalForce {
 /// The full load vector (num_dofs) ∫_Γ N_a t dS of one face traction at node positions X
 /// (the same facet quadrature as LinearElasticity). Throws InvalidInput for an unknown face or a
 /// traction of the wrong size.
-[[nodiscard]] Eigen::VectorXd face_traction_load(const mesh::Mesh& mesh, const Eigen::Ref<const Eigen::MatrixXd>& X,
+[[nodiscard]] Eigen::VectorXd face_traction_load(const mesh::Mesh& mesh,
+                                                 const Eigen::Ref<const Eigen::MatrixXd>& X,
                                                  const FaceTraction& traction);
 
 }  // namespace frictopt::fem
