@@ -76,6 +76,39 @@ std::vector<int> select_nodes(const mesh::Mesh& mesh, const NodeSelector& s,
   return nodes;
 }
 
+void add_nodal_constraints(const mesh::Mesh& mesh, const std::vector<NodalConstraint>& constraints,
+                           PrescribedDofs& prescribed) {
+  const int dim = mesh.dim();
+  std::vector<char> fixed(static_cast<std::size_t>(mesh.num_dofs()), 0);
+  for (int d : prescribed.dofs) fixed[static_cast<std::size_t>(d)] = 1;
+  for (std::size_t k = 0; k < constraints.size(); ++k) {
+    const std::string field = fmt::format("constraint[{}]", k);
+    const NodalConstraint& c = constraints[k];
+    if (c.displacement.size() != 0 && (c.displacement.size() != dim || !c.displacement.allFinite()))
+      throw InvalidInput(fmt::format("{}.displacement = {}; expected {} finite entries", field,
+                                     vector_text(c.displacement), dim));
+    std::vector<int> components = c.components;
+    if (components.empty())
+      for (int comp = 0; comp < dim; ++comp) components.push_back(comp);
+    for (int comp : components)
+      if (comp < 0 || comp >= dim)
+        throw InvalidInput(fmt::format("{}.components: {} is not a component index; expected 0..{}",
+                                       field, comp, dim - 1));
+    for (int n : select_nodes(mesh, c.where, field))
+      for (int comp : components) {
+        const int dof = n * dim + comp;
+        if (fixed[static_cast<std::size_t>(dof)])
+          throw InvalidInput(fmt::format(
+              "{} fixes component {} of node {}, which a [[dirichlet]] table or an earlier "
+              "[[constraint]] already fixes; expected each DOF fixed once",
+              field, comp, n));
+        fixed[static_cast<std::size_t>(dof)] = 1;
+        prescribed.dofs.push_back(dof);
+        prescribed.values.push_back(c.displacement.size() ? c.displacement(comp) : 0.0);
+      }
+  }
+}
+
 Eigen::VectorXd nodal_force_load(const mesh::Mesh& mesh, const DofMap& dofs,
                                  const std::vector<NodalForce>& forces) {
   const int dim = mesh.dim();

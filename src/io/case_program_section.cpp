@@ -47,6 +47,39 @@ fem::NodalForce read_force(const TableReader& r, int dim) {
   return f;
 }
 
+fem::NodalConstraint read_constraint(const TableReader& r, int dim) {
+  fem::NodalConstraint c;
+  if (r.has("at"))
+    c.where.point = dim_vector(r, "at", dim, "reference coordinates of the point, m");
+  if (r.has("box_min")) c.where.box_min = dim_vector(r, "box_min", dim, "lower corner, m");
+  if (r.has("box_max")) c.where.box_max = dim_vector(r, "box_max", dim, "upper corner, m");
+  if (r.has("boundary"))
+    c.where.boundary = r.required_string("boundary", "the name of a boundary set");
+  if (const auto t = r.optional_number("tolerance")) {
+    if (!(*t >= 0.0)) r.fail_value("tolerance", "a distance >= 0 m");
+    c.where.tolerance = *t;
+  } else if (c.where.point) {
+    r.fail_missing("tolerance", "the largest distance in m from `at` to the node it selects");
+  }
+  if (r.has("displacement")) c.displacement = dim_vector(r, "displacement", dim, "displacement, m");
+  if (r.has("components")) {
+    c.components = r.int_list(
+        "components", fmt::format("a non-empty list of component indices in 0..{}", dim - 1));
+    if (c.components.empty()) r.fail_value("components", "a non-empty list of component indices");
+    for (std::size_t i = 0; i < c.components.size(); ++i)
+      if (c.components[i] < 0 || c.components[i] >= dim)
+        r.fail_entry("components", i, fmt::format("an index in 0..{}", dim - 1));
+  }
+  const int selectors = int(c.where.point.has_value()) + int(c.where.box_min || c.where.box_max) +
+                        int(c.where.boundary.has_value());
+  if (selectors != 1)
+    r.fail("constraint",
+           fmt::format("{} selects nodes {} ways; expected exactly one of `at` (+ `tolerance`), "
+                       "`box_min` + `box_max`, or `boundary`",
+                       r.path(), selectors));
+  return c;
+}
+
 std::vector<double> scales(const TableReader& r, std::string_view key) {
   if (!r.has(key)) return {};
   const std::vector<double> v = r.number_list(key, "a list of finite scale factors");
@@ -114,6 +147,13 @@ void read_program_sections(const TableReader& top, std::string_view origin, int 
           read_force(TableReader(*forces->get(i)->as_table(), fmt::format("force[{}]", i), origin,
                                  {"at", "tolerance", "box_min", "box_max", "boundary", "force"}),
                      dim));
+  if (const toml::array* constraints = top.optional_table_array("constraint"))
+    for (std::size_t i = 0; i < constraints->size(); ++i)
+      c.body.constraints.push_back(read_constraint(
+          TableReader(
+              *constraints->get(i)->as_table(), fmt::format("constraint[{}]", i), origin,
+              {"at", "tolerance", "box_min", "box_max", "boundary", "components", "displacement"}),
+          dim));
   if (const toml::table* program = top.optional_table("program"))
     c.program = read_program(TableReader(*program, "program", origin, {"step"}), origin, c.body);
   if (const toml::table* experiment = top.optional_table("experiment"))

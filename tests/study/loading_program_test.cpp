@@ -277,6 +277,37 @@ TEST(LoadingProgramInput, PointFarFromEveryNodeNamesTheNearestNode) {
   EXPECT_NE(m.find("nearest node"), std::string::npos) << m;
 }
 
+// [[constraint]] on the node set "top" is the [[dirichlet]] face condition: the same DOFs with the
+// same values, hence the same state bit for bit.
+TEST(NodeConstraints, BoundarySetConstraintIsTheFaceCondition) {
+  BlockSpec s;
+  s.cells = 4;
+  s.layers = 2;
+  s.law = FrictionLaw::disc(0.3);
+  s.top_displacement = Eigen::Vector3d(0.001, 0.0, -0.01);
+  const BodyDefinition face = validation::block_definition(s);
+  BodyDefinition nodes = face;
+  nodes.dirichlet.clear();
+  fem::NodalConstraint c;
+  c.where.boundary = "top";
+  c.displacement = s.top_displacement;
+  nodes.constraints = {c};
+  ElasticBody a(face), b(nodes);
+  EXPECT_EQ(b.num_floating_modes(), 0);
+  const BodyState sa = a.solve(face.initial_design), sb = b.solve(nodes.initial_design);
+  ASSERT_EQ(sb.summary.status, Status::kConverged);
+  EXPECT_TRUE(sa.displacement == sb.displacement);
+}
+
+TEST(LoadingProgramInput, ConstraintOnAFixedDofNamesTheConstraint) {
+  const std::string m =
+      message_of(block_case("[[constraint]]\nat = [0.5, 0.5, 0.5]\ntolerance = 1e-9\ncomponents = "
+                            "[2]\ndisplacement = [0.0, 0.0, 0.0]\n"));
+  EXPECT_NE(m.find("constraint[0] fixes component 2 of node"), std::string::npos) << m;
+  const std::string b = message_of(block_case("[[constraint]]\nat = [0.5, 0.5, 0.5]\n"));
+  EXPECT_NE(b.find("constraint[0].tolerance is missing"), std::string::npos) << b;
+}
+
 TEST(LoadingProgramInput, UnknownStepKeyIsRejected) {
   const std::string m = message_of(block_case("[[program.step]]\nload_scal = [1.0]\n"));
   EXPECT_NE(m.find("load_scal"), std::string::npos) << m;
