@@ -37,11 +37,14 @@ int run_program(const std::filesystem::path& case_path, const std::filesystem::p
         step["label"] = r.label;
         step["external_work"] = r.external_work;
         if (r.state.contact) {
-          fmt::print("  {}\n  {}\n", r.state.contact->summary.brief_report(), r.state.contact->resultants.brief_report());
+          fmt::print("  {}\n  {}\n", r.state.contact->summary.brief_report(),
+                     r.state.contact->resultants.brief_report());
         }
         steps.push_back(step);
         if (description.output.vtk && r.state.summary.status == Status::kConverged)
-          run.add_to_series(r.step, [&](const std::filesystem::path& vtu) { io::write_state_vtu(vtu, body, r.state); });
+          run.add_to_series(r.step, [&](const std::filesystem::path& vtu) {
+            io::write_state_vtu(vtu, body, r.state);
+          });
       });
   fmt::print("{}\n", summary.brief_report());
   io::JsonValue json = io::JsonValue::object();
@@ -63,19 +66,22 @@ int run_program(const std::filesystem::path& case_path, const std::filesystem::p
 int run_experiment(const std::filesystem::path& case_path, const std::filesystem::path& out_dir) {
   const io::CaseDescription description = io::load_case(case_path);
   if (!description.experiment)
-    throw InvalidInput(fmt::format("{}: no [experiment] table; expected one with normal_force, pull_displacement, "
-                                   "angles_degrees and ramp_steps (docs/experiments.md)",
-                                   case_path.string()));
+    throw InvalidInput(
+        fmt::format("{}: no [experiment] table; expected one with normal_force, pull_displacement, "
+                    "angles_degrees and ramp_steps (docs/experiments.md)",
+                    case_path.string()));
   study::Tribometer tribometer(description.body, *description.experiment);
   io::RunDirectory run(out_dir, io::RunOpening::kOutput, case_path);
-  io::CsvWriter ramp(run.file("tribometer_ramp.csv"),
-                     {"angle_degrees", "step", "pull", "normal_force", "tangential_force_x1", "tangential_force_x2",
-                      "force_ratio", "stick_fraction", "num_stick", "num_slip"});
-  io::CsvWriter polar(run.file("tribometer_polar.csv"),
-                      {"angle_degrees", "gross_sliding", "onset_step", "onset_pull", "onset_force",
-                       "onset_normal_force", "steady_sliding", "sliding_force", "sliding_normal_force",
-                       "force_angle_degrees", "slip_angle_degrees", "measured_mu", "law_mu", "relative_error",
-                       "sliding_resistance", "law_resistance", "normality_residual"});
+  io::CsvWriter ramp(
+      run.file("tribometer_ramp.csv"),
+      {"angle_degrees", "step", "pull", "normal_force", "tangential_force_x1",
+       "tangential_force_x2", "force_ratio", "stick_fraction", "num_stick", "num_slip"});
+  io::CsvWriter polar(
+      run.file("tribometer_polar.csv"),
+      {"angle_degrees", "gross_sliding", "onset_step", "onset_pull", "onset_force",
+       "onset_normal_force", "steady_sliding", "sliding_force", "sliding_normal_force",
+       "force_angle_degrees", "slip_angle_degrees", "measured_mu", "law_mu", "relative_error",
+       "sliding_resistance", "law_resistance", "normality_residual"});
   {
     // The law itself, for the polar plot: the radial function μ(φ) of W (the friction force's
     // magnitude per unit P in direction φ) and the support function N_W(θ) (the resistance to
@@ -88,31 +94,41 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
       law.write_row({k * 0.5, w.max_step(Eigen::Vector2d::Zero(), 1.0, d), w.support(d)});
     }
   }
-  const study::Tribometer::Summary summary = tribometer.run([&](const study::TribometerAngleResult& a) {
-    for (std::size_t k = 0; k < a.ramp.size(); ++k) {
-      const auto& pt = a.ramp[k];
-      ramp.write_row({a.angle_degrees, double(k + 1), pt.pull, pt.normal_force, pt.tangential_force(0),
-                      pt.tangential_force(1), pt.tangential_force.norm() / pt.normal_force, pt.stick_fraction,
-                      double(pt.num_stick), double(pt.num_slip)});
-    }
-    polar.write_row({a.angle_degrees, a.gross_sliding ? 1.0 : 0.0, double(a.onset_step + 1), a.onset_pull,
-                     a.onset_force, a.onset_normal_force, a.steady_sliding ? 1.0 : 0.0, a.sliding_force,
-                     a.sliding_normal_force, a.force_angle_degrees, a.slip_angle_degrees, a.measured_coefficient,
-                     a.law_coefficient, a.coefficient_error, a.sliding_resistance, a.law_resistance,
-                     a.normality_residual});
-    if (a.steady_sliding)
-      fmt::print("θ = {:7.2f}°: sliding from step {} (|T| = {:.4e} N); sliding: |T|/P = {:.9f}, law μ(φ) = {:.9f} "
-                 "(rel. error {:.1e}), force at φ = {:.3f}°, slip at {:.3f}°, normality {:.1e}\n",
-                 a.angle_degrees, a.onset_step + 1, a.onset_force, a.measured_coefficient, a.law_coefficient,
-                 a.coefficient_error, a.force_angle_degrees, a.slip_angle_degrees, a.normality_residual);
-    else if (a.gross_sliding)
-      fmt::print("θ = {:7.2f}°: gross sliding only at the last ramp step; raise pull_displacement to measure the "
-                 "sliding force\n",
-                 a.angle_degrees);
-    else
-      fmt::print("θ = {:7.2f}°: no gross sliding within pull_displacement (stick fraction {:.3f} at the end)\n",
-                 a.angle_degrees, a.ramp.empty() ? 1.0 : a.ramp.back().stick_fraction);
-  });
+  const study::Tribometer::Summary summary =
+      tribometer.run([&](const study::TribometerAngleResult& a) {
+        for (std::size_t k = 0; k < a.ramp.size(); ++k) {
+          const auto& pt = a.ramp[k];
+          ramp.write_row({a.angle_degrees, double(k + 1), pt.pull, pt.normal_force,
+                          pt.tangential_force(0), pt.tangential_force(1),
+                          pt.tangential_force.norm() / pt.normal_force, pt.stick_fraction,
+                          double(pt.num_stick), double(pt.num_slip)});
+        }
+        polar.write_row({a.angle_degrees, a.gross_sliding ? 1.0 : 0.0, double(a.onset_step + 1),
+                         a.onset_pull, a.onset_force, a.onset_normal_force,
+                         a.steady_sliding ? 1.0 : 0.0, a.sliding_force, a.sliding_normal_force,
+                         a.force_angle_degrees, a.slip_angle_degrees, a.measured_coefficient,
+                         a.law_coefficient, a.coefficient_error, a.sliding_resistance,
+                         a.law_resistance, a.normality_residual});
+        if (a.steady_sliding)
+          fmt::print(
+              "θ = {:7.2f}°: sliding from step {} (|T| = {:.4e} N); sliding: |T|/P = {:.9f}, law "
+              "μ(φ) = {:.9f} "
+              "(rel. error {:.1e}), force at φ = {:.3f}°, slip at {:.3f}°, normality {:.1e}\n",
+              a.angle_degrees, a.onset_step + 1, a.onset_force, a.measured_coefficient,
+              a.law_coefficient, a.coefficient_error, a.force_angle_degrees, a.slip_angle_degrees,
+              a.normality_residual);
+        else if (a.gross_sliding)
+          fmt::print(
+              "θ = {:7.2f}°: gross sliding only at the last ramp step; raise pull_displacement to "
+              "measure the "
+              "sliding force\n",
+              a.angle_degrees);
+        else
+          fmt::print(
+              "θ = {:7.2f}°: no gross sliding within pull_displacement (stick fraction {:.3f} at "
+              "the end)\n",
+              a.angle_degrees, a.ramp.empty() ? 1.0 : a.ramp.back().stick_fraction);
+      });
   fmt::print("{}\n", summary.brief_report());
   io::JsonValue json = io::JsonValue::object();
   json["case"] = case_path.string();
@@ -148,8 +164,8 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
   }
   json["angles"] = angles;
   run.write_json_file(io::RunDirectory::kSummary, json);
-  fmt::print("wrote {}, {}, {}\n", run.file("tribometer_polar.csv").string(), run.file("tribometer_ramp.csv").string(),
-             run.file("tribometer_law.csv").string());
+  fmt::print("wrote {}, {}, {}\n", run.file("tribometer_polar.csv").string(),
+             run.file("tribometer_ramp.csv").string(), run.file("tribometer_law.csv").string());
   return summary.status == Status::kConverged ? kExitOk : kExitNumericalFailure;
 }
 

@@ -4,7 +4,8 @@
 // (+ M) + K contact solves, and against K independent static solves (K factorizations).
 // The body is the punch of cases3d/punch (dish-shaped bottom, 16-gon μ = 0.3) pressed down and
 // sideways in K proportional steps.
-//   build/bench/experiments/program_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+//   build/bench/experiments/program_bench --benchmark_repetitions=5
+//   --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -14,7 +15,9 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+double seconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
 
 frictopt::study::BodyDefinition punch(int n, int layers) {
   using namespace frictopt;
@@ -27,8 +30,8 @@ frictopt::study::BodyDefinition punch(int n, int layers) {
   b.admissible.upper_bound = 5e-3;
   b.admissible.height = 0.5;
   b.initial_design.resize(16);
-  b.initial_design << 1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3, 1.0e-3, 0.5e-3, 0.5e-3, 1.0e-3, 1.0e-3, 0.5e-3, 0.5e-3, 1.0e-3,
-      1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3;
+  b.initial_design << 1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3, 1.0e-3, 0.5e-3, 0.5e-3, 1.0e-3, 1.0e-3,
+      0.5e-3, 0.5e-3, 1.0e-3, 1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3;
   study::ContactDefinition c;
   c.law = contact::FrictionLaw::regular_polygon(0.3, 16);
   b.contact = c;
@@ -56,8 +59,9 @@ void BM_LoadingProgram(benchmark::State& state) {
       if (r.step == 1) first_contact = r.state.contact->summary.time_seconds;
       // The setup of step 1 (factorization, dense M; with the step's recovery of u and the
       // stresses) is the one-time cost of the program.
-      if (r.step == 1) factorization_s = r.state.summary.factorization_seconds + r.state.summary.solve_seconds -
-                                         first_contact;
+      if (r.step == 1)
+        factorization_s =
+            r.state.summary.factorization_seconds + r.state.summary.solve_seconds - first_contact;
     });
     program_s = seconds(t0, Clock::now());
     if (summary.status != Status::kConverged) state.SkipWithError(summary.message.c_str());

@@ -22,24 +22,27 @@ std::string ContactResultants::brief_report() const {
   std::string line = fmt::format("contact forces: P = {:.6e} N, T = ", normal_force);
   line += dim == 3 ? fmt::format("({:.6e}, {:.6e}) N", tangential_force(0), tangential_force(1))
                    : fmt::format("{:.6e} N", tangential_force(0));
-  line += fmt::format(", |T|/P = {:.6g}; contact area {:.4e}; stick {} ({:.4e}), slip {} ({:.4e}), separated {}",
-                      force_ratio, contact_area, num_stick, stick_area, num_slip, slip_area, num_separated);
+  line += fmt::format(
+      ", |T|/P = {:.6g}; contact area {:.4e}; stick {} ({:.4e}), slip {} ({:.4e}), separated {}",
+      force_ratio, contact_area, num_stick, stick_area, num_slip, slip_area, num_separated);
   if (num_stick > 0) {
-    line += dim == 3 ? fmt::format("; stick centroid ({:.4e}, {:.4e}), radius {:.4e}", stick_centroid(0),
-                                   stick_centroid(1), stick_equivalent_radius)
+    line += dim == 3 ? fmt::format("; stick centroid ({:.4e}, {:.4e}), radius {:.4e}",
+                                   stick_centroid(0), stick_centroid(1), stick_equivalent_radius)
                      : fmt::format("; stick centroid {:.4e}, half-width {:.4e}", stick_centroid(0),
                                    stick_equivalent_radius);
   }
   return line;
 }
 
-ContactResultants contact_resultants(const ContactState& state, const Eigen::Ref<const Eigen::VectorXd>& areas,
+ContactResultants contact_resultants(const ContactState& state,
+                                     const Eigen::Ref<const Eigen::VectorXd>& areas,
                                      const Eigen::Ref<const Eigen::MatrixXd>& plane) {
   const Eigen::Index p = state.num_nodes();
   if (areas.size() != p || plane.rows() != p || plane.cols() != state.dim - 1 ||
       static_cast<Eigen::Index>(state.nodes.size()) != p)
     throw InvalidInput(fmt::format(
-        "contact_resultants: {} contact nodes but {} areas, {}×{} plane coordinates and {} classified nodes; "
+        "contact_resultants: {} contact nodes but {} areas, {}×{} plane coordinates and {} "
+        "classified nodes; "
         "expected {} each (plane: {} columns)",
         p, areas.size(), plane.rows(), plane.cols(), state.nodes.size(), p, state.dim - 1));
   ContactResultants r;

@@ -18,7 +18,8 @@ class AugmentedOperator final : public linalg::LinearOperator {
   AugmentedOperator(const linalg::LinearOperator& M, const Eigen::MatrixXd& E, double rho)
       : M_(M), E_(E), rho_(rho) {}
   Eigen::Index size() const override { return M_.size(); }
-  void apply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const override {
+  void apply(const Eigen::Ref<const Eigen::VectorXd>& x,
+             Eigen::Ref<Eigen::VectorXd> y) const override {
     M_.apply(x, y);
     y.noalias() += rho_ * (E_.transpose() * (E_ * x));
   }
@@ -36,39 +37,50 @@ class AugmentedOperator final : public linalg::LinearOperator {
 
 void FloatingCoulombSolver::Options::validate() const {
   const auto fail = [](const char* field, double value, const char* expected) {
-    throw InvalidInput(fmt::format("FloatingCoulombSolver::Options::{} = {}; expected {}", field, value, expected));
+    throw InvalidInput(fmt::format("FloatingCoulombSolver::Options::{} = {}; expected {}", field,
+                                   value, expected));
   };
-  if (!(equality_tolerance > 0.0 && equality_tolerance < 1.0)) fail("equality_tolerance", equality_tolerance, "a value in (0, 1)");
+  if (!(equality_tolerance > 0.0 && equality_tolerance < 1.0))
+    fail("equality_tolerance", equality_tolerance, "a value in (0, 1)");
   if (max_outer_iterations < 1) fail("max_outer_iterations", max_outer_iterations, ">= 1");
   if (!(penalty_growth > 1.0)) fail("penalty_growth", penalty_growth, "> 1");
-  if (!(required_decrease > 0.0 && required_decrease < 1.0)) fail("required_decrease", required_decrease, "a value in (0, 1)");
+  if (!(required_decrease > 0.0 && required_decrease < 1.0))
+    fail("required_decrease", required_decrease, "a value in (0, 1)");
   if (!(max_penalty_ratio > 1.0)) fail("max_penalty_ratio", max_penalty_ratio, "> 1");
   coulomb.validate();
 }
 
 std::string FloatingCoulombSolver::Summary::brief_report() const {
-  return fmt::format("floating body (augmented Lagrangian on Rᵀ(l + Gᵀz) = 0): {} ({}); {} outer it, {} fixed-point it, "
-                     "{} QP it, equality residual {:.2e}, penalty {:.2e}, {:.3f} s",
-                     to_string(status), message, outer_iterations, fixed_point_iterations, qp_iterations,
-                     equality_residual, penalty, time_seconds);
+  return fmt::format(
+      "floating body (augmented Lagrangian on Rᵀ(l + Gᵀz) = 0): {} ({}); {} outer it, {} "
+      "fixed-point it, "
+      "{} QP it, equality residual {:.2e}, penalty {:.2e}, {:.3f} s",
+      to_string(status), message, outer_iterations, fixed_point_iterations, qp_iterations,
+      equality_residual, penalty, time_seconds);
 }
 
-FloatingCoulombSolver::FloatingCoulombSolver(const linalg::LinearOperator& delassus, Eigen::MatrixXd equality,
-                                             FrictionLaw law, Options options)
-    : delassus_(delassus), equality_(std::move(equality)), law_(std::move(law)), options_(std::move(options)) {
+FloatingCoulombSolver::FloatingCoulombSolver(const linalg::LinearOperator& delassus,
+                                             Eigen::MatrixXd equality, FrictionLaw law,
+                                             Options options)
+    : delassus_(delassus),
+      equality_(std::move(equality)),
+      law_(std::move(law)),
+      options_(std::move(options)) {
   options_.validate();
   if (equality_.cols() != delassus_.size())
-    throw InvalidInput(fmt::format("FloatingCoulombSolver: E has {} columns; expected {} (the contact unknowns)",
-                                   equality_.cols(), delassus_.size()));
+    throw InvalidInput(
+        fmt::format("FloatingCoulombSolver: E has {} columns; expected {} (the contact unknowns)",
+                    equality_.cols(), delassus_.size()));
 }
 
-FloatingCoulombSolver::Summary FloatingCoulombSolver::solve(const Eigen::Ref<const Eigen::VectorXd>& c,
-                                                           const Eigen::Ref<const Eigen::VectorXd>& e,
-                                                           ContactState& state, Eigen::VectorXd& beta) const {
+FloatingCoulombSolver::Summary FloatingCoulombSolver::solve(
+    const Eigen::Ref<const Eigen::VectorXd>& c, const Eigen::Ref<const Eigen::VectorXd>& e,
+    ContactState& state, Eigen::VectorXd& beta) const {
   const auto start = std::chrono::steady_clock::now();
   const Eigen::MatrixXd& E = equality_;
   if (e.size() != E.rows())
-    throw InvalidInput(fmt::format("FloatingCoulombSolver::solve: e has {} entries; expected {}", e.size(), E.rows()));
+    throw InvalidInput(fmt::format("FloatingCoulombSolver::solve: e has {} entries; expected {}",
+                                   e.size(), E.rows()));
   Summary summary;
   // ρ₀ balances the two terms of M + ρEᵀE on the diagonal.
   const double mean_m = delassus_.diagonal().mean();
@@ -92,7 +104,8 @@ FloatingCoulombSolver::Summary FloatingCoulombSolver::solve(const Eigen::Ref<con
       break;
     }
     const Eigen::VectorXd r = E * state.z - e;
-    const double scale = std::max({e.norm(), E.norm() * state.z.norm(), std::numeric_limits<double>::min()});
+    const double scale =
+        std::max({e.norm(), E.norm() * state.z.norm(), std::numeric_limits<double>::min()});
     summary.equality_residual = r.norm() / scale;
     // ∇ = (M + ρEᵀE)z + c_k = Mz + c + Eᵀ(μ + ρr): the kinematics with β = μ + ρr.
     mu += rho * r;
@@ -102,13 +115,15 @@ FloatingCoulombSolver::Summary FloatingCoulombSolver::solve(const Eigen::Ref<con
                                     summary.equality_residual, k);
       break;
     }
-    if (summary.equality_residual > options_.required_decrease * last) rho *= options_.penalty_growth;
+    if (summary.equality_residual > options_.required_decrease * last)
+      rho *= options_.penalty_growth;
     last = summary.equality_residual;
     if (rho > options_.max_penalty_ratio * rho0) {
       summary.status = Status::kDiverged;
-      summary.message = fmt::format("no equilibrium: the contact forces cannot balance the loads (residual {:.2e} "
-                                    "with the penalty at {:.0e} × its start)",
-                                    summary.equality_residual, rho / rho0);
+      summary.message = fmt::format(
+          "no equilibrium: the contact forces cannot balance the loads (residual {:.2e} "
+          "with the penalty at {:.0e} × its start)",
+          summary.equality_residual, rho / rho0);
       break;
     }
     if (k == options_.max_outer_iterations) {
@@ -118,7 +133,8 @@ FloatingCoulombSolver::Summary FloatingCoulombSolver::solve(const Eigen::Ref<con
     }
   }
   beta = mu;
-  summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.time_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
 

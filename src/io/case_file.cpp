@@ -901,7 +901,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                         {"geometry", "mesh", "material", "load", "dirichlet", "design", "contact",
                          "solver", "cost", "optimization", "output", "identification",
                          // issue 12's sections (case_program_section.hpp)
-                         "force", "program", "experiment"});
+                         "force", "constraint", "program", "experiment"});
   const auto table = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
     const toml::table* t = top.optional_table(key);
     if (t == nullptr) top.fail_missing(key, fmt::format("a table [{}]", key));
@@ -945,7 +945,8 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   // Without [[dirichlet]] a body floats: only contact and friction can hold it (issue 12,
   // spec 07 §2; study::ElasticBody solves it with the kernel-aware dual).
   const toml::array no_dirichlet;
-  if ((dirichlet == nullptr || dirichlet->empty()) && top.optional_table("contact") == nullptr)
+  if ((dirichlet == nullptr || dirichlet->empty()) && top.optional_table("contact") == nullptr &&
+      top.optional_table_array("constraint") == nullptr)
     top.fail_missing("dirichlet",
                      "at least one [[dirichlet]] table (a body without a "
                      "Dirichlet part and without [contact] has rigid-body modes)");

@@ -12,9 +12,10 @@
 
 namespace frictopt::io::detail {
 
-
-/// Reads [[force]] into c.body.forces, [program] into c.program and [experiment] into
-/// c.experiment. `dim` is the body's dimension (geometry.dim). Throws InvalidInput "origin:line: field = value; expected ...".
-void read_program_sections(const TableReader& top, std::string_view origin, int dim, CaseDescription& c);
+/// Reads [[force]] into c.body.forces, [[constraint]] into c.body.constraints, [program] into c.program and [experiment] into
+/// c.experiment. `dim` is the body's dimension (geometry.dim). Throws InvalidInput "origin:line:
+/// field = value; expected ...".
+void read_program_sections(const TableReader& top, std::string_view origin, int dim,
+                           CaseDescription& c);
 
 }  // namespace frictopt::io::detail

@@ -34,13 +34,15 @@ std::string StateSummary::brief_report() const {
 }
 
 ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(definition)) {
-  if (definition_.dirichlet.empty() && !definition_.contact)
+  if (definition_.dirichlet.empty() && definition_.constraints.empty() && !definition_.contact)
     throw InvalidInput(
         "dirichlet: no Dirichlet condition; expected at least one face with prescribed displacement "
         "(otherwise rigid-body motions are free and the stiffness matrix is singular)");
   mesh_ = std::make_unique<const mesh::Mesh>(build_mesh(definition_));
   fem::PrescribedDofs prescribed = fem::expand_dirichlet(*mesh_, definition_.dirichlet);
+  fem::add_nodal_constraints(*mesh_, definition_.constraints, prescribed);
   user_prescribed_dofs_ = prescribed.dofs;
+  const fem::DofMap user_dofs(mesh_->num_dofs(), prescribed);
   // A floating body (spec 07 §2): rigid modes the Dirichlet conditions leave free are held by
   // contact and friction only. Hold r DOFs off Γ_c at 0 so that the factorized block is SPD
   // (its inverse is a generalized inverse A⁺); the modes come back as Rβ in solve().
@@ -69,7 +71,7 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
   if (!definition_.forces.empty()) {
     // Checked against the user's conditions (a force on a fixing DOF is carried by the floating
     // body's equilibrium, not refused).
-    nodal_forces_full_ = fem::nodal_force_load(*mesh_, fem::DofMap(mesh_->num_dofs(), fem::expand_dirichlet(*mesh_, definition_.dirichlet)), definition_.forces);
+    nodal_forces_full_ = fem::nodal_force_load(*mesh_, user_dofs, definition_.forces);
     nodal_forces_ = fem_->dofs().restrict(nodal_forces_full_);
   }
   if (definition_.contact) {

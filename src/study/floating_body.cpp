@@ -34,14 +34,16 @@ Eigen::MatrixXd rigid_body_modes(const Eigen::Ref<const Eigen::MatrixXd>& X) {
   return R;
 }
 
-Eigen::MatrixXd free_rigid_modes(const Eigen::Ref<const Eigen::MatrixXd>& X, const std::vector<int>& prescribed_dofs) {
+Eigen::MatrixXd free_rigid_modes(const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                 const std::vector<int>& prescribed_dofs) {
   const Eigen::MatrixXd R0 = rigid_body_modes(X);
   Eigen::MatrixXd K;
   if (prescribed_dofs.empty()) {
     K = Eigen::MatrixXd::Identity(R0.cols(), R0.cols());
   } else {
     Eigen::MatrixXd Rd(prescribed_dofs.size(), R0.cols());
-    for (std::size_t i = 0; i < prescribed_dofs.size(); ++i) Rd.row(static_cast<Eigen::Index>(i)) = R0.row(prescribed_dofs[i]);
+    for (std::size_t i = 0; i < prescribed_dofs.size(); ++i)
+      Rd.row(static_cast<Eigen::Index>(i)) = R0.row(prescribed_dofs[i]);
     // The kernel of the prescribed rows, relative to their scale (a rank decision on a
     // (#prescribed × 6) matrix of coordinates: 1e-10 is far below any body's aspect ratio).
     Eigen::FullPivLU<Eigen::MatrixXd> lu(Rd);
@@ -59,7 +61,8 @@ Eigen::MatrixXd free_rigid_modes(const Eigen::Ref<const Eigen::MatrixXd>& X, con
   return Q;
 }
 
-std::vector<int> fixing_dofs(const Eigen::Ref<const Eigen::MatrixXd>& modes, const std::vector<int>& prescribed_dofs,
+std::vector<int> fixing_dofs(const Eigen::Ref<const Eigen::MatrixXd>& modes,
+                             const std::vector<int>& prescribed_dofs,
                              const std::vector<int>& excluded_nodes, int dim) {
   const Eigen::Index r = modes.cols();
   std::vector<char> candidate(static_cast<std::size_t>(modes.rows()), 1);
@@ -70,34 +73,41 @@ std::vector<int> fixing_dofs(const Eigen::Ref<const Eigen::MatrixXd>& modes, con
   for (Eigen::Index d = 0; d < modes.rows(); ++d)
     if (candidate[static_cast<std::size_t>(d)]) dofs.push_back(static_cast<int>(d));
   Eigen::MatrixXd rows(r, static_cast<Eigen::Index>(dofs.size()));
-  for (std::size_t i = 0; i < dofs.size(); ++i) rows.col(static_cast<Eigen::Index>(i)) = modes.row(dofs[i]).transpose();
+  for (std::size_t i = 0; i < dofs.size(); ++i)
+    rows.col(static_cast<Eigen::Index>(i)) = modes.row(dofs[i]).transpose();
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(rows);
   if (qr.rank() < r)
-    throw InvalidInput(fmt::format("the body has {} free rigid-body modes but only rank {} among the DOFs off the "
-                                   "contact surface; expected a body with nodes above its contact surface",
-                                   r, qr.rank()));
+    throw InvalidInput(
+        fmt::format("the body has {} free rigid-body modes but only rank {} among the DOFs off the "
+                    "contact surface; expected a body with nodes above its contact surface",
+                    r, qr.rank()));
   std::vector<int> chosen;
-  for (Eigen::Index j = 0; j < r; ++j) chosen.push_back(dofs[static_cast<std::size_t>(qr.colsPermutation().indices()(j))]);
+  for (Eigen::Index j = 0; j < r; ++j)
+    chosen.push_back(dofs[static_cast<std::size_t>(qr.colsPermutation().indices()(j))]);
   return chosen;
 }
 
-std::string friction_capacity_excess(const contact::FrictionLaw& law, const Eigen::Vector2d& tangential, double normal,
-                                     int dim) {
+std::string friction_capacity_excess(const contact::FrictionLaw& law,
+                                     const Eigen::Vector2d& tangential, double normal, int dim) {
   const double t = tangential.norm();
   if (!(normal > 0.0))
-    return fmt::format("no equilibrium: the loads do not press the body onto the foundation (net normal force {:.6g} N "
-                       "from the contact would be needed; expected > 0)",
-                       normal);
+    return fmt::format(
+        "no equilibrium: the loads do not press the body onto the foundation (net normal force "
+        "{:.6g} N "
+        "from the contact would be needed; expected > 0)",
+        normal);
   if (t == 0.0) return "";
   const Eigen::Vector2d direction = tangential / t;
   const double mu = law.max_step(Eigen::Vector2d::Zero(), 1.0, direction);
   const double capacity = mu * normal;
   if (t <= capacity) return "";
   const double theta = std::atan2(direction(1), direction(0)) * 180.0 / std::numbers::pi;
-  return fmt::format("no equilibrium: the tangential force {:.6g} N {}exceeds the friction capacity μ(θ)·P = {:.6g} × "
-                     "{:.6g} N = {:.6g} N by {:.3g} %",
-                     t, dim == 3 ? fmt::format("at θ = {:.2f}° ", theta) : std::string(), mu, normal, capacity,
-                     100.0 * (t / capacity - 1.0));
+  return fmt::format(
+      "no equilibrium: the tangential force {:.6g} N {}exceeds the friction capacity μ(θ)·P = "
+      "{:.6g} × "
+      "{:.6g} N = {:.6g} N by {:.3g} %",
+      t, dim == 3 ? fmt::format("at θ = {:.2f}° ", theta) : std::string(), mu, normal, capacity,
+      100.0 * (t / capacity - 1.0));
 }
 
 }  // namespace frictopt::study

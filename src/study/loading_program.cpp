@@ -12,17 +12,18 @@
 namespace frictopt::study {
 namespace {
 
-void check_scales(const std::vector<double>& scales, std::size_t expected, std::size_t step, const char* field,
-                  const char* table) {
+void check_scales(const std::vector<double>& scales, std::size_t expected, std::size_t step,
+                  const char* field, const char* table) {
   if (scales.empty()) return;
   if (scales.size() != expected)
-    throw InvalidInput(fmt::format("program.step[{}].{} has {} entries, but the case has {} [[{}]] table{}; "
-                                   "expected one scale per [[{}]] (or none, to keep the previous step's)",
-                                   step, field, scales.size(), expected, table, expected == 1 ? "" : "s", table));
+    throw InvalidInput(
+        fmt::format("program.step[{}].{} has {} entries, but the case has {} [[{}]] table{}; "
+                    "expected one scale per [[{}]] (or none, to keep the previous step's)",
+                    step, field, scales.size(), expected, table, expected == 1 ? "" : "s", table));
   for (std::size_t j = 0; j < scales.size(); ++j)
     if (!std::isfinite(scales[j]))
-      throw InvalidInput(fmt::format("program.step[{}].{}[{}] = {}; expected a finite number", step, field, j,
-                                     scales[j]));
+      throw InvalidInput(fmt::format("program.step[{}].{}[{}] = {}; expected a finite number", step,
+                                     field, j, scales[j]));
 }
 
 // The scales in force at each step: empty lists carry the previous step's over.
@@ -33,10 +34,12 @@ std::vector<double> carried(const std::vector<double>& given, std::vector<double
 
 }  // namespace
 
-StepLoadBuilder::StepLoadBuilder(const ElasticBody& body, const Eigen::Ref<const Eigen::MatrixXd>& X)
+StepLoadBuilder::StepLoadBuilder(const ElasticBody& body,
+                                 const Eigen::Ref<const Eigen::MatrixXd>& X)
     : body_(body), X_(X) {
   const BodyDefinition& def = body.definition();
-  for (const fem::FaceTraction& t : def.tractions) traction_loads_.push_back(fem::face_traction_load(body.mesh(), X_, t));
+  for (const fem::FaceTraction& t : def.tractions)
+    traction_loads_.push_back(fem::face_traction_load(body.mesh(), X_, t));
   for (const fem::NodalForce& f : def.forces)
     force_loads_.push_back(fem::nodal_force_load(body.mesh(), body.elasticity().dofs(), {f}));
   case_prescribed_ = fem::expand_dirichlet(body.mesh(), def.dirichlet);
@@ -45,18 +48,21 @@ StepLoadBuilder::StepLoadBuilder(const ElasticBody& body, const Eigen::Ref<const
 Eigen::VectorXd StepLoadBuilder::applied(const std::vector<double>& load_scale,
                                          const std::vector<double>& force_scale) const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(body_.mesh().num_dofs());
-  for (std::size_t j = 0; j < traction_loads_.size(); ++j) f += load_scale.at(j) * traction_loads_[j];
+  for (std::size_t j = 0; j < traction_loads_.size(); ++j)
+    f += load_scale.at(j) * traction_loads_[j];
   for (std::size_t j = 0; j < force_loads_.size(); ++j) f += force_scale.at(j) * force_loads_[j];
   return f;
 }
 
-StepLoads StepLoadBuilder::build(const std::vector<double>& load_scale, const std::vector<double>& force_scale,
+StepLoads StepLoadBuilder::build(const std::vector<double>& load_scale,
+                                 const std::vector<double>& force_scale,
                                  const std::vector<fem::FaceDirichlet>& dirichlet,
                                  const Eigen::VectorXd& previous_tangential, bool friction) const {
   const mesh::Mesh& mesh = body_.mesh();
   const fem::LinearElasticity& fem = body_.elasticity();
-  FRICTOPT_ASSERT(load_scale.size() == traction_loads_.size() && force_scale.size() == force_loads_.size(),
-                  "StepLoadBuilder::build: one scale per load");
+  FRICTOPT_ASSERT(
+      load_scale.size() == traction_loads_.size() && force_scale.size() == force_loads_.size(),
+      "StepLoadBuilder::build: one scale per load");
   // l^k − l: each load enters with (scale − 1), so a step at the case's own scales adds exact
   // zeros and reproduces the static solve bit for bit.
   Eigen::VectorXd change = Eigen::VectorXd::Zero(mesh.num_dofs());
@@ -66,8 +72,9 @@ StepLoads StepLoadBuilder::build(const std::vector<double>& load_scale, const st
     if (force_scale[j] != 1.0) change += (force_scale[j] - 1.0) * force_loads_[j];
   const fem::PrescribedDofs prescribed = fem::expand_dirichlet(mesh, dirichlet);
   if (prescribed.dofs != case_prescribed_.dofs)
-    throw InvalidInput("StepLoadBuilder: the step's Dirichlet conditions prescribe other DOFs than the body's; "
-                       "expected the same faces and components with other values (one factorization)");
+    throw InvalidInput(
+        "StepLoadBuilder: the step's Dirichlet conditions prescribe other DOFs than the body's; "
+        "expected the same faces and components with other values (one factorization)");
   StepLoads step;
   step.prescribed_change = Eigen::VectorXd::Zero(mesh.num_dofs());
   for (std::size_t d = 0; d < prescribed.dofs.size(); ++d)
@@ -85,32 +92,37 @@ StepLoads StepLoadBuilder::build(const std::vector<double>& load_scale, const st
   return step;
 }
 
-Eigen::VectorXd StepLoadBuilder::tangential_displacement(const Eigen::VectorXd& displacement) const {
+Eigen::VectorXd StepLoadBuilder::tangential_displacement(
+    const Eigen::VectorXd& displacement) const {
   const contact::ContactBoundary* boundary = body_.contact_boundary();
   const int dim = body_.mesh().dim();
   const Eigen::Index p = boundary ? boundary->num_nodes() : 0;
   Eigen::VectorXd ut = Eigen::VectorXd::Zero((dim - 1) * p);
   for (Eigen::Index i = 0; i < p; ++i)
     for (int c = 0; c < dim - 1; ++c)
-      ut((dim - 1) * i + c) = displacement(boundary->nodes()[static_cast<std::size_t>(i)] * dim + c);
+      ut((dim - 1) * i + c) =
+          displacement(boundary->nodes()[static_cast<std::size_t>(i)] * dim + c);
   return ut;
 }
 
 void LoadingProgramDefinition::validate(const BodyDefinition& body) const {
   if (steps.empty())
-    throw InvalidInput("program.step: the program has no steps; expected at least one [[program.step]] table");
+    throw InvalidInput(
+        "program.step: the program has no steps; expected at least one [[program.step]] table");
   for (std::size_t k = 0; k < steps.size(); ++k) {
     check_scales(steps[k].load_scale, body.tractions.size(), k, "load_scale", "load");
-    check_scales(steps[k].dirichlet_scale, body.dirichlet.size(), k, "dirichlet_scale", "dirichlet");
+    check_scales(steps[k].dirichlet_scale, body.dirichlet.size(), k, "dirichlet_scale",
+                 "dirichlet");
     check_scales(steps[k].force_scale, body.forces.size(), k, "force_scale", "force");
   }
 }
 
 std::string LoadingProgram::Summary::brief_report() const {
-  return fmt::format("loading program: {} ({}); {} steps solved, {} factorization{} ({:.3f} s), contact {:.3f} s, "
-                     "total {:.3f} s",
-                     to_string(status), message, steps_solved, factorizations, factorizations == 1 ? "" : "s",
-                     factorization_seconds, contact_seconds, time_seconds);
+  return fmt::format(
+      "loading program: {} ({}); {} steps solved, {} factorization{} ({:.3f} s), contact {:.3f} s, "
+      "total {:.3f} s",
+      to_string(status), message, steps_solved, factorizations, factorizations == 1 ? "" : "s",
+      factorization_seconds, contact_seconds, time_seconds);
 }
 
 LoadingProgram::LoadingProgram(ElasticBody& body, LoadingProgramDefinition program)
@@ -133,8 +145,8 @@ LoadingProgram::Summary LoadingProgram::run(const Eigen::Ref<const Eigen::Vector
   body_.set_warm_start(std::nullopt);  // u⁰ = 0: the program starts from the unloaded body
   Eigen::VectorXd previous_tangential = Eigen::VectorXd::Zero((dim - 1) * p);
 
-  std::vector<double> load_scale(def.tractions.size(), 1.0), dirichlet_scale(def.dirichlet.size(), 1.0),
-      force_scale(def.forces.size(), 1.0);
+  std::vector<double> load_scale(def.tractions.size(), 1.0),
+      dirichlet_scale(def.dirichlet.size(), 1.0), force_scale(def.forces.size(), 1.0);
   Summary summary;
   summary.status = Status::kConverged;
   for (std::size_t k = 0; k < program_.steps.size(); ++k) {
@@ -167,7 +179,8 @@ LoadingProgram::Summary LoadingProgram::run(const Eigen::Ref<const Eigen::Vector
   }
   if (summary.status == Status::kConverged)
     summary.message = fmt::format("all {} steps solved on one factorization", summary.steps_solved);
-  summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.time_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
 

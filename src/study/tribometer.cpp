@@ -26,33 +26,40 @@ double angle_degrees(const Eigen::Vector2d& v) { return std::atan2(v(1), v(0)) /
 
 void TribometerDefinition::validate() const {
   if (!(normal_force > 0.0 && std::isfinite(normal_force)))
-    throw InvalidInput(fmt::format("experiment.normal_force = {}; expected a finite force > 0 N", normal_force));
+    throw InvalidInput(
+        fmt::format("experiment.normal_force = {}; expected a finite force > 0 N", normal_force));
   if (!(pull_displacement > 0.0 && std::isfinite(pull_displacement)))
     throw InvalidInput(
-        fmt::format("experiment.pull_displacement = {}; expected a finite displacement > 0 m", pull_displacement));
+        fmt::format("experiment.pull_displacement = {}; expected a finite displacement > 0 m",
+                    pull_displacement));
   if (angles_degrees.empty())
     throw InvalidInput("experiment.angles_degrees is empty; expected at least one pull direction");
   for (std::size_t i = 0; i < angles_degrees.size(); ++i)
     if (!std::isfinite(angles_degrees[i]))
-      throw InvalidInput(fmt::format("experiment.angles_degrees[{}] = {}; expected a finite angle", i, angles_degrees[i]));
+      throw InvalidInput(fmt::format("experiment.angles_degrees[{}] = {}; expected a finite angle",
+                                     i, angles_degrees[i]));
   if (ramp_steps < 1 || ramp_steps > 100000)
     throw InvalidInput(fmt::format("experiment.ramp_steps = {}; expected 1..100000", ramp_steps));
 }
 
 std::string Tribometer::Summary::brief_report() const {
-  return fmt::format("tribometer: {} ({}); press δ = {:.6e} m (at most {} secant steps per load), {} angles, {} contact solves on "
-                     "{} factorization{}, {:.3f} s",
-                     to_string(status), message, press_displacement, press_iterations, angles.size(), contact_solves,
-                     factorizations, factorizations == 1 ? "" : "s", time_seconds);
+  return fmt::format(
+      "tribometer: {} ({}); press δ = {:.6e} m (at most {} secant steps per load), {} angles, {} "
+      "contact solves on "
+      "{} factorization{}, {:.3f} s",
+      to_string(status), message, press_displacement, press_iterations, angles.size(),
+      contact_solves, factorizations, factorizations == 1 ? "" : "s", time_seconds);
 }
 
 Tribometer::Tribometer(BodyDefinition body, TribometerDefinition experiment)
     : body_(std::move(body)), experiment_(std::move(experiment)) {
   experiment_.validate();
   if (body_.shape.dim() != 3)
-    throw InvalidInput("experiment: the tribometer needs a 3D specimen (geometry.dim = 3); a 2D body has one "
-                       "tangential direction and no friction polar");
-  if (!body_.contact) throw InvalidInput("experiment: the specimen needs a [contact] table (a friction law)");
+    throw InvalidInput(
+        "experiment: the tribometer needs a 3D specimen (geometry.dim = 3); a 2D body has one "
+        "tangential direction and no friction polar");
+  if (!body_.contact)
+    throw InvalidInput("experiment: the specimen needs a [contact] table (a friction law)");
 }
 
 Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
@@ -61,7 +68,8 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
   // The platen: every component of the top face prescribed (the same DOFs in every step).
   const double young = body_.material.young;
   const double top_area = body_.shape.base_measure();
-  double delta = experiment_.normal_force * body_.height / (young * top_area);  // a column's indentation
+  double delta =
+      experiment_.normal_force * body_.height / (young * top_area);  // a column's indentation
   const auto platen = [](double pull, double angle, double indent) {
     fem::FaceDirichlet d;
     d.boundary = "top";
@@ -74,14 +82,16 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
   ElasticBody body(definition);
   const Eigen::VectorXd alpha = definition.initial_design;
   const StepLoadBuilder builder(body, body.mesh().positions(alpha));
-  const std::vector<double> load_scale(definition.tractions.size(), 1.0), force_scale(definition.forces.size(), 1.0);
+  const std::vector<double> load_scale(definition.tractions.size(), 1.0),
+      force_scale(definition.forces.size(), 1.0);
   const Eigen::Index p = body.contact_boundary()->num_nodes();
   const Eigen::VectorXd no_slip = Eigen::VectorXd::Zero(2 * p);
   const contact::FrictionLaw& law = definition.contact->law;
 
-  const auto solve = [&](const std::vector<fem::FaceDirichlet>& dirichlet, const Eigen::VectorXd& previous,
-                         const std::string& label) {
-    BodyState s = body.solve_step(alpha, builder.build(load_scale, force_scale, dirichlet, previous, true), label);
+  const auto solve = [&](const std::vector<fem::FaceDirichlet>& dirichlet,
+                         const Eigen::VectorXd& previous, const std::string& label) {
+    BodyState s = body.solve_step(
+        alpha, builder.build(load_scale, force_scale, dirichlet, previous, true), label);
     ++summary.contact_solves;
     if (s.summary.factorization_seconds > 0.0) ++summary.factorizations;
     return s;
@@ -89,7 +99,8 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
   const auto fail = [&](const BodyState& s, const std::string& what) {
     summary.status = s.summary.status;
     summary.message = fmt::format("{}: {}", what, s.summary.message);
-    summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    summary.time_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return summary;
   };
 
@@ -99,8 +110,8 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
   const double target = experiment_.normal_force;
   double slope = target / delta;  // the column estimate, replaced by the measured secant
   const auto press = [&](double pull, double angle, const Eigen::VectorXd& previous,
-                         const std::optional<contact::ContactState> start_state, const std::string& label,
-                         BodyState& out) -> bool {
+                         const std::optional<contact::ContactState> start_state,
+                         const std::string& label, BodyState& out) -> bool {
     double last_delta = 0.0, last_force = 0.0;
     bool have_last = false;
     for (int it = 1;; ++it) {
@@ -112,9 +123,10 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
       if (std::abs(force - target) <= kPressTolerance * target) return true;
       if (it == kMaxPressIterations) {
         out.summary.status = Status::kMaxIterations;
-        out.summary.message = fmt::format("normal force {:.6e} N after {} secant steps on the indentation; expected "
-                                          "{:.6e} N",
-                                          force, it, target);
+        out.summary.message = fmt::format(
+            "normal force {:.6e} N after {} secant steps on the indentation; expected "
+            "{:.6e} N",
+            force, it, target);
         return false;
       }
       if (have_last && force != last_force && delta != last_delta) {
@@ -122,7 +134,8 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
         if (secant > 0.0) slope = secant;
       }
       last_delta = delta, last_force = force, have_last = true;
-      delta = force > 0.0 ? delta + (target - force) / slope : 2.0 * delta;  // no contact yet: press deeper
+      delta = force > 0.0 ? delta + (target - force) / slope
+                          : 2.0 * delta;  // no contact yet: press deeper
     }
   };
 
@@ -144,7 +157,8 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
     for (int k = 1; k <= experiment_.ramp_steps; ++k) {
       const double pull = experiment_.pull_displacement * k / experiment_.ramp_steps;
       BodyState s;
-      if (!press(pull, angle_deg * kDegree, previous, body.warm_start(), fmt::format("pull {} deg step {}", angle_deg, k), s))
+      if (!press(pull, angle_deg * kDegree, previous, body.warm_start(),
+                 fmt::format("pull {} deg step {}", angle_deg, k), s))
         return fail(s, fmt::format("pull at {} degrees, step {}", angle_deg, k));
       previous = builder.tangential_displacement(s.displacement);
       const contact::ContactResultants& c = s.contact->resultants;
@@ -168,18 +182,21 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
         r.steady_sliding = true;
         r.sliding_force = c.tangential_force_norm;
         r.sliding_normal_force = c.normal_force;
-        const Eigen::Vector2d resistance = -c.tangential_force / c.normal_force;  // Σq/P ∈ W: along the pull
+        const Eigen::Vector2d resistance =
+            -c.tangential_force / c.normal_force;  // Σq/P ∈ W: along the pull
         r.force_angle_degrees = angle_degrees(resistance);
         Eigen::Vector2d slip = Eigen::Vector2d::Zero();
         for (Eigen::Index i = 0; i < p; ++i)
           if (s.contact->state.is_slip(i))
-            slip += s.contact->state.lambda(i) * s.contact->state.nodes[static_cast<std::size_t>(i)].slip_direction;
+            slip += s.contact->state.lambda(i) *
+                    s.contact->state.nodes[static_cast<std::size_t>(i)].slip_direction;
         slip.normalize();
         r.slip_angle_degrees = angle_degrees(slip);
         r.measured_coefficient = resistance.norm();
         // μ(φ) = the radial function of W in the force direction: the largest t with t·d ∈ W.
         r.law_coefficient = law.max_step(Eigen::Vector2d::Zero(), 1.0, resistance.normalized());
-        r.coefficient_error = std::abs(r.measured_coefficient - r.law_coefficient) / r.law_coefficient;
+        r.coefficient_error =
+            std::abs(r.measured_coefficient - r.law_coefficient) / r.law_coefficient;
         r.sliding_resistance = slip.dot(resistance);
         r.law_resistance = law.support(slip);
         r.normality_residual = std::abs(r.law_resistance - r.sliding_resistance) / r.law_resistance;
@@ -191,9 +208,11 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
   summary.status = Status::kConverged;
   int sliding = 0, steady = 0;
   for (const auto& a : summary.angles) sliding += a.gross_sliding, steady += a.steady_sliding;
-  summary.message = fmt::format("gross sliding reached at {} of {} angles, steady sliding at the end of the ramp at {}",
-                                sliding, summary.angles.size(), steady);
-  summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.message = fmt::format(
+      "gross sliding reached at {} of {} angles, steady sliding at the end of the ramp at {}",
+      sliding, summary.angles.size(), steady);
+  summary.time_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
 

@@ -78,7 +78,8 @@ dirichlet_scale = [1.0, 2.0]
   const RunResult r = run("solve " + c.string() + " -o " + (dir / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("1 factorization"), std::string::npos) << r.output;
-  for (int k = 1; k <= 3; ++k) EXPECT_TRUE(fs::exists(dir / "out" / ("block_iter000" + std::to_string(k) + ".vtu")));
+  for (int k = 1; k <= 3; ++k)
+    EXPECT_TRUE(fs::exists(dir / "out" / ("block_iter000" + std::to_string(k) + ".vtu")));
   EXPECT_TRUE(fs::exists(dir / "out" / "block.pvd"));
   const auto json = frictopt::io::parse_json(read_text(dir / "out" / "summary.json"));
   ASSERT_EQ(json.at("steps").as_array().size(), 3u);
@@ -99,9 +100,10 @@ TEST(CliProgram, PlainSolveReportsTheContactResultants) {
   EXPECT_NE(r.output.find("contact forces: P = "), std::string::npos) << r.output;
   const auto json = frictopt::io::parse_json(read_text(dir / "out" / "summary.json"));
   const auto& contact = json.at("contact");
-  for (const char* key : {"total_normal_force", "total_tangential_force", "tangential_to_normal_ratio", "contact_area",
-                          "num_stick", "num_slip", "num_separated", "stick_area", "slip_area", "stick_centroid",
-                          "stick_equivalent_radius", "min_initial_gap"})
+  for (const char* key :
+       {"total_normal_force", "total_tangential_force", "tangential_to_normal_ratio",
+        "contact_area", "num_stick", "num_slip", "num_separated", "stick_area", "slip_area",
+        "stick_centroid", "stick_equivalent_radius", "min_initial_gap"})
     EXPECT_TRUE(contact.contains(key)) << key;
   // A flat block on the plate: every contact node is loaded; the area is the whole base.
   EXPECT_NEAR(contact.at("contact_area").as_number(), 0.01, 1e-12);
@@ -133,18 +135,23 @@ TEST(CliExperiment, BadProgramsAndExperimentsExitTwoNamingTheField) {
   const std::vector<Bad> cases = {
       {block_case("[program]\n"), "solve", "program.step"},
       {block_case("[[program.step]]\nload_scale = [1.0]\n"), "solve", "program.step[0].load_scale"},
-      {block_case("[[program.step]]\ndirichlet_scale = [1.0]\n"), "solve", "program.step[0].dirichlet_scale"},
-      {block_case("[[force]]\nboundary = \"top\"\nforce = [1.0, 0.0, 0.0]\n"), "solve", "force[0].force[0]"},
-      {block_case("[[force]]\nat = [0.05, 0.05]\ntolerance = 0.0\nforce = [1.0, 0.0, 0.0]\n"), "solve", "force[0].at"},
+      {block_case("[[program.step]]\ndirichlet_scale = [1.0]\n"), "solve",
+       "program.step[0].dirichlet_scale"},
+      {block_case("[[force]]\nboundary = \"top\"\nforce = [1.0, 0.0, 0.0]\n"), "solve",
+       "force[0].force[0]"},
+      {block_case("[[force]]\nat = [0.05, 0.05]\ntolerance = 0.0\nforce = [1.0, 0.0, 0.0]\n"),
+       "solve", "force[0].at"},
   };
   for (const Bad& b : cases) {
     const fs::path c = write_case(dir, b.text);
     const RunResult r = run(b.command + " " + c.string() + " -o " + (dir / "out").string());
     EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_NE(r.output.find(b.expected), std::string::npos) << b.expected << " not in: " << r.output;
+    EXPECT_NE(r.output.find(b.expected), std::string::npos)
+        << b.expected << " not in: " << r.output;
   }
-  const fs::path c = write_case(dir, std::string(block_case("")).replace(block_case("").find("normal_force = 1.0e4"),
-                                                                          20, "normal_force = -1.0"));
+  const fs::path c = write_case(
+      dir, std::string(block_case(""))
+               .replace(block_case("").find("normal_force = 1.0e4"), 20, "normal_force = -1.0"));
   const RunResult r = run("experiment " + c.string() + " -o " + (dir / "out").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("experiment.normal_force"), std::string::npos) << r.output;
@@ -165,7 +172,8 @@ young = 7.0e10
 poisson = 0.33
 [[load]]
 face = "top"
-traction = [)" + std::to_string(shear) + R"(, 0.0, -1.0e6]
+traction = [)" +
+         std::to_string(shear) + R"(, 0.0, -1.0e6]
 [design]
 control_points = [2, 2]
 initial = [0.0, 0.0, 0.0, 0.0]
@@ -178,15 +186,18 @@ mu = 0.3
 
 TEST(CliFloating, InsideTheCapacitySolvesBeyondItExitsThreeWithTheExcess) {
   const fs::path dir = fresh_directory("floating");
-  const RunResult inside = run("solve " + write_case(dir, floating_case(1.5e5)).string() + " -o " + (dir / "a").string());
+  const RunResult inside = run("solve " + write_case(dir, floating_case(1.5e5)).string() + " -o " +
+                               (dir / "a").string());
   ASSERT_EQ(inside.exit_code, 0) << inside.output;
   const auto json = frictopt::io::parse_json(read_text(dir / "a" / "summary.json"));
   EXPECT_EQ(json.at("contact").at("floating").at("status").as_string(), "converged");
   EXPECT_NEAR(json.at("contact").at("total_normal_force").as_number(), 1e4, 1e-4);
-  const RunResult beyond = run("solve " + write_case(dir, floating_case(4.5e5)).string() + " -o " + (dir / "b").string());
+  const RunResult beyond = run("solve " + write_case(dir, floating_case(4.5e5)).string() + " -o " +
+                               (dir / "b").string());
   EXPECT_EQ(beyond.exit_code, 3) << beyond.output;
-  EXPECT_NE(beyond.output.find("exceeds the friction capacity μ(θ)·P = 0.3 × 10000 N = 3000 N by 50 %"),
-            std::string::npos)
+  EXPECT_NE(
+      beyond.output.find("exceeds the friction capacity μ(θ)·P = 0.3 × 10000 N = 3000 N by 50 %"),
+      std::string::npos)
       << beyond.output;
 }
 

@@ -16,10 +16,10 @@ namespace {
 // Four 3D nodes: z_i = (q_i, λ_i), statuses set by hand (the resultants read the classification).
 ContactState four_nodes() {
   ContactState s(3, 4);
-  s.z << 1.0, 2.0, 10.0,   // stick
-      -0.5, 0.0, 5.0,      // stick
-      3.0, 0.0, 10.0,      // slip
-      0.0, 0.0, 0.0;       // separated
+  s.z << 1.0, 2.0, 10.0,  // stick
+      -0.5, 0.0, 5.0,     // stick
+      3.0, 0.0, 10.0,     // slip
+      0.0, 0.0, 0.0;      // separated
   s.nodes.resize(4);
   s.nodes[0].status = s.nodes[1].status = NodeStatus::kStick;
   s.nodes[2].status = NodeStatus::kSlip;
@@ -76,15 +76,18 @@ TEST(ContactResultants, TwoDimensionalHalfWidthAndNoStickZone) {
 TEST(ContactResultants, NoNormalForceGivesNaNRatio) {
   ContactState s(3, 1);
   s.nodes.resize(1);
-  const ContactResultants r = contact_resultants(s, Eigen::VectorXd::Ones(1), Eigen::MatrixXd::Zero(1, 2));
+  const ContactResultants r =
+      contact_resultants(s, Eigen::VectorXd::Ones(1), Eigen::MatrixXd::Zero(1, 2));
   EXPECT_TRUE(std::isnan(r.force_ratio));
   EXPECT_EQ(r.num_separated, 1);
 }
 
 TEST(ContactResultants, SizeMismatchIsInvalidInput) {
   const ContactState s = four_nodes();
-  EXPECT_THROW((void)contact_resultants(s, Eigen::VectorXd::Ones(3), Eigen::MatrixXd::Zero(4, 2)), InvalidInput);
-  EXPECT_THROW((void)contact_resultants(s, Eigen::VectorXd::Ones(4), Eigen::MatrixXd::Zero(4, 1)), InvalidInput);
+  EXPECT_THROW((void)contact_resultants(s, Eigen::VectorXd::Ones(3), Eigen::MatrixXd::Zero(4, 2)),
+               InvalidInput);
+  EXPECT_THROW((void)contact_resultants(s, Eigen::VectorXd::Ones(4), Eigen::MatrixXd::Zero(4, 1)),
+               InvalidInput);
 }
 
 }  // namespace

@@ -26,8 +26,8 @@ using validation::BlockSpec;
 // The residuals of a step's increment problem recomputed from the FE displacement: ∇ = (−(u_t −
 // u_t^{k−1}), u_ν + g) read off the body's nodes (spec 07 §1), against the solver's own ∇ and
 // the Coulomb conditions of the step's law.
-void expect_valid_step(const ElasticBody& body, const LoadStepResult& r, const Eigen::VectorXd& previous_tangential,
-                       const FrictionLaw& law) {
+void expect_valid_step(const ElasticBody& body, const LoadStepResult& r,
+                       const Eigen::VectorXd& previous_tangential, const FrictionLaw& law) {
   ASSERT_EQ(r.state.summary.status, Status::kConverged) << r.state.summary.brief_report();
   const ContactResult& c = *r.state.contact;
   const contact::ContactBoundary& boundary = *body.contact_boundary();
@@ -35,7 +35,8 @@ void expect_valid_step(const ElasticBody& body, const LoadStepResult& r, const E
   Eigen::VectorXd gradient = boundary.times_full(r.state.displacement);
   for (Eigen::Index i = 0; i < boundary.num_nodes(); ++i) {
     gradient(dim * i + dim - 1) += c.gaps(i);
-    for (int k = 0; k < dim - 1; ++k) gradient(dim * i + k) += previous_tangential((dim - 1) * i + k);
+    for (int k = 0; k < dim - 1; ++k)
+      gradient(dim * i + k) += previous_tangential((dim - 1) * i + k);
   }
   const double scale = std::max(gradient.cwiseAbs().maxCoeff(), 1e-300);
   EXPECT_LE((gradient - c.state.gradient).cwiseAbs().maxCoeff(), 1e-10 * scale);
@@ -53,22 +54,22 @@ LoadingProgramDefinition one_step() {
 }
 
 TEST(LoadingProgram, OneStepProgramIsTheStaticSolveBitForBit) {
-  for (const BodyDefinition& def :
-       {testing::thesis_body_2d(), [] {
-          BlockSpec s;
-          s.cells = 6;
-          s.layers = 4;
-          s.law = FrictionLaw::polygon({0.2, 0.4, 0.2, 0.4});
-          s.top_displacement = Eigen::Vector3d(0.002, 0.001, -0.01);
-          return validation::block_definition(s);
-        }()}) {
+  for (const BodyDefinition& def : {testing::thesis_body_2d(), [] {
+                                      BlockSpec s;
+                                      s.cells = 6;
+                                      s.layers = 4;
+                                      s.law = FrictionLaw::polygon({0.2, 0.4, 0.2, 0.4});
+                                      s.top_displacement = Eigen::Vector3d(0.002, 0.001, -0.01);
+                                      return validation::block_definition(s);
+                                    }()}) {
     ElasticBody reference(def);
     const BodyState expected = reference.solve(def.initial_design);
     ASSERT_EQ(expected.summary.status, Status::kConverged);
     ElasticBody body(def);
     LoadingProgram program(body, one_step());
     BodyState got;
-    const auto summary = program.run(def.initial_design, [&](const LoadStepResult& r) { got = r.state; });
+    const auto summary =
+        program.run(def.initial_design, [&](const LoadStepResult& r) { got = r.state; });
     ASSERT_EQ(summary.status, Status::kConverged) << summary.brief_report();
     EXPECT_EQ(summary.steps_solved, 1);
     EXPECT_EQ(summary.factorizations, 1);
@@ -118,7 +119,9 @@ TEST(LoadingProgram, ProportionalLoadingOfAZeroGapBodyScalesTheOneStepState) {
   });
   ASSERT_EQ(summary.status, Status::kConverged) << summary.brief_report();
   EXPECT_EQ(summary.factorizations, 1);
-  std::printf("proportional loading, K = %d: largest relative deviation from (k/K)·one-step = %.2e\n", K, worst);
+  std::printf(
+      "proportional loading, K = %d: largest relative deviation from (k/K)·one-step = %.2e\n", K,
+      worst);
   EXPECT_LE(worst, 1e-7);
 }
 
@@ -134,7 +137,8 @@ TEST(LoadingProgram, NormalFirstLoadingIsPathDependent) {
   s.top_displacement = Eigen::Vector2d(0.001, -0.009);
   BodyDefinition def = validation::block_definition(s);
   // Two conditions on the top: the vertical press (0) and the horizontal drag (1).
-  def.dirichlet = {{"top", {1}, Eigen::Vector2d(0.0, -0.009)}, {"top", {0}, Eigen::Vector2d(0.001, 0.0)}};
+  def.dirichlet = {{"top", {1}, Eigen::Vector2d(0.0, -0.009)},
+                   {"top", {0}, Eigen::Vector2d(0.001, 0.0)}};
   ElasticBody reference(def);
   const BodyState one = reference.solve(def.initial_design);
   ASSERT_EQ(one.summary.status, Status::kConverged);
@@ -146,7 +150,8 @@ TEST(LoadingProgram, NormalFirstLoadingIsPathDependent) {
   BodyState last;
   ASSERT_EQ(runner.run(def.initial_design, [&](const LoadStepResult& r) { last = r.state; }).status,
             Status::kConverged);
-  const int stick_one = one.contact->resultants.num_stick, stick_two = last.contact->resultants.num_stick;
+  const int stick_one = one.contact->resultants.num_stick,
+            stick_two = last.contact->resultants.num_stick;
   std::printf("stick nodes: one step %d, normal first %d\n", stick_one, stick_two);
   EXPECT_GT(stick_two, stick_one + 5);
 }
@@ -165,23 +170,29 @@ TEST(LoadingProgram, CattaneoMindlin2dStickHalfWidth) {
   s.law = FrictionLaw::interval(mu, mu);
   s.top_displacement = Eigen::Vector2d(0.0, -0.009);
   BodyDefinition def = validation::block_definition(s);
-  def.dirichlet = {{"top", {1}, Eigen::Vector2d(0.0, -0.009)}, {"top", {0}, Eigen::Vector2d(0.0025, 0.0)}};
+  def.dirichlet = {{"top", {1}, Eigen::Vector2d(0.0, -0.009)},
+                   {"top", {0}, Eigen::Vector2d(0.0025, 0.0)}};
   LoadingProgramDefinition program;
   program.steps.push_back({"press", {}, {1.0, 0.0}, {}, false});
   for (double f : {1.0, 2.0, 3.0}) program.steps.push_back({"drag", {}, {1.0, f}, {}, true});
   ElasticBody body(def);
   LoadingProgram runner(body, program);
-  std::printf("| step | drag [m] | Q/(μP) | a Hertz [m] | c theory [m] | c edges [m] | err | c moment [m] | err |\n");
+  std::printf(
+      "| step | drag [m] | Q/(μP) | a Hertz [m] | c theory [m] | c edges [m] | err | c moment [m] "
+      "| err |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
-  const Eigen::VectorXd x = body.contact_boundary()->plane_coordinates().col(0).array() - s.width / 2;
+  const Eigen::VectorXd x =
+      body.contact_boundary()->plane_coordinates().col(0).array() - s.width / 2;
   Eigen::VectorXd previous = Eigen::VectorXd::Zero(body.contact_boundary()->num_nodes());
   const auto summary = runner.run(def.initial_design, [&](const LoadStepResult& r) {
     expect_valid_step(body, r, previous, r.step == 1 ? contact::frictionless_law(2) : s.law);
     previous = r.tangential_displacement;
     if (r.step == 1) return;
-    const validation::StickZone zone = validation::measure_stick_zone(r.state.contact->state, x, mu);
+    const validation::StickZone zone =
+        validation::measure_stick_zone(r.state.contact->state, x, mu);
     const double a = validation::hertz(2, zone.normal_load, s.radius, s.young, s.poisson).radius;
-    const double ratio = std::abs(r.state.contact->resultants.tangential_force(0)) / (mu * zone.normal_load);
+    const double ratio =
+        std::abs(r.state.contact->resultants.tangential_force(0)) / (mu * zone.normal_load);
     const double c_theory = a * std::sqrt(1.0 - ratio);
     std::printf("| %d | %.4f | %.3f | %.4f | %.4f | %.4f | %+.1f%% | %.4f | %+.1f%% |\n", r.step,
                 0.0025 * (r.step - 1), ratio, a, c_theory, zone.edges_half_width,
@@ -244,24 +255,57 @@ TEST(LoadingProgramInput, ProgramWithoutStepsNamesTheField) {
 
 TEST(LoadingProgramInput, StepReferringToAnUnknownLoadNamesTheField) {
   const std::string m = message_of(block_case("[[program.step]]\nload_scale = [1.0, 0.5]\n"));
-  EXPECT_NE(m.find("program.step[0].load_scale has 2 entries, but the case has 1 [[load]] table"), std::string::npos)
+  EXPECT_NE(m.find("program.step[0].load_scale has 2 entries, but the case has 1 [[load]] table"),
+            std::string::npos)
       << m;
-  const std::string d = message_of(block_case("[[program.step]]\n[[program.step]]\nforce_scale = [1.0]\n"));
+  const std::string d =
+      message_of(block_case("[[program.step]]\n[[program.step]]\nforce_scale = [1.0]\n"));
   EXPECT_NE(d.find("program.step[1].force_scale"), std::string::npos) << d;
 }
 
 TEST(LoadingProgramInput, ForceOnAConstrainedComponentNamesTheForce) {
-  const std::string m =
-      message_of(block_case("[[force]]\nat = [0.5, 0.5, 0.5]\ntolerance = 1e-9\nforce = [0.0, 0.0, -1.0e3]\n"));
+  const std::string m = message_of(block_case(
+      "[[force]]\nat = [0.5, 0.5, 0.5]\ntolerance = 1e-9\nforce = [0.0, 0.0, -1.0e3]\n"));
   EXPECT_NE(m.find("force[0].force[2]"), std::string::npos) << m;
   EXPECT_NE(m.find("prescribes"), std::string::npos) << m;
 }
 
 TEST(LoadingProgramInput, PointFarFromEveryNodeNamesTheNearestNode) {
-  const std::string m =
-      message_of(block_case("[[force]]\nat = [0.1, 0.5, 0.0]\ntolerance = 1e-3\nforce = [0.0, 0.0, 1.0e3]\n"));
+  const std::string m = message_of(
+      block_case("[[force]]\nat = [0.1, 0.5, 0.0]\ntolerance = 1e-3\nforce = [0.0, 0.0, 1.0e3]\n"));
   EXPECT_NE(m.find("force[0].at"), std::string::npos) << m;
   EXPECT_NE(m.find("nearest node"), std::string::npos) << m;
+}
+
+// [[constraint]] on the node set "top" is the [[dirichlet]] face condition: the same DOFs with the
+// same values, hence the same state bit for bit.
+TEST(NodeConstraints, BoundarySetConstraintIsTheFaceCondition) {
+  BlockSpec s;
+  s.cells = 4;
+  s.layers = 2;
+  s.law = FrictionLaw::disc(0.3);
+  s.top_displacement = Eigen::Vector3d(0.001, 0.0, -0.01);
+  const BodyDefinition face = validation::block_definition(s);
+  BodyDefinition nodes = face;
+  nodes.dirichlet.clear();
+  fem::NodalConstraint c;
+  c.where.boundary = "top";
+  c.displacement = s.top_displacement;
+  nodes.constraints = {c};
+  ElasticBody a(face), b(nodes);
+  EXPECT_EQ(b.num_floating_modes(), 0);
+  const BodyState sa = a.solve(face.initial_design), sb = b.solve(nodes.initial_design);
+  ASSERT_EQ(sb.summary.status, Status::kConverged);
+  EXPECT_TRUE(sa.displacement == sb.displacement);
+}
+
+TEST(LoadingProgramInput, ConstraintOnAFixedDofNamesTheConstraint) {
+  const std::string m =
+      message_of(block_case("[[constraint]]\nat = [0.5, 0.5, 0.5]\ntolerance = 1e-9\ncomponents = "
+                            "[2]\ndisplacement = [0.0, 0.0, 0.0]\n"));
+  EXPECT_NE(m.find("constraint[0] fixes component 2 of node"), std::string::npos) << m;
+  const std::string b = message_of(block_case("[[constraint]]\nat = [0.5, 0.5, 0.5]\n"));
+  EXPECT_NE(b.find("constraint[0].tolerance is missing"), std::string::npos) << b;
 }
 
 TEST(LoadingProgramInput, UnknownStepKeyIsRejected) {

@@ -45,7 +45,9 @@ TEST(Tribometer, SlidingForceIsTheLawsFrictionForceForEveryLaw) {
   const std::vector<LawCase> cases = {
       {"disc 0.3", FrictionLaw::disc(0.3), {0.0, 70.0}},
       {"16-gon 0.3", FrictionLaw::regular_polygon(0.3, 16), {11.25, 100.0}},
-      {"4-gon (0.4, 0.2, 0.4, 0.2)", FrictionLaw::polygon({0.4, 0.2, 0.4, 0.2}), {30.0, 135.0, 250.0}},
+      {"4-gon (0.4, 0.2, 0.4, 0.2)",
+       FrictionLaw::polygon({0.4, 0.2, 0.4, 0.2}),
+       {30.0, 135.0, 250.0}},
       {"ellipse 8-gon (0.4, 0.2)", FrictionLaw::ellipse_polygon(0.4, 0.2, 8), {10.0, 95.0}},
       {"exact ellipse (0.4, 0.2)", FrictionLaw::ellipse(0.4, 0.2), {0.0, 30.0, 60.0, 90.0}},
   };
@@ -53,7 +55,9 @@ TEST(Tribometer, SlidingForceIsTheLawsFrictionForceForEveryLaw) {
   e.normal_force = 1e4;
   e.pull_displacement = 2e-5;  // ≈ 30 × the elastic shear at sliding: the last steps slide steadily
   e.ramp_steps = 10;
-  std::printf("| law | θ [°] | onset pull [m] | P [N] | |T|/P | μ(φ) | rel. error | φ [°] | ŝ [°] | normality |\n");
+  std::printf(
+      "| law | θ [°] | onset pull [m] | P [N] | |T|/P | μ(φ) | rel. error | φ [°] | ŝ [°] | "
+      "normality |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for (const LawCase& lc : cases) {
     e.angles_degrees = lc.angles;
@@ -63,11 +67,13 @@ TEST(Tribometer, SlidingForceIsTheLawsFrictionForceForEveryLaw) {
     EXPECT_EQ(summary.factorizations, 1);
     for (const TribometerAngleResult& a : summary.angles) {
       SCOPED_TRACE(lc.name + " at " + std::to_string(a.angle_degrees));
-      std::printf("| %s | %.2f | %.2e | %.6e | %.9f | %.9f | %.1e | %.3f | %.3f | %.1e |\n", lc.name.c_str(),
-                  a.angle_degrees, a.onset_pull, a.sliding_normal_force, a.measured_coefficient, a.law_coefficient,
-                  a.coefficient_error, a.force_angle_degrees, a.slip_angle_degrees, a.normality_residual);
+      std::printf("| %s | %.2f | %.2e | %.6e | %.9f | %.9f | %.1e | %.3f | %.3f | %.1e |\n",
+                  lc.name.c_str(), a.angle_degrees, a.onset_pull, a.sliding_normal_force,
+                  a.measured_coefficient, a.law_coefficient, a.coefficient_error,
+                  a.force_angle_degrees, a.slip_angle_degrees, a.normality_residual);
       ASSERT_TRUE(a.steady_sliding);
-      EXPECT_NEAR(a.sliding_normal_force, e.normal_force, 1e-9 * e.normal_force);  // force-controlled press
+      EXPECT_NEAR(a.sliding_normal_force, e.normal_force,
+                  1e-9 * e.normal_force);  // force-controlled press
       EXPECT_LE(a.coefficient_error, 1e-6);
       EXPECT_LE(a.normality_residual, 1e-6);
       // Steady sliding: the specimen slides in the platen's direction.
@@ -87,11 +93,13 @@ TEST(Tribometer, PressReachesTheNormalForceAndRampRecordsTheStickFraction) {
   ASSERT_EQ(summary.status, Status::kConverged) << summary.brief_report();
   const TribometerAngleResult& a = summary.angles.front();
   ASSERT_EQ(a.ramp.size(), 8u);
-  for (std::size_t k = 1; k < a.ramp.size(); ++k) EXPECT_LE(a.ramp[k].stick_fraction, a.ramp[k - 1].stick_fraction + 1e-12);
+  for (std::size_t k = 1; k < a.ramp.size(); ++k)
+    EXPECT_LE(a.ramp[k].stick_fraction, a.ramp[k - 1].stick_fraction + 1e-12);
   EXPECT_GT(a.ramp.front().stick_fraction, 0.0);
   EXPECT_TRUE(a.gross_sliding);
   EXPECT_GT(summary.press_displacement, 0.0);
-  for (const TribometerRampPoint& pt : a.ramp) EXPECT_NEAR(pt.normal_force, e.normal_force, 1e-9 * e.normal_force);
+  for (const TribometerRampPoint& pt : a.ramp)
+    EXPECT_NEAR(pt.normal_force, e.normal_force, 1e-9 * e.normal_force);
 }
 
 TEST(Tribometer, BadExperimentIsInvalidInput) {

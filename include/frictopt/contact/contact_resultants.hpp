@@ -22,10 +22,10 @@ namespace frictopt::contact {
 /// compared with.
 struct ContactResultants {
   int dim = 3;
-  double normal_force = 0.0;                                  ///< P = Σλ_i [N; 2D: N/m]
+  double normal_force = 0.0;                                   ///< P = Σλ_i [N; 2D: N/m]
   Eigen::Vector2d tangential_force = Eigen::Vector2d::Zero();  ///< T = Σ τ_i (2D: component 1 is 0)
-  double tangential_force_norm = 0.0;                         ///< |T|
-  double force_ratio = kNaN;  ///< |T| / P (NaN when P = 0)
+  double tangential_force_norm = 0.0;                          ///< |T|
+  double force_ratio = kNaN;                                   ///< |T| / P (NaN when P = 0)
   double contact_area = 0.0;  ///< Σ a_i over nodes with a normal force (stick + slip)
   int num_stick = 0;
   int num_slip = 0;

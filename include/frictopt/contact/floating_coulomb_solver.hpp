@@ -47,25 +47,26 @@ class FloatingCoulombSolver {
     Status status = Status::kNotRun;
     std::string message = "solve() has not been called";
     int outer_iterations = 0;
-    int fixed_point_iterations = 0;      ///< summed over the inner Coulomb solves
+    int fixed_point_iterations = 0;  ///< summed over the inner Coulomb solves
     int qp_iterations = 0;
-    double equality_residual = kNaN;     ///< ‖Ez − e‖ relative (see Options)
-    double penalty = kNaN;               ///< the last ρ
-    CoulombSolver::Summary inner;        ///< the last inner solve
+    double equality_residual = kNaN;  ///< ‖Ez − e‖ relative (see Options)
+    double penalty = kNaN;            ///< the last ρ
+    CoulombSolver::Summary inner;     ///< the last inner solve
     double time_seconds = 0.0;
     bool converged() const { return status == Status::kConverged; }
     std::string brief_report() const;
   };
 
   /// `delassus` (M = G A⁺ Gᵀ) must outlive the solver; `equality` is E (r × M.size()).
-  FloatingCoulombSolver(const linalg::LinearOperator& delassus, Eigen::MatrixXd equality, FrictionLaw law,
-                        Options options);
+  FloatingCoulombSolver(const linalg::LinearOperator& delassus, Eigen::MatrixXd equality,
+                        FrictionLaw law, Options options);
 
   /// Solves for linear term c and right-hand side e (size r). `state` is the warm start as for
   /// CoulombSolver; on return it holds z, ∇ = Mz + c + Eᵀβ (the floating body's kinematics) and
   /// the classification; `beta` holds β (size r).
-  [[nodiscard]] Summary solve(const Eigen::Ref<const Eigen::VectorXd>& c, const Eigen::Ref<const Eigen::VectorXd>& e,
-                              ContactState& state, Eigen::VectorXd& beta) const;
+  [[nodiscard]] Summary solve(const Eigen::Ref<const Eigen::VectorXd>& c,
+                              const Eigen::Ref<const Eigen::VectorXd>& e, ContactState& state,
+                              Eigen::VectorXd& beta) const;
 
  private:
   const linalg::LinearOperator& delassus_;

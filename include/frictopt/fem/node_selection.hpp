@@ -41,6 +41,19 @@ struct NodalForce {
   Eigen::VectorXd force;
 };
 
+/// A prescribed displacement on selected nodes (a point or node-set Dirichlet condition).
+struct NodalConstraint {
+  NodeSelector where;
+  std::vector<int> components;   ///< empty = all
+  Eigen::VectorXd displacement;  ///< size dim; empty = zero [m]
+};
+
+/// Appends the DOFs of `constraints` to `prescribed` (which holds the face conditions). Throws
+/// InvalidInput naming "constraint[i]" for a bad selector, component or size, or a DOF that
+/// `prescribed` (a [[dirichlet]] face or an earlier constraint) already fixes.
+void add_nodal_constraints(const mesh::Mesh& mesh, const std::vector<NodalConstraint>& constraints,
+                           PrescribedDofs& prescribed);
+
 /// The full load vector (num_dofs) of the nodal forces. Throws InvalidInput naming
 /// "force[i]" for a bad selector, a force of the wrong size, or a nonzero component on a DOF
 /// that `dofs` prescribes (a force on a constrained component does no work and would vanish).
@@ -50,7 +63,8 @@ struct NodalForce {
 /// The full load vector (num_dofs) ∫_Γ N_a t dS of one face traction at node positions X
 /// (the same facet quadrature as LinearElasticity). Throws InvalidInput for an unknown face or a
 /// traction of the wrong size.
-[[nodiscard]] Eigen::VectorXd face_traction_load(const mesh::Mesh& mesh, const Eigen::Ref<const Eigen::MatrixXd>& X,
+[[nodiscard]] Eigen::VectorXd face_traction_load(const mesh::Mesh& mesh,
+                                                 const Eigen::Ref<const Eigen::MatrixXd>& X,
                                                  const FaceTraction& traction);
 
 }  // namespace frictopt::fem

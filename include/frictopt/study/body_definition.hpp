@@ -95,6 +95,7 @@ struct BodyDefinition {
   std::vector<fem::FaceDirichlet> dirichlet;  ///< Γ_u
   std::vector<fem::FaceTraction> tractions;   ///< Γ_p
   std::vector<fem::NodalForce> forces;        ///< point / node-set forces [N] (issue 12, item 3)
+  std::vector<fem::NodalConstraint> constraints;  ///< point / node-set displacements (constant in programs)
   shape::AdmissibleSetParameters admissible;  ///< Υ
   Eigen::VectorXd initial_design;             ///< α⁰
   std::optional<ContactDefinition> contact;   ///< absent: no foundation (pure elasticity)

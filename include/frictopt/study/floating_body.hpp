@@ -39,7 +39,8 @@ namespace frictopt::study {
 /// in P·W; otherwise "tangential force |F_t| N at θ exceeds the friction capacity μ(θ)·P = … by
 /// x %" (μ(θ) the radial function of W in the direction of F_t). P <= 0: the loads do not press
 /// the body onto the foundation. 2D: F_t has one component (the second is 0).
-[[nodiscard]] std::string friction_capacity_excess(const contact::FrictionLaw& law, const Eigen::Vector2d& tangential,
-                                                   double normal, int dim);
+[[nodiscard]] std::string friction_capacity_excess(const contact::FrictionLaw& law,
+                                                   const Eigen::Vector2d& tangential, double normal,
+                                                   int dim);
 
 }  // namespace frictopt::study

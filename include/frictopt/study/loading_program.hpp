@@ -20,11 +20,11 @@ namespace frictopt::study {
 /// every scale is 1, the case as written) or has one entry per [[load]] / [[dirichlet]] /
 /// [[force]] of the body, in their order; the step's load is Σ_j scale_j · load_j.
 struct LoadStepDefinition {
-  std::string label;                     ///< for reports; default "step k"
-  std::vector<double> load_scale;        ///< per BodyDefinition::tractions
-  std::vector<double> dirichlet_scale;   ///< per BodyDefinition::dirichlet (its displacement)
-  std::vector<double> force_scale;       ///< per BodyDefinition::forces
-  bool friction = true;                  ///< false: a frictionless step (W = {0})
+  std::string label;                    ///< for reports; default "step k"
+  std::vector<double> load_scale;       ///< per BodyDefinition::tractions
+  std::vector<double> dirichlet_scale;  ///< per BodyDefinition::dirichlet (its displacement)
+  std::vector<double> force_scale;      ///< per BodyDefinition::forces
+  bool friction = true;                 ///< false: a frictionless step (W = {0})
 };
 
 /// [[program.step]] tables; at least one step.
@@ -38,10 +38,10 @@ struct LoadingProgramDefinition {
 
 /// The result of one step.
 struct LoadStepResult {
-  int step = 0;                  ///< 1-based
+  int step = 0;  ///< 1-based
   std::string label;
-  BodyState state;               ///< the body after the step; contact u_t = the step's slip increment
-  double external_work = kNaN;   ///< (tractions + point forces of the step)ᵀ u [J]
+  BodyState state;  ///< the body after the step; contact u_t = the step's slip increment
+  double external_work = kNaN;  ///< (tractions + point forces of the step)ᵀ u [J]
   /// Tangential displacement of the contact nodes after the step ((dim−1)·p): the slip
   /// reference of the next step.
   Eigen::VectorXd tangential_displacement;
@@ -56,7 +56,8 @@ class StepLoadBuilder {
   /// `load_scale`, `force_scale`: one entry per traction / force of the body. `dirichlet`: the
   /// step's conditions, which must prescribe exactly the DOFs of the body's (the stiffness and
   /// its factorization stay valid); throws InvalidInput otherwise.
-  [[nodiscard]] StepLoads build(const std::vector<double>& load_scale, const std::vector<double>& force_scale,
+  [[nodiscard]] StepLoads build(const std::vector<double>& load_scale,
+                                const std::vector<double>& force_scale,
                                 const std::vector<fem::FaceDirichlet>& dirichlet,
                                 const Eigen::VectorXd& previous_tangential, bool friction) const;
   /// The step's applied forces (tractions + point forces), full DOF vector, for its work.
@@ -78,10 +79,10 @@ class LoadingProgram {
   struct Summary {
     Status status = Status::kNotRun;
     std::string message = "run() has not been called";
-    int steps_solved = 0;             ///< steps whose state converged
-    int factorizations = 0;           ///< numeric factorizations of A (1 for a whole program)
+    int steps_solved = 0;    ///< steps whose state converged
+    int factorizations = 0;  ///< numeric factorizations of A (1 for a whole program)
     double factorization_seconds = 0.0;
-    double contact_seconds = 0.0;     ///< Coulomb solves, summed over the steps
+    double contact_seconds = 0.0;  ///< Coulomb solves, summed over the steps
     double time_seconds = 0.0;
     std::string brief_report() const;
   };
@@ -93,7 +94,8 @@ class LoadingProgram {
 
   /// Solves the steps in order at design α, from the unloaded body (u⁰ = 0, no contact
   /// forces). Stops at the first step whose state does not converge (its status is the run's).
-  [[nodiscard]] Summary run(const Eigen::Ref<const Eigen::VectorXd>& alpha, const StepCallback& on_step = {});
+  [[nodiscard]] Summary run(const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                            const StepCallback& on_step = {});
 
   const LoadingProgramDefinition& program() const { return program_; }
 

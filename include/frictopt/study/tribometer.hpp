@@ -23,20 +23,20 @@ namespace frictopt::study {
 
 /// [experiment] of a case.
 struct TribometerDefinition {
-  double normal_force = 0.0;        ///< P [N] pressed by the platen; > 0
-  double pull_displacement = 0.0;   ///< final tangential platen displacement [m]; > 0
+  double normal_force = 0.0;                ///< P [N] pressed by the platen; > 0
+  double pull_displacement = 0.0;           ///< final tangential platen displacement [m]; > 0
   std::vector<double> angles_degrees{0.0};  ///< pull directions θ in the (x1, x2) plane
-  int ramp_steps = 20;              ///< ramp increments from 0 to pull_displacement; >= 1
+  int ramp_steps = 20;                      ///< ramp increments from 0 to pull_displacement; >= 1
   /// Throws InvalidInput naming "experiment.<field>".
   void validate() const;
 };
 
 /// One point of the ramp at one angle.
 struct TribometerRampPoint {
-  double pull = 0.0;               ///< platen displacement [m]
-  double normal_force = 0.0;       ///< P [N]
+  double pull = 0.0;                                           ///< platen displacement [m]
+  double normal_force = 0.0;                                   ///< P [N]
   Eigen::Vector2d tangential_force = Eigen::Vector2d::Zero();  ///< T on the specimen [N]
-  double stick_fraction = 0.0;     ///< stick area / contact area
+  double stick_fraction = 0.0;                                 ///< stick area / contact area
   int num_stick = 0, num_slip = 0;
 };
 
@@ -47,23 +47,24 @@ struct TribometerRampPoint {
 /// (normality rule), so |T|/P = μ(φ), the radial function of W at the force direction φ, and
 /// ⟨−T/P, ŝ⟩ = N_W(ŝ), the law's resistance to sliding along ŝ.
 struct TribometerAngleResult {
-  double angle_degrees = 0.0;           ///< the platen's pull direction θ
+  double angle_degrees = 0.0;  ///< the platen's pull direction θ
   std::vector<TribometerRampPoint> ramp;
-  bool gross_sliding = false;           ///< some ramp step has no stick node
-  int onset_step = -1;                  ///< first ramp index (0-based) without stick nodes
-  double onset_pull = kNaN;             ///< platen displacement at onset [m]
-  double onset_force = kNaN;            ///< |T| at onset [N]
-  double onset_normal_force = kNaN;     ///< P at onset [N]
-  bool steady_sliding = false;          ///< gross sliding in the last two ramp steps (sliding fields valid)
-  double sliding_force = kNaN;          ///< |T| at the last ramp step [N]
-  double sliding_normal_force = kNaN;   ///< P there [N]
-  double force_angle_degrees = kNaN;    ///< φ: direction of the friction resistance −T (the pull force)
-  double slip_angle_degrees = kNaN;     ///< ŝ: λ-weighted mean slip direction of the last step
-  double measured_coefficient = kNaN;   ///< |T| / P
-  double law_coefficient = kNaN;        ///< μ(φ): radial function of W at φ
-  double coefficient_error = kNaN;      ///< |measured − law| / law
-  double sliding_resistance = kNaN;     ///< ⟨−T/P, ŝ⟩
-  double law_resistance = kNaN;         ///< N_W(ŝ), the support function
+  bool gross_sliding = false;        ///< some ramp step has no stick node
+  int onset_step = -1;               ///< first ramp index (0-based) without stick nodes
+  double onset_pull = kNaN;          ///< platen displacement at onset [m]
+  double onset_force = kNaN;         ///< |T| at onset [N]
+  double onset_normal_force = kNaN;  ///< P at onset [N]
+  bool steady_sliding = false;  ///< gross sliding in the last two ramp steps (sliding fields valid)
+  double sliding_force = kNaN;  ///< |T| at the last ramp step [N]
+  double sliding_normal_force = kNaN;  ///< P there [N]
+  double force_angle_degrees =
+      kNaN;  ///< φ: direction of the friction resistance −T (the pull force)
+  double slip_angle_degrees = kNaN;    ///< ŝ: λ-weighted mean slip direction of the last step
+  double measured_coefficient = kNaN;  ///< |T| / P
+  double law_coefficient = kNaN;       ///< μ(φ): radial function of W at φ
+  double coefficient_error = kNaN;     ///< |measured − law| / law
+  double sliding_resistance = kNaN;    ///< ⟨−T/P, ŝ⟩
+  double law_resistance = kNaN;        ///< N_W(ŝ), the support function
   /// Normality: |N_W(ŝ) − ⟨ŝ, −T/P⟩| / N_W(ŝ) (0 when the friction force is the point of W
   /// exposed by the slip, as the law's normality rule demands).
   double normality_residual = kNaN;
