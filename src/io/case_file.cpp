@@ -1022,6 +1022,9 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     c.output.name = std::move(default_name);
   body.name = c.output.name;
   c.problem_settings = problem_settings(root);
+  // The mesh file by its resolved name, not as written: the same file named relative to the
+  // user's case and absolutely in the run directory's copy is the same problem.
+  if (c.body.imported_mesh) c.problem_settings["mesh.file"] = "\"" + c.body.imported_mesh->file.string() + "\"";
   return c;
 }
 

@@ -41,6 +41,11 @@ ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view 
   const std::string file_text = r.required_string("file", "a Gmsh .msh or .geo file, relative to the case file");
   std::filesystem::path file(file_text);
   if (file.is_relative()) file = std::filesystem::path(case_origin).parent_path() / file;
+  // One name per file: the run directory's copy of the case names it absolutely
+  // (RunDirectory::store_case), and a resume compares the two cases' settings.
+  std::error_code ec;
+  if (const auto canonical = std::filesystem::weakly_canonical(std::filesystem::absolute(file), ec); !ec)
+    file = canonical;
   mesh::GmshMeshOptions options;
   if (const auto size = r.optional_number("size")) {
     if (!(*size > 0 && std::isfinite(*size))) r.fail_value("size", "a mesh size > 0 [m] for the .geo file");

@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/file.h>
+#include <toml++/toml.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -207,6 +208,53 @@ void RunDirectory::clear_previous_run() {
   for (const fs::path& p : ours) fs::remove_all(p);
 }
 
+namespace {
+
+// TOML basic string of a path (quotes and backslashes escaped).
+std::string toml_string(const std::string& text) {
+  std::string out = "\"";
+  for (char ch : text) {
+    if (ch == '"' || ch == '\\') out += '\\';
+    out += ch;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string case_copy_text(const std::string& text, const fs::path& case_path) {
+  // The copy lives in the run directory, so a mesh file named relative to the user's case
+  // ([mesh] file, issue 11) is named absolutely in it; `certify RUN_DIR` and `--resume` then
+  // read the same mesh. Only that value's text changes (the rest of the file stays as written);
+  // a case that does not parse is copied as it is (its parse reports the error).
+  toml::table root;
+  try {
+    root = toml::parse(text);
+  } catch (const toml::parse_error&) {
+    return text;
+  }
+  const toml::node* node = root.at_path("mesh.file").node();
+  const auto* value = node != nullptr ? node->as_string() : nullptr;
+  if (value == nullptr || fs::path(value->get()).is_absolute() || node->source().begin.line == 0) return text;
+  const fs::path absolute = fs::absolute(case_path.parent_path() / value->get()).lexically_normal();
+  // Replace the value on its line (a TOML string value is one line unless multi-line, which a
+  // path never needs; a multi-line string is left as it is).
+  std::size_t begin = 0;
+  for (std::uint32_t line = 1; line < node->source().begin.line; ++line) {
+    begin = text.find('\n', begin);
+    if (begin == std::string::npos) return text;
+    ++begin;
+  }
+  const std::size_t column = begin + node->source().begin.column - 1;
+  const std::size_t end_line = text.find('\n', column);
+  const std::string line_text = text.substr(column, end_line == std::string::npos ? std::string::npos : end_line - column);
+  const char quote = line_text.empty() ? '\0' : line_text.front();
+  if (quote != '"' && quote != '\'') return text;
+  const std::size_t close = line_text.find(quote, 1);
+  if (close == std::string::npos || line_text.compare(0, 3, std::string(3, quote)) == 0) return text;
+  return text.substr(0, column) + toml_string(absolute.string()) + text.substr(column + close + 1);
+}
+
 fs::path RunDirectory::store_case() {
   const fs::path copy = file(kCaseCopy);
   if (opening_ == RunOpening::kResume || opening_ == RunOpening::kExisting) return copy;
@@ -215,7 +263,7 @@ fs::path RunDirectory::store_case() {
   std::ifstream in(case_argument_, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
-  detail::write_file_atomically(copy, text.str());
+  detail::write_file_atomically(copy, case_copy_text(text.str(), case_argument_));
   return copy;
 }
 

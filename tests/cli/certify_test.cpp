@@ -34,6 +34,27 @@ std::string scientific(double x, int digits) {
   return buf;
 }
 
+// An imported body names its mesh relative to the case file; the run directory's copy of the
+// case lives elsewhere, so certify RUN_DIR and --resume must still find the mesh (the copy names
+// it absolutely) and the resume must see the same problem (regression: exit 2, "no such file").
+TEST(CliCertify, FindsTheMeshOfAnImportedBodyNamedRelativeToTheCase) {
+  const fs::path dir = frictopt::testing::fresh_directory("cli_certify_imported");
+  fs::create_directories(dir);
+  const fs::path case_path = dir / "case.toml";
+  fs::copy_file(FRICTOPT_SOURCE_DIR "/cases2d/gmsh-body/body.geo", dir / "body.geo");
+  std::ofstream(case_path) << std::regex_replace(read_text(FRICTOPT_SOURCE_DIR "/cases2d/gmsh-body/case.toml"),
+                                                 std::regex(R"(max_iterations = \d+)"), "max_iterations = 2",
+                                                 std::regex_constants::format_first_only);
+  const fs::path run_dir = dir / "run";
+  const RunResult optimize = run("optimize " + case_path.string() + " -o " + run_dir.string());
+  ASSERT_EQ(optimize.exit_code, 0) << optimize.output;
+  EXPECT_NE(read_text(run_dir / "case.toml").find((dir / "body.geo").lexically_normal().string()), std::string::npos);
+  const RunResult certify = run("certify " + run_dir.string());
+  EXPECT_EQ(certify.exit_code, 0) << certify.output;
+  const RunResult resumed = run("optimize " + case_path.string() + " -o " + run_dir.string() + " --resume");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
+}
+
 TEST(CliCertify, WritesCertificateJsonForAFreshRun) {
   const fs::path dir = frictopt::testing::fresh_directory("cli_certify_run");
   fs::create_directories(dir);

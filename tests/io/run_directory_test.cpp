@@ -231,5 +231,18 @@ TEST(Checkpoint, DifferencesNameTheChangedSettings) {
   EXPECT_TRUE(a.differences_from(a).empty());
 }
 
+TEST(CaseCopyText, MakesARelativeMeshFileAbsoluteAndKeepsTheRest) {
+  const std::string text = "# a case\n[mesh]\nfile = \"parts/die.geo\"   # the die\nsize = 0.1\n";
+  const std::string copy = case_copy_text(text, "/data/study/case.toml");
+  EXPECT_EQ(copy, "# a case\n[mesh]\nfile = \"/data/study/parts/die.geo\"   # the die\nsize = 0.1\n");
+  // Literal strings, absolute paths, cases without a mesh file and unparsable text: unchanged
+  // except the literal string's path.
+  EXPECT_EQ(case_copy_text("[mesh]\nfile = 'a.msh'\n", "/x/c.toml"), "[mesh]\nfile = \"/x/a.msh\"\n");
+  EXPECT_EQ(case_copy_text("[mesh]\nfile = \"/abs/a.msh\"\n", "/x/c.toml"), "[mesh]\nfile = \"/abs/a.msh\"\n");
+  EXPECT_EQ(case_copy_text("[mesh]\ncells = [4, 4]\n", "/x/c.toml"), "[mesh]\ncells = [4, 4]\n");
+  EXPECT_EQ(case_copy_text("[mesh\nfile = \"a\"", "/x/c.toml"), "[mesh\nfile = \"a\"");
+  EXPECT_EQ(case_copy_text("mesh = { file = \"a.msh\" }\n", "/x/c.toml"), "mesh = { file = \"/x/a.msh\" }\n");
+}
+
 }  // namespace
 }  // namespace frictopt::io

@@ -119,4 +119,8 @@ class RunDirectory {
 /// The fingerprint of a case and the mesh of its body (checkpoint.hpp).
 [[nodiscard]] CaseFingerprint fingerprint_of(const CaseDescription& description, const study::ElasticBody& body);
 
+/// The text RunDirectory::store_case writes for the case at `case_path`: the case as written,
+/// except that a relative `[mesh] file` is made absolute (the copy lives elsewhere).
+[[nodiscard]] std::string case_copy_text(const std::string& text, const std::filesystem::path& case_path);
+
 }  // namespace frictopt::io
