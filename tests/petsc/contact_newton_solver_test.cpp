@@ -160,6 +160,21 @@ TEST(ContactNewtonSolver, RejectsAnUnknownPetscOption) {
   }
 }
 
+TEST(ContactNewtonSolver, ReportsTheIterationCapAsAStatus) {
+  study::BodyDefinition definition = coarse_case("punch");
+  study::ElasticBody body(definition);
+  ContactNewtonSolver::Options options;
+  options.max_iterations = 1;  // the punch needs 6 steps from the free response
+  ContactNewtonSolver solver(body.elasticity(), *body.contact_boundary(), definition.contact->law, options);
+  Eigen::VectorXd u;
+  contact::ContactState state;
+  const Eigen::MatrixXd X = body.mesh().positions(definition.initial_design);
+  const ContactNewtonSolver::Summary summary = solver.solve(X, body.contact_boundary()->gaps(X), u, state);
+  EXPECT_EQ(summary.status, Status::kMaxIterations);
+  EXPECT_NE(summary.message.find("1 Newton iterations"), std::string::npos) << summary.message;
+  EXPECT_GT(summary.relative_residual, options.relative_tolerance);
+}
+
 TEST(ContactNewtonSolver, ReportsAKrylovFailureWithPetscsReason) {
   study::BodyDefinition definition = coarse_case("punch");
   study::ElasticBody body(definition);
