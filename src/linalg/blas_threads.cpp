@@ -138,17 +138,16 @@ std::string describe_blas_threads() {
   return s.str();
 }
 
-ScopedBlasThreads::ScopedBlasThreads(double flops) {
+BlasThreadsForCall::BlasThreadsForCall(double flops) {
   const BlasControl& c = control();
   if (c.mode == BlasThreadMode::kUser || c.mode == BlasThreadMode::kUnavailable) return;
   const int idle = c.mode == BlasThreadMode::kAutomatic && flops >= kMinFlopsForThreads ? idle_cores_now() : 0;
   threads_ = choose_blas_threads(flops, c.max_threads, idle, c.mode, c.fixed_threads);
-  previous_ = c.get();
-  if (threads_ != previous_) c.set(threads_);
-}
-
-ScopedBlasThreads::~ScopedBlasThreads() {
-  if (threads_ > 0 && threads_ != previous_) control().set(previous_);
+  // Set only on a change, and never restored afterwards: every openblas_set_num_threads call
+  // wakes OpenBLAS' workers, which then spin (sched_yield) before sleeping again. Restoring the
+  // previous count after each call did that twice per call: 104k sched_yield calls in one demo
+  // solve against 8.9k with a constant count (strace -c -f, docs/benchmarks.md §2b).
+  if (threads_ != c.get()) c.set(threads_);
 }
 
 }  // namespace frictopt::linalg

@@ -183,7 +183,7 @@ Status CholmodSolver::factorize(const Eigen::SparseMatrix<double>& A) {
   cholmod_sparse a = view(A);
   {
     // The supernodal factorization spends its flops (counted by the analysis) in BLAS calls.
-    const ScopedBlasThreads threads(impl_->common.fl);
+    const BlasThreadsForCall threads(impl_->common.fl);
     cholmod_factorize(&a, impl_->factor, &impl_->common);
   }
   if (impl_->common.status == CHOLMOD_NOT_POSDEF || impl_->factor->minor < impl_->factor->n) {
@@ -206,7 +206,7 @@ Eigen::MatrixXd CholmodSolver::solve_many(const Eigen::Ref<const Eigen::MatrixXd
   cholmod_dense bd = dense_view(b.data(), b.rows(), b.cols());
   FRICTOPT_ASSERT(analyzed(), "solve after a successful factorize()");
   // Forward and backward substitution: 4 flops per factor entry and right-hand side.
-  const ScopedBlasThreads threads(4.0 * impl_->common.lnz * static_cast<double>(b.cols()));
+  const BlasThreadsForCall threads(4.0 * impl_->common.lnz * static_cast<double>(b.cols()));
   cholmod_dense* x = cholmod_solve(CHOLMOD_A, impl_->factor, &bd, &impl_->common);
   if (x == nullptr)  // only when CHOLMOD cannot allocate the solution
     throw std::runtime_error(fmt::format("cholmod_solve failed (CHOLMOD status {})", impl_->common.status));

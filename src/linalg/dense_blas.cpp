@@ -36,7 +36,7 @@ void lower_solve_in_place(const Eigen::MatrixXd& L, Eigen::MatrixXd& B) {
   const int m = static_cast<int>(L.rows()), n = static_cast<int>(B.cols());
   if (m == 0 || n == 0) return;
   const double one = 1.0;
-  const ScopedBlasThreads threads(static_cast<double>(m) * m * n);
+  const BlasThreadsForCall threads(static_cast<double>(m) * m * n);
   dtrsm_("L", "L", "N", "N", &m, &n, &one, L.data(), &m, B.data(), &m);
 }
 
@@ -44,7 +44,7 @@ void cholesky_solve_in_place(const Eigen::MatrixXd& L, Eigen::Ref<Eigen::VectorX
   const int n = static_cast<int>(L.rows()), one = 1;
   if (n == 0) return;
   FRICTOPT_ASSERT(x.size() == n, "cholesky_solve_in_place: x of the factor's size");
-  const ScopedBlasThreads threads(2.0 * n * n);
+  const BlasThreadsForCall threads(2.0 * n * n);
   dtrsv_("L", "N", "N", &n, L.data(), &n, x.data(), &one);
   dtrsv_("L", "T", "N", &n, L.data(), &n, x.data(), &one);
 }
@@ -54,7 +54,7 @@ Eigen::MatrixXd inverse_from_cholesky(const Eigen::MatrixXd& L) {
   Eigen::MatrixXd S = L;
   if (n == 0) return S;
   int info = 0;
-  const ScopedBlasThreads threads(2.0 / 3.0 * n * n * static_cast<double>(n));
+  const BlasThreadsForCall threads(2.0 / 3.0 * n * n * static_cast<double>(n));
   dpotri_("L", &n, S.data(), &n, &info);
   // info > 0 means a zero diagonal entry: impossible for the factor of a successful Cholesky.
   FRICTOPT_ASSERT(info == 0, "inverse_from_cholesky: dpotri info = " + std::to_string(info));
@@ -67,7 +67,7 @@ void symmetric_times(const Eigen::MatrixXd& S, const Eigen::Ref<const Eigen::Vec
   if (n == 0) return;
   FRICTOPT_ASSERT(x.size() == n && y.size() == n, "symmetric_times: vectors of the matrix's size");
   const double alpha = 1.0, beta = 0.0;
-  const ScopedBlasThreads threads(2.0 * n * n);
+  const BlasThreadsForCall threads(2.0 * n * n);
   dsymv_("L", &n, &alpha, S.data(), &n, x.data(), &one, &beta, y.data(), &one);
 }
 
@@ -78,7 +78,7 @@ Eigen::MatrixXd gemm(const char* ta, const Eigen::MatrixXd& A, const Eigen::Matr
   if (rows == 0 || cols == 0 || inner == 0) return C;
   const double one = 1.0, zero = 0.0;
   const int lda = static_cast<int>(A.rows()), ldb = static_cast<int>(B.rows());
-  const ScopedBlasThreads threads(2.0 * rows * cols * static_cast<double>(inner));
+  const BlasThreadsForCall threads(2.0 * rows * cols * static_cast<double>(inner));
   dgemm_(ta, "N", &rows, &cols, &inner, &one, A.data(), &lda, B.data(), &ldb, &zero, C.data(), &rows);
   return C;
 }
@@ -97,7 +97,7 @@ Eigen::VectorXd singular_values(const Eigen::MatrixXd& original) {
   int info = 0, lwork = -1, one = 1;
   double query = 0.0, unused = 0.0;
   std::vector<int> iwork(static_cast<std::size_t>(8 * k));
-  const ScopedBlasThreads threads(4.0 * std::max(m, n) * static_cast<double>(k) * k);
+  const BlasThreadsForCall threads(4.0 * std::max(m, n) * static_cast<double>(k) * k);
   dgesdd_("N", &m, &n, A.data(), &m, s.data(), &unused, &one, &unused, &one, &query, &lwork, iwork.data(), &info);
   lwork = static_cast<int>(query);
   std::vector<double> work(static_cast<std::size_t>(std::max(lwork, 1)));
@@ -119,7 +119,7 @@ bool lu_solve(Eigen::MatrixXd K, const Eigen::VectorXd& r, Eigen::VectorXd& x, d
   const double anorm = K.cwiseAbs().colwise().sum().maxCoeff();
   std::vector<int> ipiv(static_cast<std::size_t>(n));
   int info = 0;
-  const ScopedBlasThreads threads(2.0 / 3.0 * n * n * static_cast<double>(n));
+  const BlasThreadsForCall threads(2.0 / 3.0 * n * n * static_cast<double>(n));
   dgetrf_(&n, &n, K.data(), &n, ipiv.data(), &info);
   if (info > 0) {
     reciprocal_condition = 0.0;

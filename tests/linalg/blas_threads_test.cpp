@@ -38,16 +38,15 @@ TEST(BlasThreads, IdleCoresAreBoundedByTheAffinityMask) {
   EXPECT_LE(idle, CPU_COUNT(&set));
 }
 
-TEST(BlasThreads, ScopeRestoresTheCount) {
-  // Whatever the mode, a scope reports a count in [0, max] and nesting scopes is harmless.
-  const fl::ScopedBlasThreads outer(1e12);
-  {
-    const fl::ScopedBlasThreads inner(1.0);
-    EXPECT_GE(inner.threads(), 0);
-    if (fl::blas_thread_mode() == BlasThreadMode::kAutomatic) {
-      EXPECT_EQ(inner.threads(), 1);
-    }
+TEST(BlasThreads, ACallSiteChoosesWithinTheLimits) {
+  // Whatever the mode, a call site reports a count in [0, max]; small work runs on one thread
+  // in the automatic mode.
+  const fl::BlasThreadsForCall large(1e12);
+  EXPECT_GE(large.threads(), 0);
+  const fl::BlasThreadsForCall small(1.0);
+  EXPECT_GE(small.threads(), 0);
+  if (fl::blas_thread_mode() == BlasThreadMode::kAutomatic) {
+    EXPECT_EQ(small.threads(), 1);
   }
-  EXPECT_GE(outer.threads(), 0);
   EXPECT_FALSE(fl::describe_blas_threads().empty());
 }

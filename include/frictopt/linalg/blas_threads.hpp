@@ -42,20 +42,18 @@ inline constexpr double kMinFlopsForThreads = 2e8;
 /// One line for logs and benchmarks: "BLAS threads: automatic (max 2)" etc.
 [[nodiscard]] std::string describe_blas_threads();
 
-/// Sets the BLAS thread count for the lifetime of the object from the rule above and restores
-/// the previous count afterwards. A no-op in modes kUser and kUnavailable. Not thread-safe:
-/// the count is process-wide (frictopt calls the BLAS from one thread).
-class ScopedBlasThreads {
+/// Sets the BLAS thread count for the BLAS call that follows, from the rule above, when it
+/// differs from the current one. The count is not restored afterwards (each change wakes
+/// OpenBLAS' spinning workers): it stays until the next call site chooses. Every BLAS/LAPACK
+/// call in src/linalg is preceded by one. A no-op in modes kUser and kUnavailable. Not
+/// thread-safe: the count is process-wide (frictopt calls the BLAS from one thread).
+class BlasThreadsForCall {
  public:
-  explicit ScopedBlasThreads(double flops);
-  ~ScopedBlasThreads();
-  ScopedBlasThreads(const ScopedBlasThreads&) = delete;
-  ScopedBlasThreads& operator=(const ScopedBlasThreads&) = delete;
-  /// Threads in force inside the scope (0 when the count is not ours to set).
+  explicit BlasThreadsForCall(double flops);
+  /// Threads chosen for the call (0 when the count is not ours to set).
   [[nodiscard]] int threads() const { return threads_; }
 
  private:
-  int previous_ = 0;
   int threads_ = 0;
 };
 

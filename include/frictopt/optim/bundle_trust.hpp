@@ -132,8 +132,9 @@ class BundleTrust {
     // compatibility. Default off.
     bool scale_objective = false;
     // Final check (docs/optim.md): when the stopping test passes, the stationarity certificate
-    // (stationarity.hpp) of the local bundle subgradients at x must be <= ε·G, or the run ends
-    // with StopReason::kStationarityNotCertified (Status kStalled) instead of kConverged.
+    // (stationarity.hpp) of the local bundle subgradients at x must be <= ε·min(G, F/ρ) and the
+    // aggregate error from the direction QP's multipliers <= ε·F, or the run ends with
+    // StopReason::kStationarityNotCertified (Status kStalled) instead of kConverged.
     bool certify_stationarity = true;
     // A start point violating Υ by more than this (user units, max norm) is projected.  > 0.
     double feasibility_tolerance = 1e-9;
