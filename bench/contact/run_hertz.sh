@@ -11,7 +11,7 @@
 #           24/32/32 cells with 16/16/22 layers: docs/contact-validation.md §1b),
 #           large (80 × 80 × 11 uniform: 19,683 contact unknowns), or a quoted list of
 #           "CELLS LAYERS GROWTH MU SHIFT" configurations separated by commas.
-#     PREVIOUS_BENCH: e.g. /work/contactperf-base/build/bench/contact/hertz_bench (966f3ca with
+#     PREVIOUS_BENCH: e.g. /tmp/frictopt-966f3ca/build/bench/contact/hertz_bench (966f3ca with
 #           this file's hertz_bench.cpp added; it uses only the API that version already had).
 # OPENBLAS_NUM_THREADS is passed through (unset: OpenBLAS's default).
 set -euo pipefail
