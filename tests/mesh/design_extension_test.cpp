@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "common/invalid_input.hpp"
 #include "frictopt/mesh/design_extension.hpp"
 
 #include <gtest/gtest.h>
@@ -17,15 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kData = fs::path(FRICTOPT_SOURCE_DIR) / "tests/mesh/data";
 
-template <class F>
-std::string invalid_input_message(F&& f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::invalid_input_message;
 
 // The sweep extension on the extruded block reproduces the structured grid's vertical morph
 // node for node: the same V rows at the same coordinates.

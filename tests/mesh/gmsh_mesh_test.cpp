@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "common/invalid_input.hpp"
 #include "frictopt/mesh/gmsh_mesh.hpp"
 
 #include <gtest/gtest.h>
@@ -18,16 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kData = fs::path(FRICTOPT_SOURCE_DIR) / "tests/mesh/data";
 
-// The message of the InvalidInput that f throws ("" when it throws none).
-template <class F>
-std::string invalid_input_message(F&& f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::invalid_input_message;
 
 // The 2 × 2 × 1 block of block.geo, whichever way it was stored.
 void expect_block(const Mesh& mesh) {

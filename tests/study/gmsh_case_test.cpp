@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "common/invalid_input.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
 #include "frictopt/study/elastic_body.hpp"
@@ -24,15 +25,7 @@ std::string block_case(const std::string& mesh_table, const std::string& part_ke
          "upper_bound = 1e-4\n\n[contact.friction]\nkind = \"isotropic\"\nmu = 0.3\nn = 8\n";
 }
 
-template <class F>
-std::string invalid_input_message(F&& f) {
-  try {
-    f();
-  } catch (const InvalidInput& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::invalid_input_message;
 
 TEST(GmshCase, ReadsAnImportedBodyWithExtentsFromTheMesh) {
   const io::CaseDescription c =
