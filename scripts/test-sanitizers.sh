@@ -25,6 +25,8 @@ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFRICTOPT_SANITI
   -DFRICTOPT_BUILD_BENCHMARKS=OFF -DFRICTOPT_BUILD_PYTHON=OFF -DFRICTOPT_WITH_PETSC=OFF >/dev/null
 cmake --build "$build" -j "$jobs"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1}"
+# Leaks inside Gmsh/OpenCASCADE (not frictopt's) are suppressed by name (the file says why).
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$root/scripts/lsan-suppressions.txt:print_suppressions=0}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 cd "$build"
 if [ "$#" -eq 0 ]; then set -- -L quick -LE "slow|viz"; fi
