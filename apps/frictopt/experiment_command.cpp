@@ -109,7 +109,15 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
                          a.force_angle_degrees, a.slip_angle_degrees, a.measured_coefficient,
                          a.law_coefficient, a.coefficient_error, a.sliding_resistance,
                          a.law_resistance, a.normality_residual});
-        if (a.steady_sliding)
+        if (a.steady_sliding && description.experiment->drive == study::TribometerDrive::kForce)
+          fmt::print(
+              "θ = {:7.2f}°: no static equilibrium beyond Q = {:.9e} N (ramp step {}); limit state: |T|/P = "
+              "{:.9f}, law μ(φ) = {:.9f} (rel. error {:.1e}), force at φ = {:.3f}°, slip at {:.3f}°, normality "
+              "{:.1e}, stick fraction {:.3f}\n",
+              a.angle_degrees, a.onset_force, a.onset_step + 1, a.measured_coefficient, a.law_coefficient,
+              a.coefficient_error, a.force_angle_degrees, a.slip_angle_degrees, a.normality_residual,
+              a.ramp.back().stick_fraction);
+        else if (a.steady_sliding)
           fmt::print(
               "θ = {:7.2f}°: sliding from step {} (|T| = {:.4e} N); sliding: |T|/P = {:.9f}, law "
               "μ(φ) = {:.9f} "
@@ -117,6 +125,9 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
               a.angle_degrees, a.onset_step + 1, a.onset_force, a.measured_coefficient,
               a.law_coefficient, a.coefficient_error, a.force_angle_degrees, a.slip_angle_degrees,
               a.normality_residual);
+        else if (a.gross_sliding && description.experiment->drive == study::TribometerDrive::kForce)
+          fmt::print("θ = {:7.2f}°: no static equilibrium already at the first ramp step; raise ramp_steps\n",
+                     a.angle_degrees);
         else if (a.gross_sliding)
           fmt::print(
               "θ = {:7.2f}°: gross sliding only at the last ramp step; raise pull_displacement to "
@@ -125,14 +136,14 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
               a.angle_degrees);
         else
           fmt::print(
-              "θ = {:7.2f}°: no gross sliding within pull_displacement (stick fraction {:.3f} at "
-              "the end)\n",
+              "θ = {:7.2f}°: no gross sliding within the ramp (stick fraction {:.3f} at the end)\n",
               a.angle_degrees, a.ramp.empty() ? 1.0 : a.ramp.back().stick_fraction);
       });
   fmt::print("{}\n", summary.brief_report());
   io::JsonValue json = io::JsonValue::object();
   json["case"] = case_path.string();
   json["command"] = "experiment";
+  json["drive"] = std::string(study::to_string(description.experiment->drive));
   json["status"] = std::string(to_string(summary.status));
   json["message"] = summary.message;
   json["press_displacement"] = summary.press_displacement;

@@ -120,19 +120,33 @@ study::LoadingProgramDefinition read_program(const TableReader& r, std::string_v
 
 study::TribometerDefinition read_experiment(const TableReader& r) {
   study::TribometerDefinition e;
+  if (const auto drive = r.optional_string("drive")) {
+    try {
+      e.drive = study::parse_tribometer_drive(*drive);
+    } catch (const InvalidInput& error) {
+      r.fail("drive", error.what());
+    }
+  }
   e.normal_force =
       r.required_number("normal_force", "the normal force P > 0 in N the platen presses with");
-  e.pull_displacement =
-      r.required_number("pull_displacement", "the final tangential platen displacement > 0 in m");
+  if (e.drive == study::TribometerDrive::kDisplacement)
+    e.pull_displacement =
+        r.required_number("pull_displacement", "the final tangential platen displacement > 0 in m");
+  else
+    e.max_force_ratio = r.required_number(
+        "max_force_ratio", "the ramp's final pull force as a multiple of the normal force, > 0");
+  if (const auto t = r.optional_number("onset_tolerance")) e.onset_tolerance = *t;
   if (r.has("angles_degrees"))
     e.angles_degrees = r.number_list("angles_degrees", "a non-empty list of angles in degrees");
   if (const auto n = r.optional_int("ramp_steps")) e.ramp_steps = *n;
   try {
     e.validate();
   } catch (const InvalidInput& error) {
-    r.fail(std::string_view(error.what()).starts_with("experiment.ramp") ? "ramp_steps"
-                                                                         : "normal_force",
-           error.what());
+    const std::string_view what = error.what();
+    const char* field = "normal_force";
+    for (const char* f : {"ramp_steps", "angles_degrees", "pull_displacement", "max_force_ratio", "onset_tolerance"})
+      if (what.starts_with(std::string("experiment.") + f)) field = f;
+    r.fail(field, error.what());
   }
   return e;
 }
@@ -159,7 +173,8 @@ void read_program_sections(const TableReader& top, std::string_view origin, int 
   if (const toml::table* experiment = top.optional_table("experiment"))
     c.experiment = read_experiment(
         TableReader(*experiment, "experiment", origin,
-                    {"normal_force", "pull_displacement", "angles_degrees", "ramp_steps"}));
+                    {"drive", "normal_force", "pull_displacement", "max_force_ratio", "angles_degrees",
+                     "ramp_steps", "onset_tolerance"}));
 }
 
 }  // namespace frictopt::io::detail

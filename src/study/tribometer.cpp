@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/study/elastic_body.hpp"
 #include "frictopt/study/loading_program.hpp"
@@ -22,16 +23,34 @@ constexpr int kMaxPressIterations = 30;
 
 double angle_degrees(const Eigen::Vector2d& v) { return std::atan2(v(1), v(0)) / kDegree; }
 
+constexpr auto kDrives = frictopt::detail::make_enum_table<TribometerDrive>(
+    std::pair{TribometerDrive::kDisplacement, "displacement"}, std::pair{TribometerDrive::kForce, "force"});
+
 }  // namespace
+
+std::string_view to_string(TribometerDrive drive) { return kDrives.name(drive); }
+TribometerDrive parse_tribometer_drive(std::string_view text) {
+  return kDrives.parse(text, "experiment.drive");
+}
 
 void TribometerDefinition::validate() const {
   if (!(normal_force > 0.0 && std::isfinite(normal_force)))
     throw InvalidInput(
         fmt::format("experiment.normal_force = {}; expected a finite force > 0 N", normal_force));
-  if (!(pull_displacement > 0.0 && std::isfinite(pull_displacement)))
+  if (drive == TribometerDrive::kDisplacement &&
+      !(pull_displacement > 0.0 && std::isfinite(pull_displacement)))
     throw InvalidInput(
-        fmt::format("experiment.pull_displacement = {}; expected a finite displacement > 0 m",
+        fmt::format("experiment.pull_displacement = {}; expected a finite displacement > 0 m "
+                    "(drive = \"displacement\")",
                     pull_displacement));
+  if (drive == TribometerDrive::kForce && !(max_force_ratio > 0.0 && std::isfinite(max_force_ratio)))
+    throw InvalidInput(fmt::format(
+        "experiment.max_force_ratio = {}; expected a finite ratio Q_max/P > 0 (drive = \"force\"; "
+        "above the law's largest coefficient to reach sliding in every direction)",
+        max_force_ratio));
+  if (drive == TribometerDrive::kForce && !(onset_tolerance > 0.0 && onset_tolerance <= 1e-2))
+    throw InvalidInput(fmt::format(
+        "experiment.onset_tolerance = {}; expected a relative bracket width in (0, 0.01]", onset_tolerance));
   if (angles_degrees.empty())
     throw InvalidInput("experiment.angles_degrees is empty; expected at least one pull direction");
   for (std::size_t i = 0; i < angles_degrees.size(); ++i)
@@ -43,6 +62,10 @@ void TribometerDefinition::validate() const {
 }
 
 std::string Tribometer::Summary::brief_report() const {
+  if (std::isnan(press_displacement))  // the force drive: no platen
+    return fmt::format("tribometer: {} ({}); {} angles, {} contact solves on {} factorization{}, {:.3f} s",
+                       to_string(status), message, angles.size(), contact_solves, factorizations,
+                       factorizations == 1 ? "" : "s", time_seconds);
   return fmt::format(
       "tribometer: {} ({}); press δ = {:.6e} m (at most {} secant steps per load), {} angles, {} "
       "contact solves on "
@@ -63,6 +86,7 @@ Tribometer::Tribometer(BodyDefinition body, TribometerDefinition experiment)
 }
 
 Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
+  if (experiment_.drive == TribometerDrive::kForce) return run_force_ramp(on_angle);
   const auto start = std::chrono::steady_clock::now();
   Summary summary;
   // The platen: every component of the top face prescribed (the same DOFs in every step).

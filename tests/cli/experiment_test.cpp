@@ -5,7 +5,9 @@
 // the field.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <fstream>
 #include <string>
 
@@ -155,6 +157,51 @@ TEST(CliExperiment, BadProgramsAndExperimentsExitTwoNamingTheField) {
   const RunResult r = run("experiment " + c.string() + " -o " + (dir / "out").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("experiment.normal_force"), std::string::npos) << r.output;
+}
+
+// drive = "force": the block floats, pulled by a top shear ramped until no equilibrium exists;
+// a polygon law (the floating solver's equilibria reach its capacity closely, docs/experiments.md).
+std::string force_drive_case(const std::string& drive_keys) {
+  std::string text = block_case("");
+  text.replace(text.find("[experiment]"), std::string::npos,
+               "[experiment]\n" + drive_keys + "normal_force = 1.0e4\nangles_degrees = [0]\nramp_steps = 4\n");
+  const std::string disc = "kind = \"disc_exact\"\nmu = 0.3";
+  text.replace(text.find(disc), disc.size(), "kind = \"isotropic\"\nmu = 0.3\nn = 8");
+  return text;
+}
+
+TEST(CliExperiment, ForceDriveReportsTheOnsetAtTheCapacity) {
+  const fs::path dir = fresh_directory("experiment_force");
+  const fs::path c =
+      write_case(dir, force_drive_case("drive = \"force\"\nmax_force_ratio = 0.4\nonset_tolerance = 1e-4\n"));
+  const RunResult r = run("experiment " + c.string() + " -o " + (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("no static equilibrium beyond Q"), std::string::npos) << r.output;
+  const auto json = frictopt::io::parse_json(read_text(dir / "out" / "summary.json"));
+  EXPECT_EQ(json.at("drive").as_string(), "force");
+  for (const auto& a : json.at("angles").as_array()) {
+    ASSERT_TRUE(a.at("gross_sliding").as_bool());
+    // θ = 0 on the 8-gon (vertices at ±22.5°): μ(0°) = 0.3·cos 22.5°, an edge midpoint.
+    const double capacity = 0.3 * std::cos(std::numbers::pi / 8.0) * 1e4;
+    EXPECT_LE(a.at("onset_force").as_number(), capacity * (1.0 + 1e-12));
+    EXPECT_NEAR(a.at("onset_force").as_number(), capacity, 1e-3 * capacity);
+  }
+}
+
+TEST(CliExperiment, BadForceDriveExitsTwoNamingTheField) {
+  const fs::path dir = fresh_directory("experiment_force_bad");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"drive = \"torque\"\nmax_force_ratio = 0.4\n", "experiment.drive"},
+      {"drive = \"force\"\n", "max_force_ratio"},
+      {"drive = \"force\"\nmax_force_ratio = -1.0\n", "experiment.max_force_ratio"},
+      {"drive = \"force\"\nmax_force_ratio = 0.4\nonset_tolerance = 0.5\n", "experiment.onset_tolerance"},
+  };
+  for (const auto& [keys, expected] : cases) {
+    const fs::path c = write_case(dir, force_drive_case(keys));
+    const RunResult r = run("experiment " + c.string() + " -o " + (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << expected << " not in: " << r.output;
+  }
 }
 
 // A floating block: no [[dirichlet]]; pressed by a top pressure and pulled by a top shear.

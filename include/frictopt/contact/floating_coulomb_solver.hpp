@@ -31,14 +31,16 @@ class FloatingCoulombSolver {
     /// moments relative to the loads). In (0, 1).
     double equality_tolerance = 1e-10;
     /// Cap on augmented-Lagrangian iterations. >= 1.
-    int max_outer_iterations = 60;
+    int max_outer_iterations = 200;
     /// ρ grows by this factor when the residual did not fall enough. > 1.
     double penalty_growth = 10.0;
     /// "Enough": below this fraction of the last residual. In (0, 1).
     double required_decrease = 0.25;
-    /// No equilibrium is declared when ρ exceeds this multiple of its start (the residual has
-    /// stopped responding to the penalty). > 1.
-    double max_penalty_ratio = 1e10;
+    /// ρ grows up to this multiple of its start, then stays (a larger ρ makes the inner QP
+    /// ill-conditioned). > 1. No equilibrium is declared when the residual stalls (less than
+    /// 1 % decrease in 5 consecutive iterations, at the finest inner tolerance) above 10⁴ ×
+    /// equality_tolerance; a stall below it is accepted as converged (the accuracy floor).
+    double max_penalty_ratio = 10.0;
     CoulombSolver::Options coulomb;  ///< the inner fixed point
     void validate() const;           ///< throws InvalidInput naming the field
   };

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "frictopt/core/status.hpp"
@@ -21,19 +22,41 @@
 
 namespace frictopt::study {
 
+/// How the tribometer pulls (docs/experiments.md §4).
+enum class TribometerDrive {
+  /// A rigid platen glued to the top face is dragged by a ramped displacement; the measured
+  /// force is the platen's reaction. Reaches steady sliding (the law read in sliding).
+  kDisplacement,
+  /// The specimen floats (no Dirichlet condition): the top face carries the normal force P and a
+  /// ramped tangential force Q as uniform tractions; contact and friction alone hold it. The
+  /// onset of gross sliding is the largest Q with a static equilibrium, bracketed by the ramp
+  /// and refined by bisection (issue 12 item 4: "pulls it with a tangential force").
+  kForce
+};
+/// "displacement", "force".
+std::string_view to_string(TribometerDrive drive);
+/// Inverse of to_string; throws InvalidInput listing the accepted spellings.
+TribometerDrive parse_tribometer_drive(std::string_view text);
+
 /// [experiment] of a case.
 struct TribometerDefinition {
-  double normal_force = 0.0;                ///< P [N] pressed by the platen; > 0
-  double pull_displacement = 0.0;           ///< final tangential platen displacement [m]; > 0
+  TribometerDrive drive = TribometerDrive::kDisplacement;
+  double normal_force = 0.0;                ///< P [N] pressed by the platen (or the top traction); > 0
+  double pull_displacement = 0.0;           ///< kDisplacement: final tangential platen displacement [m]; > 0
+  /// kForce: the ramp's final tangential force as a multiple of P (Q_max = ratio·P); > 0. Set it
+  /// above the law's largest coefficient to reach gross sliding in every direction.
+  double max_force_ratio = 0.0;
   std::vector<double> angles_degrees{0.0};  ///< pull directions θ in the (x1, x2) plane
-  int ramp_steps = 20;                      ///< ramp increments from 0 to pull_displacement; >= 1
+  int ramp_steps = 20;                      ///< ramp increments from 0 to the final pull; >= 1
+  /// kForce: the bisection on the onset force stops at this relative bracket width (0, 1e-2].
+  double onset_tolerance = 1e-6;
   /// Throws InvalidInput naming "experiment.<field>".
   void validate() const;
 };
 
 /// One point of the ramp at one angle.
 struct TribometerRampPoint {
-  double pull = 0.0;                                           ///< platen displacement [m]
+  double pull = 0.0;  ///< kDisplacement: platen displacement [m]; kForce: pull force Q [N]
   double normal_force = 0.0;                                   ///< P [N]
   Eigen::Vector2d tangential_force = Eigen::Vector2d::Zero();  ///< T on the specimen [N]
   double stick_fraction = 0.0;                                 ///< stick area / contact area
@@ -50,11 +73,18 @@ struct TribometerAngleResult {
   double angle_degrees = 0.0;  ///< the platen's pull direction θ
   std::vector<TribometerRampPoint> ramp;
   bool gross_sliding = false;        ///< some ramp step has no stick node
-  int onset_step = -1;               ///< first ramp index (0-based) without stick nodes
-  double onset_pull = kNaN;          ///< platen displacement at onset [m]
-  double onset_force = kNaN;         ///< |T| at onset [N]
+  /// kDisplacement: first ramp index (0-based) without stick nodes. kForce: the first ramp
+  /// index without a static equilibrium (the onset lies between it and the previous one).
+  int onset_step = -1;
+  double onset_pull = kNaN;          ///< kDisplacement: platen displacement at onset [m]; kForce: NaN
+  /// |T| at onset [N]. kForce: the largest pull force with a static equilibrium, to the relative
+  /// bracket width onset_tolerance (bisection; every trial from the last ramp equilibrium).
+  double onset_force = kNaN;
   double onset_normal_force = kNaN;  ///< P at onset [N]
-  bool steady_sliding = false;  ///< gross sliding in the last two ramp steps (sliding fields valid)
+  /// kDisplacement: gross sliding in the last two ramp steps (sliding fields valid, at the last
+  /// step). kForce: the limit equilibrium at onset_force was found (sliding fields there: the
+  /// state in which every contact node is about to slide).
+  bool steady_sliding = false;
   double sliding_force = kNaN;  ///< |T| at the last ramp step [N]
   double sliding_normal_force = kNaN;  ///< P there [N]
   double force_angle_degrees =
@@ -91,6 +121,9 @@ class Tribometer {
   [[nodiscard]] Summary run(const AngleCallback& on_angle = {});
 
  private:
+  /// TribometerDrive::kForce (tribometer_force_ramp.cpp).
+  [[nodiscard]] Summary run_force_ramp(const AngleCallback& on_angle);
+
   BodyDefinition body_;
   TribometerDefinition experiment_;
 };
