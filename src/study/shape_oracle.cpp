@@ -170,6 +170,12 @@ const sensitivity::IndexSets& ShapeOracle::case_index_sets(const Eigen::Ref<cons
   return *sets;
 }
 
+const BodyState& ShapeOracle::case_state(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k) {
+  FRICTOPT_ASSERT(cases_ && k >= 0 && k < cases_->size(), "case_state: a load case of this oracle");
+  solve_state(alpha);
+  return *case_states_[static_cast<std::size_t>(k)];
+}
+
 sensitivity::CostPartials ShapeOracle::case_partials(int k) const {
   const BodyState& s = *case_states_[static_cast<std::size_t>(k)];
   const cost::CostInput input{body_.elasticity(), *body_.contact_boundary(), s.alpha, s.positions, s.displacement,

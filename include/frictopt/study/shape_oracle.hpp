@@ -89,6 +89,8 @@ class ShapeOracle final : public optim::Oracle {
   /// Load cases: the index sets of case k at α and its 𝕃.
   sensitivity::PieceEnumeration case_pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k, int cap = 256);
   const sensitivity::IndexSets& case_index_sets(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
+  /// Load cases: case k's state at α (solved now if α is not the last solved design).
+  const BodyState& case_state(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
   /// Load cases: makes case k's state at α the last_state() (and the one pieces(), subgradients()
   /// and state_derivative() read), e.g. for certify's (MF1′) of each active case.
   void select_case(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
