@@ -201,6 +201,32 @@ TEST(LoadCases, AtATieTheOneSidedDerivativesAreTheMaxOfTheCases) {
   EXPECT_LE((c.subgradients.col(1) - xi_c).norm(), 1e-8 * xi_c.norm());
 }
 
+TEST(LoadCases, WeightedCertificateSumsOnePiecePerCase) {
+  // At a point strict in every case, 𝕃_k = {default}: the generators of Σ_k w_k ∂J_k are the one
+  // sum Σ_k w_k ξ_k, which is the oracle's ξ; every case is active.
+  ElasticBody body(two_load_body());
+  ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWeighted, {load_case("a", {1.0, 0.0}, 0.5),
+                                                                          load_case("b", {1.0, 1.0}, 1.0),
+                                                                          load_case("zero", {0.8, 2.0}, 0.0)}));
+  const Eigen::VectorXd alpha = body.definition().initial_design;
+  const Evaluation e = oracle.evaluate_design(alpha);
+  ASSERT_TRUE(e.ok) << e.message;
+  const Certificate c = certify(oracle, alpha);
+  ASSERT_EQ(c.status, Status::kConverged) << c.message;
+  std::printf("%s", c.report().c_str());
+  ASSERT_EQ(c.load_cases.size(), 3u);
+  EXPECT_TRUE(c.load_cases[0].active && c.load_cases[1].active);
+  EXPECT_FALSE(c.load_cases[2].active) << "a zero weight drops the case";
+  EXPECT_EQ(c.combine, "weighted");
+  ASSERT_EQ(c.subgradients.cols(), 1);
+  EXPECT_LE((c.subgradients.col(0) - e.subgradient).norm(), 1e-10 * e.subgradient.norm());
+  EXPECT_DOUBLE_EQ(e.value, 0.5 * e.case_values[0] + e.case_values[1]);
+  // (MF1′) per active case at its own state: a strict point, full row rank.
+  EXPECT_TRUE(c.load_cases[0].mf1.computed && c.load_cases[0].mf1.full_row_rank);
+  EXPECT_TRUE(c.load_cases[1].mf1.computed && c.load_cases[1].mf1.full_row_rank);
+  EXPECT_FALSE(c.load_cases[2].mf1.computed);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Bad input (item 6): each an InvalidInput naming the field.
 
