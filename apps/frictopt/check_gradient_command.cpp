@@ -39,6 +39,11 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
   const study::GradientCheck check = study::check_gradient(oracle, alpha, relative_step);
   const study::Evaluation& e = check.evaluation;
   fmt::print("{}: cost {}, Θ = {:.10e}\n", case_path.string(), oracle.cost().name(), e.value);
+  if (const study::LoadCases* cases = oracle.load_cases())  // issue 13: every case's J_k
+    for (std::size_t k = 0; k < e.case_values.size(); ++k)
+      fmt::print("load case {:<16} J = {:.10e}  w J = {:.10e}{}\n", (*cases)[static_cast<int>(k)].name, e.case_values[k],
+                 (*cases)[static_cast<int>(k)].weight * e.case_values[k],
+                 static_cast<int>(k) == e.selected_case ? "  (selected)" : "");
   fmt::print("{}\n{}\n", e.contact.brief_report(), e.adjoint.brief_report());
   if (!e.ok) {
     fmt::print("error: {}\n", e.message);

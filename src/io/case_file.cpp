@@ -25,6 +25,7 @@
 #include "frictopt/mesh/graded_coordinates.hpp"
 #include "frictopt/study/shape_optimization.hpp"
 #include "case_solver_section.hpp"
+#include "case_load_case_section.hpp"
 #include "case_program_section.hpp"
 #include "case_mesh_section.hpp"
 #include "text_input.hpp"
@@ -35,10 +36,6 @@ namespace {
 
 using detail::describe;
 using detail::TableReader;
-
-// Tables a later case-format version will define; rejecting them with their own message
-// tells the user the feature is planned, not misspelt.
-constexpr std::string_view kReservedTables[] = {"study"};
 
 // Default polygon size for the 3D isotropic and elliptic laws: the thesis' 3D runs use
 // n-gons, and n = 16 keeps the polygon within 2% of the disc (1 − cos(π/16) ≈ 0.019).
@@ -889,19 +886,13 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     throw InvalidInput(fmt::format("{}:{}:{}: TOML syntax error: {}", origin, e.source().begin.line,
                                    e.source().begin.column, e.description()));
   }
-  for (std::string_view reserved : kReservedTables)
-    if (const toml::node* n = root.get(reserved))
-      throw InvalidInput(
-          detail::located(origin, n,
-                          fmt::format("[{}] is reserved for a later version of the case format and "
-                                      "accepts nothing yet; remove it",
-                                      reserved)));
-
   const TableReader top(root, "", origin,
                         {"geometry", "mesh", "material", "load", "dirichlet", "design", "contact",
                          "solver", "cost", "optimization", "output", "identification",
                          // issue 12's sections (case_program_section.hpp)
-                         "force", "constraint", "program", "experiment"});
+                         "force", "constraint", "program", "experiment",
+                         // issue 13's load cases (case_load_case_section.hpp)
+                         "load_case", "study"});
   const auto table = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
     const toml::table* t = top.optional_table(key);
     if (t == nullptr) top.fail_missing(key, fmt::format("a table [{}]", key));
@@ -996,6 +987,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
       throw InvalidInput(fmt::format("{}: [cost] needs a [contact] table: every cost reads the contact state", origin));
     c.cost = read_cost(TableReader(*cost, "cost", origin, {"kind", "target", "exponent", "smoothing"}), dim);
   }
+  detail::read_load_case_sections(top, origin, c);
   c.optimization = study::default_study_options(body);
   if (const toml::table* optimization = top.optional_table("optimization"))
     read_optimization(TableReader(*optimization, "optimization", origin,

@@ -310,6 +310,117 @@ MordukhovichReport mordukhovich_report(const Certificate& c, const Eigen::Vector
   return out;
 }
 
+// Load cases (issue 13; docs/theory/load-cases.md): the generators of the composite's Clarke
+// subdifferential. "worst": Θ = max_k w_k J_k, ∂Θ(α) ⊂ conv ∪_{k active} w_k ∂J_k(α), so the
+// columns are the union of the active cases' w_k ξ_{k,i}. "weighted": ∂Θ ⊂ Σ_k w_k ∂J_k, and
+// Σ_k conv G_k = conv{Σ_k g_k : g_k ∈ G_k}, so the columns are the sums over one piece per case.
+// Returns false (with c.status set) when a piece's adjoint fails.
+bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const std::vector<double>& values,
+                          double theta, int selected, const CertifyOptions& options, Certificate& c) {
+  const LoadCases& cases = *oracle.load_cases();
+  const bool worst = cases.definition().combine == CaseCombination::kWorst;
+  c.combine = std::string(to_string(cases.definition().combine));
+  const auto n_cases = static_cast<std::size_t>(cases.size());
+  std::vector<std::vector<Eigen::VectorXd>> generators(n_cases);
+  std::vector<std::vector<std::string>> summaries(n_cases);
+  std::vector<std::size_t> default_index(n_cases, 0);
+  for (std::size_t k = 0; k < n_cases; ++k) {
+    const int kk = static_cast<int>(k);
+    LoadCaseCertificate lc;
+    lc.name = cases[kk].name;
+    const double w = cases[kk].weight;
+    lc.value = values[k];
+    lc.weighted_value = w * values[k];
+    lc.active = w > 0.0 && (!worst || lc.weighted_value >= theta - options.case_active_tolerance * std::abs(theta));
+    lc.index_sets = oracle.case_index_sets(alpha, kk);
+    if (lc.active) {
+      const sensitivity::PieceEnumeration enumeration = oracle.case_pieces(alpha, kk, options.cap);
+      lc.cardinality = enumeration.cardinality;
+      lc.sampled = enumeration.sampled;
+      const auto results = oracle.case_subgradients(alpha, kk, enumeration.pieces);
+      const sensitivity::Piece default_piece = sensitivity::default_piece(lc.index_sets);
+      for (std::size_t i = 0; i < results.size(); ++i) {
+        if (results[i].summary.status != Status::kConverged || !results[i].subgradient.allFinite()) {
+          c.status = Status::kNumericalFailure;
+          c.message = fmt::format("load case \"{}\", piece {} ({}): {}", lc.name, i, enumeration.pieces[i].summary(),
+                                  results[i].summary.brief_report());
+          return false;
+        }
+        generators[k].push_back(w * results[i].subgradient);
+        summaries[k].push_back(enumeration.pieces[i].summary());
+        if (enumeration.pieces[i].nodes == default_piece.nodes) default_index[k] = i;
+      }
+      lc.num_pieces = static_cast<int>(results.size());
+    }
+    c.load_cases.push_back(std::move(lc));
+  }
+  c.index_sets = c.load_cases[static_cast<std::size_t>(selected)].index_sets;
+  std::vector<Eigen::VectorXd> columns;
+  c.sampled = false;
+  if (worst) {
+    c.cardinality = 0.0;
+    for (std::size_t k = 0; k < n_cases; ++k) {
+      if (!c.load_cases[k].active) continue;
+      if (static_cast<int>(k) == selected) c.default_piece_column = static_cast<int>(columns.size() + default_index[k]);
+      c.cardinality += c.load_cases[k].cardinality;
+      c.sampled |= c.load_cases[k].sampled;
+      for (std::size_t i = 0; i < generators[k].size(); ++i) {
+        columns.push_back(generators[k][i]);
+        c.piece_summaries.push_back(c.load_cases[k].name + ": " + summaries[k][i]);
+      }
+    }
+  } else {
+    std::vector<std::size_t> active;
+    double combinations = 1.0;
+    c.cardinality = 1.0;
+    for (std::size_t k = 0; k < n_cases; ++k)
+      if (c.load_cases[k].active) {
+        active.push_back(k);
+        combinations *= static_cast<double>(generators[k].size());
+        c.cardinality *= c.load_cases[k].cardinality;
+        c.sampled |= c.load_cases[k].sampled;
+      }
+    const auto add = [&](const std::vector<std::size_t>& choice) {
+      Eigen::VectorXd sum = Eigen::VectorXd::Zero(alpha.size());
+      std::string text;
+      for (std::size_t a = 0; a < active.size(); ++a) {
+        sum += generators[active[a]][choice[a]];
+        text += (a ? " | " : "") + c.load_cases[active[a]].name + ": " + summaries[active[a]][choice[a]];
+      }
+      columns.push_back(std::move(sum));
+      c.piece_summaries.push_back(std::move(text));
+    };
+    std::vector<std::size_t> defaults;
+    for (std::size_t k : active) defaults.push_back(default_index[k]);
+    c.default_piece_column = 0;
+    add(defaults);  // column 0: the default piece of every case, the ξ the optimizer saw
+    if (combinations <= static_cast<double>(options.cap)) {
+      // Every combination (mixed radix over the active cases), the all-default one already in.
+      std::vector<std::size_t> choice(active.size(), 0);
+      for (;;) {
+        if (choice != defaults) add(choice);
+        std::size_t a = 0;
+        while (a < active.size() && ++choice[a] == generators[active[a]].size()) choice[a++] = 0;
+        if (a == active.size()) break;
+      }
+    } else {
+      // Too many: the default combination varied in one case at a time (a sample of the sums).
+      c.sampled = true;
+      for (std::size_t a = 0; a < active.size(); ++a)
+        for (std::size_t i = 0; i < generators[active[a]].size(); ++i) {
+          if (i == defaults[a]) continue;
+          std::vector<std::size_t> choice = defaults;
+          choice[a] = i;
+          add(choice);
+        }
+    }
+  }
+  c.subgradients.resize(alpha.size(), static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t j = 0; j < columns.size(); ++j) c.subgradients.col(static_cast<Eigen::Index>(j)) = columns[j];
+  c.scale = c.subgradients.colwise().norm().maxCoeff();
+  return true;
+}
+
 }  // namespace
 
 void CertifyOptions::validate() const {
@@ -325,12 +436,21 @@ void CertifyOptions::validate() const {
         fmt::format("CertifyOptions::max_extreme_point_tests = {}; expected >= 1", max_extreme_point_tests));
   if (!(stationary_tolerance > 0.0))
     throw InvalidInput(fmt::format("CertifyOptions::stationary_tolerance = {}; expected > 0", stationary_tolerance));
+  if (!(case_active_tolerance >= 0.0))
+    throw InvalidInput(fmt::format("CertifyOptions::case_active_tolerance = {}; expected >= 0", case_active_tolerance));
 }
 
 std::string Certificate::report() const {
   std::string s;
   if (status != Status::kConverged) return fmt::format("certificate: {}: {}\n", to_string(status), message);
   s += fmt::format("Theta(alpha) = {:.6e}\n", value);
+  if (!load_cases.empty()) {
+    s += fmt::format("load cases (combine = {}): case, J_k, w_k J_k, active, index sets, |L_k|\n", combine);
+    for (const LoadCaseCertificate& lc : load_cases)
+      s += fmt::format("  {:<16} {:.6e} {:.6e} {:<6} {} {}\n", lc.name, lc.value, lc.weighted_value,
+                       lc.active ? "active" : "-", lc.index_sets.summary(),
+                       lc.active ? fmt::format("|L_k| = {:.0f}{}", lc.cardinality, lc.sampled ? " (sampled)" : "") : "-");
+  }
   s += fmt::format("index sets: {} ({} weak nodes)\n", index_sets.summary(), index_sets.num_weak_nodes());
   s += fmt::format("|L| = {:.0f}{}; {} subgradients computed, {} distinct; scale max_i |xi_i| = {:.6e}\n", cardinality,
                    sampled ? " (sampled: > cap)" : "", subgradients.cols(), clarke.num_distinct_subgradients, scale);
@@ -380,6 +500,11 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
     c.message = e.message;
     return c;
   }
+  const std::vector<double> case_values = e.case_values;  // copies: `e` lives in the oracle's cache
+  const int selected_case = e.selected_case;
+  if (oracle.load_cases()) {
+    if (!load_case_generators(oracle, alpha, case_values, c.value, selected_case, options, c)) return c;
+  } else {
   // pieces() re-solves if the cache answered without touching the state: from here on the
   // oracle's last state (and the body's factorization) is the one at α.
   const sensitivity::PieceEnumeration enumeration = oracle.pieces(alpha, options.cap);
@@ -401,6 +526,7 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
     if (enumeration.pieces[i].nodes == default_piece.nodes) c.default_piece_column = static_cast<int>(i);
   }
   c.scale = c.subgradients.colwise().norm().maxCoeff();
+  }
 
   const optim::StationarityOptions qp{options.active_tolerance};
   c.clarke = scaled_certificate(c.subgradients, alpha, constraints, qp, c.scale);
@@ -422,6 +548,18 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   if (options.clarke_only) {
     c.mf1.not_computed_reason = "not asked for (Clarke distance only)";
     c.mordukhovich.message = "not asked for (Clarke distance only)";
+  } else if (oracle.load_cases()) {
+    // (MF1′) per active case: each case's tight system at its own state (same A(α) and M).
+    for (std::size_t k = 0; k < c.load_cases.size(); ++k) {
+      if (!c.load_cases[k].active) continue;
+      oracle.select_case(alpha, static_cast<int>(k));
+      c.load_cases[k].mf1 = mf1_report(oracle, c.load_cases[k].index_sets, options);
+    }
+    oracle.select_case(alpha, selected_case);
+    c.mf1 = c.load_cases[static_cast<std::size_t>(selected_case)].mf1;
+    c.mordukhovich.message =
+        "not computed for load cases: the extreme points of the union of the cases' generators are not known to lie "
+        "in the Mordukhovich subdifferential of the combination";
   } else {
     c.mf1 = mf1_report(oracle, c.index_sets, options);
     c.mordukhovich = mordukhovich_report(c, alpha, constraints, options);

@@ -17,6 +17,12 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 std::vector<double> key_of(const Eigen::Ref<const Eigen::VectorXd>& alpha) { return {alpha.data(), alpha.data() + alpha.size()}; }
+// ψ on every DOF, zero at the prescribed ones (DofMap::expand would insert prescribed values).
+Eigen::VectorXd adjoint_on_all_dofs(const fem::DofMap& dofs, const Eigen::VectorXd& psi_u) {
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(dofs.num_dofs());
+  for (int k = 0; k < dofs.num_free(); ++k) full(dofs.free_dofs()[static_cast<std::size_t>(k)]) = psi_u(k);
+  return full;
+}
 // Bounded memory: the bundle method revisits only the last few designs.
 constexpr std::size_t kCacheSize = 512;
 }  // namespace
@@ -74,12 +80,35 @@ ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : 
   const bool needs_initial_state =
       (definition.kind == cost::CostKind::kTargetPressure && std::isnan(definition.target_pressure)) ||
       (definition.kind == cost::CostKind::kTractionUniformity && definition.target_traction_initial_mean);
+  if (definition.load_cases) {
+    // The compliance reads the work of the case file's tractions (cost::CostInput::fem), not a
+    // case's: with other loads per case its value would be wrong.
+    if (definition.kind == cost::CostKind::kCompliance)
+      throw InvalidInput("cost.kind = \"compliance\" with [[load_case]] tables: the compliance reads the case file's own "
+                         "loads; expected a contact cost (target_pressure, normal_force_power, pressure_norm, total_slip, "
+                         "traction_uniformity)");
+    cases_ = std::make_unique<LoadCases>(body_, *definition.load_cases);
+    const auto k_cases = static_cast<std::size_t>(cases_->size());
+    case_states_.resize(k_cases);
+    case_warm_starts_.resize(k_cases);
+    case_sets_.resize(k_cases);
+    // An initial_mean target is each case's own: the mean pressure (traction) of that load.
+    if (needs_initial_state) solve_state(body_.definition().initial_design);
+    for (std::size_t k = 0; k < k_cases; ++k) {
+      if (needs_initial_state && case_states_[k]->summary.status != Status::kConverged)
+        throw NumericalFailure(fmt::format("load case \"{}\": the state at the initial design did not solve: {}",
+                                           (*cases_)[static_cast<int>(k)].name, case_states_[k]->summary.message));
+      case_costs_.push_back(make_cost(definition, body_, needs_initial_state ? case_states_[k].get() : nullptr));
+    }
+    return;
+  }
   if (needs_initial_state) solve_state(body_.definition().initial_design);
   cost_ = make_cost(definition, body_, needs_initial_state ? state_.get() : nullptr);
 }
 
 void ShapeOracle::solve_state(const Eigen::VectorXd& alpha) {
   if (state_ && state_alpha_.size() == alpha.size() && state_alpha_ == alpha) return;
+  if (cases_) return solve_cases(alpha);
   if (state_ && state_->contact) {
     // The previous state stays readable for output; its Delassus operator (up to m² doubles)
     // is released — the sensitivity needs it only for the last design, with its factorization.
@@ -92,6 +121,149 @@ void ShapeOracle::solve_state(const Eigen::VectorXd& alpha) {
   recent_.push_front(state_);
   if (recent_.size() > kRecentStates) recent_.pop_back();
   ++state_solves_;
+}
+
+void ShapeOracle::solve_cases(const Eigen::VectorXd& alpha) {
+  for (const auto& s : case_states_)
+    if (s && s->contact) {
+      // As solve_state: earlier states stay readable, their Delassus operator is released.
+      s->contact->delassus.reset();
+      s->contact->delassus_matrix.reset();
+    }
+  // The K cases as steps at one α from the unloaded body: the first factorizes A(α) and builds
+  // M, the others reuse both (ElasticBody::solve_step) — K contact solves, one factorization.
+  const std::vector<StepLoads> loads = cases_->step_loads(body_.mesh().positions(alpha));
+  last_factorizations_ = 0;
+  for (int k = 0; k < cases_->size(); ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    // Each case from its own last converged contact state (a case's neighbour's is a poor start).
+    body_.set_warm_start(case_warm_starts_[i]);
+    auto s = std::make_shared<BodyState>(body_.solve_step(alpha, loads[i], fmt::format("load case \"{}\"", (*cases_)[k].name)));
+    if (s->summary.factorization_seconds > 0.0) ++last_factorizations_;
+    if (s->summary.status == Status::kConverged && s->contact) case_warm_starts_[i] = s->contact->state;
+    case_states_[i] = std::move(s);
+    case_sets_[i].reset();
+  }
+  state_alpha_ = alpha;
+  selected_ = 0;
+  state_ = case_states_.front();
+  delassus_ = state_->contact ? state_->contact->delassus : nullptr;  // the same M for every case
+  recent_.push_front(state_);
+  if (recent_.size() > kRecentStates) recent_.pop_back();
+  ++state_solves_;
+}
+
+void ShapeOracle::select_case(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k) {
+  FRICTOPT_ASSERT(cases_ && k >= 0 && k < cases_->size(), "select_case: a load case of this oracle");
+  solve_state(alpha);
+  selected_ = k;
+  state_ = case_states_[static_cast<std::size_t>(k)];
+  // Output at α (state(α)) shows the selected case.
+  if (!recent_.empty() && recent_.front()->alpha == state_->alpha) recent_.front() = state_;
+}
+
+const sensitivity::IndexSets& ShapeOracle::case_index_sets(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k) {
+  solve_state(alpha);
+  auto& sets = case_sets_[static_cast<std::size_t>(k)];
+  if (!sets) sets = sensitivity::classify(case_states_[static_cast<std::size_t>(k)]->contact->state,
+                                          body_.definition().contact->law);
+  return *sets;
+}
+
+const BodyState& ShapeOracle::case_state(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k) {
+  FRICTOPT_ASSERT(cases_ && k >= 0 && k < cases_->size(), "case_state: a load case of this oracle");
+  solve_state(alpha);
+  return *case_states_[static_cast<std::size_t>(k)];
+}
+
+sensitivity::CostPartials ShapeOracle::case_partials(int k) const {
+  const BodyState& s = *case_states_[static_cast<std::size_t>(k)];
+  const cost::CostInput input{body_.elasticity(), *body_.contact_boundary(), s.alpha, s.positions, s.displacement,
+                              s.contact->state, body_.contact_boundary()->tributary_areas()};
+  return case_costs_[static_cast<std::size_t>(k)]->evaluate(input);
+}
+
+sensitivity::AdjointSensitivity::Result ShapeOracle::case_subgradient(int k, const sensitivity::Piece& piece,
+                                                                      const sensitivity::CostPartials& j) {
+  const BodyState& s = *case_states_[static_cast<std::size_t>(k)];
+  const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
+                                                body_.definition().contact->law);
+  auto result = adjoint.subgradient(piece, delassus(), s.positions, s.displacement, s.contact->state, j);
+  if (result.summary.status == Status::kConverged)
+    result.subgradient += cases_->load_change_shape_derivative(k, s.positions, adjoint_on_all_dofs(body_.elasticity().dofs(), result.psi_u));
+  return result;
+}
+
+std::vector<sensitivity::AdjointSensitivity::Result> ShapeOracle::case_subgradients(
+    const Eigen::Ref<const Eigen::VectorXd>& alpha, int k, const std::vector<sensitivity::Piece>& pieces) {
+  solve_state(alpha);
+  const sensitivity::CostPartials j = case_partials(k);
+  std::vector<sensitivity::AdjointSensitivity::Result> out;
+  for (const sensitivity::Piece& piece : pieces) out.push_back(case_subgradient(k, piece, j));
+  return out;
+}
+
+sensitivity::PieceEnumeration ShapeOracle::case_pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k, int cap) {
+  return sensitivity::enumerate_pieces(case_index_sets(alpha, k), body_.definition().contact->law, cap);
+}
+
+void ShapeOracle::evaluate_cases(Evaluation& e, bool with_subgradient) {
+  const int n_cases = cases_->size();
+  e.factorizations = last_factorizations_;
+  for (int k = 0; k < n_cases; ++k) {
+    const BodyState& s = *case_states_[static_cast<std::size_t>(k)];
+    if (s.summary.status != Status::kConverged) {
+      e.state = s.summary;
+      e.contact = s.contact ? s.contact->summary : contact::CoulombSolver::Summary{};
+      e.message = fmt::format("load case \"{}\": state solve failed: {}", (*cases_)[k].name, s.summary.message);
+      return;
+    }
+  }
+  std::vector<sensitivity::CostPartials> j;
+  for (int k = 0; k < n_cases; ++k) {
+    j.push_back(case_partials(k));
+    e.case_values.push_back(j.back().value);
+  }
+  const CombinedValue combined = cases_->combine(e.case_values);
+  e.value = combined.value;
+  e.selected_case = combined.selected;
+  select_case(state_alpha_, combined.selected);
+  e.state = state_->summary;
+  e.contact = state_->contact->summary;
+  e.index_sets = case_index_sets(state_alpha_, combined.selected);
+  e.ok = true;
+  if (!with_subgradient) return;
+  const auto start = std::chrono::steady_clock::now();
+  // "worst": ξ = w_s ξ_s of the selected case s (a Clarke subgradient of the max, docs/theory/
+  // load-cases.md); "weighted": ξ = Σ_k w_k ξ_k. Each ξ_k of its case's default piece.
+  std::vector<int> used;
+  if (cases_->definition().combine == CaseCombination::kWorst) {
+    used.push_back(combined.selected);
+  } else {
+    for (int k = 0; k < n_cases; ++k)
+      if ((*cases_)[k].weight > 0.0) used.push_back(k);
+  }
+  for (int k : used) {
+    const auto result = case_subgradient(k, sensitivity::default_piece(case_index_sets(state_alpha_, k)),
+                                         j[static_cast<std::size_t>(k)]);
+    e.adjoint = result.summary;
+    if (result.summary.status != Status::kConverged) {
+      e.ok = false;
+      e.message = fmt::format("load case \"{}\": subgradient failed: {}", (*cases_)[k].name, result.summary.message);
+      e.subgradient.resize(0);
+      e.friction_gradient.resize(0);
+      break;
+    }
+    const double w = (*cases_)[k].weight;
+    if (e.subgradient.size() == 0) {
+      e.subgradient = w * result.subgradient;
+      e.friction_gradient = w * result.friction_gradient;
+    } else {
+      e.subgradient += w * result.subgradient;
+      e.friction_gradient += w * result.friction_gradient;
+    }
+  }
+  e.subgradient_seconds = seconds_since(start);
 }
 
 const BodyState& ShapeOracle::state(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
@@ -124,6 +296,10 @@ const Evaluation& ShapeOracle::evaluate_design(const Eigen::Ref<const Eigen::Vec
   auto start = std::chrono::steady_clock::now();
   solve_state(alpha);
   e.state_seconds = seconds_since(start);
+  if (cases_) {
+    evaluate_cases(e, with_subgradient);
+    return cache_[key_of(alpha)] = e;
+  }
   e.state = state_->summary;
   e.contact = state_->contact->summary;
   if (state_->summary.status != Status::kConverged) {
@@ -172,6 +348,7 @@ optim::OracleResult ShapeOracle::evaluate(const Eigen::Ref<const Eigen::VectorXd
 std::vector<sensitivity::AdjointSensitivity::Result> ShapeOracle::subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                                        const std::vector<sensitivity::Piece>& pieces) {
   solve_state(alpha);
+  if (cases_) return case_subgradients(alpha, selected_, pieces);
   const sensitivity::CostPartials j = partials();
   const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
                                                 body_.definition().contact->law);
@@ -196,6 +373,7 @@ sensitivity::AdjointSensitivity::StateDerivative ShapeOracle::state_derivative(
 
 sensitivity::PieceEnumeration ShapeOracle::pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int cap) {
   solve_state(alpha);
+  if (cases_) return case_pieces(alpha, selected_, cap);
   const auto sets = sensitivity::classify(state_->contact->state, body_.definition().contact->law);
   return sensitivity::enumerate_pieces(sets, body_.definition().contact->law, cap);
 }

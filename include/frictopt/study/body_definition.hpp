@@ -23,6 +23,7 @@
 #include "frictopt/mesh/mesh.hpp"
 #include "frictopt/shape/admissible_set.hpp"
 #include "frictopt/shape/bezier_shape.hpp"
+#include "frictopt/study/load_case_definition.hpp"
 
 namespace frictopt::study {
 
@@ -56,6 +57,9 @@ struct CostDefinition {
   /// kTractionUniformity: t̄ = the area-weighted mean traction at the initial design (fixed),
   /// so that J penalizes both an uneven traction and a smaller transmitted shear.
   bool target_traction_initial_mean = false;
+  /// [[load_case]] + [study] (issue 13): J on each of K load cases, combined into one Θ
+  /// (study/load_cases.hpp); absent: J on the case file's own loads.
+  std::optional<LoadCasesDefinition> load_cases;
 };
 
 /// Which engine solves the state problem (issue 14; docs/petsc-engine.md).

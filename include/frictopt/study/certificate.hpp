@@ -37,6 +37,10 @@ struct CertifyOptions {
   // check of study::optimize, which needs the distance alone (issue 16: a study run that says
   // "converged" must pass this certificate).
   bool clarke_only = false;
+  // Load cases, combine = "worst" (issue 13): case k is active when w_k J_k >= Θ −
+  // case_active_tolerance·|Θ|; the generators are those of every active case (docs/theory/
+  // load-cases.md: the ε-active reading, since an optimizer stops near, not at, a tie). >= 0.
+  double case_active_tolerance = 1e-3;
   void validate() const;  // throws InvalidInput naming field, value, expectation
 };
 
@@ -73,6 +77,20 @@ struct MordukhovichReport {
   bool stationary = false;             ///< δ_M ≤ stationary_tolerance·scale and (MF1′) full row rank
 };
 
+/// One load case in a certificate (issue 13): its value, whether it is active, its index sets
+/// and 𝕃, the columns of Certificate::subgradients it contributes, its (MF1′) report.
+struct LoadCaseCertificate {
+  std::string name;
+  double value = kNaN;           ///< J_k
+  double weighted_value = kNaN;  ///< w_k J_k
+  bool active = false;           ///< "worst": within case_active_tolerance of Θ; "weighted": w_k > 0
+  sensitivity::IndexSets index_sets;
+  double cardinality = kNaN;     ///< |𝕃_k| (active cases)
+  bool sampled = false;
+  int num_pieces = 0;            ///< ξ_{k,i} computed
+  Mf1Report mf1;                 ///< of this case's tight system (active cases, unless clarke_only)
+};
+
 /// The certificate at one design.
 struct Certificate {
   Status status = Status::kNotRun;
@@ -96,6 +114,11 @@ struct Certificate {
   bool clarke_stationary = false;                ///< δ ≤ stationary_tolerance·scale
   Mf1Report mf1;
   MordukhovichReport mordukhovich;
+  /// Load cases (issue 13; empty without): per case. `subgradients` then holds, for "worst", the
+  /// union over the active cases of w_k ξ_{k,i}; for "weighted", sums Σ_k w_k ξ_{k,i_k} (all
+  /// combinations up to `cap`, else the default pieces varied one case at a time: sampled).
+  std::vector<LoadCaseCertificate> load_cases;
+  std::string combine;  ///< "worst" or "weighted" (empty without load cases)
   double time_seconds = 0.0;
   /// A few lines for the CLI.
   [[nodiscard]] std::string report() const;

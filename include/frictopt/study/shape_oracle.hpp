@@ -17,6 +17,7 @@
 #include "frictopt/sensitivity/index_sets.hpp"
 #include "frictopt/sensitivity/piece.hpp"
 #include "frictopt/study/elastic_body.hpp"
+#include "frictopt/study/load_cases.hpp"
 
 namespace frictopt::study {
 
@@ -41,6 +42,12 @@ struct Evaluation {
   contact::CoulombSolver::Summary contact;
   double state_seconds = 0.0;
   double subgradient_seconds = 0.0;
+  /// Load cases (issue 13): J_k of every case (unweighted, in the cases' order); empty without.
+  std::vector<double> case_values;
+  /// Load cases: the case whose state `index_sets`, `state` and `contact` describe — for "worst"
+  /// the first case attaining the max, whose subgradient ξ is (LoadCases::combine); −1 without.
+  int selected_case = -1;
+  int factorizations = 0;  ///< numeric factorizations of A for this evaluation (1 with K cases)
 };
 
 /// Θ(α) and ξ ∈ ∂Θ(α) (or of the pseudodifferential, spec 03 §8) for a body with contact and a
@@ -70,11 +77,27 @@ class ShapeOracle final : public optim::Oracle {
   sensitivity::AdjointSensitivity::StateDerivative state_derivative(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                                                     const Eigen::Ref<const Eigen::VectorXd>& h,
                                                                     const sensitivity::Piece* piece = nullptr);
-  /// The index sets and 𝕃 at α.
+  /// The index sets and 𝕃 at α (with load cases: of the selected case).
   sensitivity::PieceEnumeration pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int cap = 256);
 
+  /// The load cases of the cost definition (null: the case file's own loads).
+  const LoadCases* load_cases() const { return cases_.get(); }
+  /// Load cases: ξ_i of J_k (case k's own cost, unweighted) for the given pieces of case k at α.
+  std::vector<sensitivity::AdjointSensitivity::Result> case_subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                                                                         int k,
+                                                                         const std::vector<sensitivity::Piece>& pieces);
+  /// Load cases: the index sets of case k at α and its 𝕃.
+  sensitivity::PieceEnumeration case_pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k, int cap = 256);
+  const sensitivity::IndexSets& case_index_sets(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
+  /// Load cases: case k's state at α (solved now if α is not the last solved design).
+  const BodyState& case_state(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
+  /// Load cases: makes case k's state at α the last_state() (and the one pieces(), subgradients()
+  /// and state_derivative() read), e.g. for certify's (MF1′) of each active case.
+  void select_case(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
+
   const ElasticBody& body() const { return body_; }
-  const cost::CostFunctional& cost() const { return *cost_; }
+  /// The cost (with load cases: that of case 0; each case has its own when a target is initial_mean).
+  const cost::CostFunctional& cost() const { return cost_ ? *cost_ : *case_costs_.front(); }
   /// The state of the last solved design.
   const BodyState& last_state() const { return *state_; }
   /// The state at α for output (VTK, reports): one of the last kRecentStates solved states when
@@ -85,7 +108,12 @@ class ShapeOracle final : public optim::Oracle {
 
  private:
   void solve_state(const Eigen::VectorXd& alpha);
+  void solve_cases(const Eigen::VectorXd& alpha);
   sensitivity::CostPartials partials() const;
+  sensitivity::CostPartials case_partials(int k) const;
+  sensitivity::AdjointSensitivity::Result case_subgradient(int k, const sensitivity::Piece& piece,
+                                                           const sensitivity::CostPartials& j);
+  void evaluate_cases(Evaluation& e, bool with_subgradient);
   const contact::DelassusMatrix& delassus();
 
   ElasticBody& body_;
@@ -97,6 +125,15 @@ class ShapeOracle final : public optim::Oracle {
   std::shared_ptr<const contact::DelassusMatrix> delassus_;
   std::map<std::vector<double>, Evaluation> cache_;
   int state_solves_ = 0;
+  // Load cases (issue 13): their loads, one cost per case, the states at state_alpha_ (state_ is
+  // the selected one), each case's last converged contact state (its own warm start).
+  std::unique_ptr<LoadCases> cases_;
+  std::vector<std::unique_ptr<cost::CostFunctional>> case_costs_;
+  std::vector<std::shared_ptr<BodyState>> case_states_;
+  std::vector<std::optional<contact::ContactState>> case_warm_starts_;
+  std::vector<std::optional<sensitivity::IndexSets>> case_sets_;
+  int selected_ = 0;
+  int last_factorizations_ = 0;
 };
 
 }  // namespace frictopt::study

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// Load cases of a study (issue 13, items 1 and 6; docs/theory/load-cases.md): the same body at
+// the same design under K load sets, the cost J evaluated on each, combined into one objective
+// Θ(α) = max_k w_k J_k(α) ("worst") or Σ_k w_k J_k(α) ("weighted"). Plain definitions only (the
+// case file's [[load_case]] tables and [study] combine); study/load_cases.hpp solves them.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "frictopt/core/enum_table.hpp"
+
+namespace frictopt::study {
+
+/// How the cases' costs J_k combine into the one objective Θ the optimizer sees.
+enum class CaseCombination {
+  kWorst,    ///< Θ = max_k w_k J_k: the design must be good under every load (nonsmooth at ties)
+  kWeighted  ///< Θ = Σ_k w_k J_k: an average service life over the loads
+};
+
+/// The spellings of CaseCombination ([study] combine, summaries).
+inline constexpr auto kCaseCombinationNames = frictopt::detail::make_enum_table<CaseCombination>(
+    std::pair{CaseCombination::kWorst, "worst"}, std::pair{CaseCombination::kWeighted, "weighted"});
+
+[[nodiscard]] inline std::string_view to_string(CaseCombination c) { return kCaseCombinationNames.name(c); }
+/// Inverse of to_string; throws InvalidInput listing the accepted spellings.
+[[nodiscard]] inline CaseCombination parse_case_combination(std::string_view text) {
+  return kCaseCombinationNames.parse(text, "study.combine");
+}
+
+/// One load case: the body's own [[load]], [[dirichlet]] and [[force]] tables scaled, as one step
+/// of a loading program is (study/loading_program.hpp): the case's load is Σ_j scale_j · load_j.
+/// An empty scale list means every scale 1 (the case file as written).
+struct LoadCaseDefinition {
+  std::string name;                     ///< unique among the cases; reports and [study] cases
+  std::vector<double> load_scale;       ///< per BodyDefinition::tractions
+  std::vector<double> dirichlet_scale;  ///< per BodyDefinition::dirichlet (its displacement)
+  std::vector<double> force_scale;      ///< per BodyDefinition::forces
+  double weight = 1.0;                  ///< w_k >= 0
+};
+
+/// [[load_case]] tables with [study] combine.
+struct LoadCasesDefinition {
+  CaseCombination combine = CaseCombination::kWorst;
+  std::vector<LoadCaseDefinition> cases;
+  /// Throws InvalidInput naming "load_case[k].field": no case, an empty or duplicate name, a
+  /// scale list whose length is not the number of the body's tables of its kind (given here),
+  /// a scale that is not finite, a weight that is negative or not finite, or all weights zero.
+  void validate(std::size_t num_tractions, std::size_t num_dirichlet, std::size_t num_forces) const;
+};
+
+}  // namespace frictopt::study

@@ -1,0 +1,318 @@
+// SPDX-License-Identifier: MIT
+// Load cases (issue 13, items 1 and 6; docs/theory/load-cases.md): one case as written is the
+// plain oracle bit for bit; K cases share one factorization; the weighted cost's subgradient and
+// the worst case's at a strictly active case against central differences (a traction on a face
+// the design moves is scaled, so the load-change term of the adjoint is exercised); at a tie of
+// the worst case the one-sided directional derivatives are the max of the cases'; certify's
+// generators are the union over the active cases; bad input names the field.
+#include "frictopt/study/load_cases.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "common/finite_difference.hpp"
+#include "common/invalid_case.hpp"
+#include "common/test_bodies.hpp"
+#include "frictopt/core/error.hpp"
+#include "frictopt/io/case_file.hpp"
+#include "frictopt/study/certificate.hpp"
+#include "frictopt/study/shape_oracle.hpp"
+
+namespace frictopt::study {
+namespace {
+
+// The thesis' 2D body (clamped left, top traction) with a second traction on the right face,
+// whose length changes with the design (X(α) moves its nodes): cases scale both.
+BodyDefinition two_load_body() {
+  BodyDefinition b = frictopt::testing::thesis_body_2d(contact::FrictionLaw::interval(0.25, 0.25), 20, 8);
+  b.tractions.push_back({"right", Eigen::Vector2d(-2e7, 0.0)});
+  return b;
+}
+
+LoadCaseDefinition load_case(std::string name, std::vector<double> load_scale, double weight = 1.0) {
+  LoadCaseDefinition c;
+  c.name = std::move(name);
+  c.load_scale = std::move(load_scale);
+  c.weight = weight;
+  return c;
+}
+
+CostDefinition cost_with_cases(CaseCombination combine, std::vector<LoadCaseDefinition> cases) {
+  CostDefinition d;
+  d.kind = cost::CostKind::kNormalForcePower;
+  d.exponent = 2.0;
+  d.load_cases = LoadCasesDefinition{combine, std::move(cases)};
+  return d;
+}
+
+CostDefinition plain_cost() {
+  CostDefinition d;
+  d.kind = cost::CostKind::kNormalForcePower;
+  d.exponent = 2.0;
+  return d;
+}
+
+// Central differences of the oracle's Θ, step 1e-4 of the design scale (as the adjoint tests).
+Eigen::VectorXd fd_gradient(ShapeOracle& oracle, const Eigen::VectorXd& alpha) {
+  const auto theta = [&](const Eigen::VectorXd& a) { return oracle.evaluate_design(a, false).value; };
+  return frictopt::testing::central_gradient(theta, alpha, 1e-4 * alpha.cwiseAbs().maxCoeff());
+}
+
+TEST(LoadCases, OneCaseAsWrittenIsThePlainOracleBitForBit) {
+  ElasticBody plain_body(two_load_body()), case_body(two_load_body());
+  ShapeOracle plain(plain_body, plain_cost());
+  ShapeOracle cased(case_body, cost_with_cases(CaseCombination::kWorst, {load_case("as written", {})}));
+  const Eigen::VectorXd alpha = plain_body.definition().initial_design;
+  const Evaluation a = plain.evaluate_design(alpha), b = cased.evaluate_design(alpha);
+  ASSERT_TRUE(a.ok && b.ok) << a.message << b.message;
+  EXPECT_EQ(a.value, b.value);
+  EXPECT_EQ(b.case_values.size(), 1u);
+  EXPECT_EQ(b.selected_case, 0);
+  EXPECT_EQ((a.subgradient - b.subgradient).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(LoadCases, KCasesShareOneFactorizationPerDesign) {
+  ElasticBody body(two_load_body());
+  ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWeighted, {load_case("a", {1.0, 0.0}),
+                                                                          load_case("b", {1.0, 1.0}),
+                                                                          load_case("c", {0.8, 2.0})}));
+  Eigen::VectorXd alpha = body.definition().initial_design;
+  for (int repeat = 0; repeat < 2; ++repeat) {
+    const Evaluation& e = oracle.evaluate_design(alpha);
+    ASSERT_TRUE(e.ok) << e.message;
+    EXPECT_EQ(e.factorizations, 1);
+    EXPECT_EQ(e.case_values.size(), 3u);
+    alpha(3) += 1e-3;  // another design: one more factorization, not three
+  }
+}
+
+TEST(LoadCases, WeightedSubgradientMatchesCentralDifferences) {
+  ElasticBody body(two_load_body());
+  ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWeighted, {load_case("a", {1.0, 0.0}, 0.5),
+                                                                          load_case("b", {1.0, 1.0}, 1.0),
+                                                                          load_case("c", {0.8, 2.0}, 2.0)}));
+  const Eigen::VectorXd alpha = body.definition().initial_design;
+  const Evaluation e = oracle.evaluate_design(alpha);
+  ASSERT_TRUE(e.ok) << e.message;
+  for (int k = 0; k < 3; ++k)
+    ASSERT_EQ(oracle.case_index_sets(alpha, k).num_weak_nodes(), 0) << "case " << k << " must be strict";
+  EXPECT_DOUBLE_EQ(e.value, 0.5 * e.case_values[0] + e.case_values[1] + 2.0 * e.case_values[2]);
+  const Eigen::VectorXd fd = fd_gradient(oracle, alpha);
+  const double error = (e.subgradient - fd).norm() / fd.norm();
+  std::printf("weighted: Θ = %.6e, |ξ − FD|/|FD| = %.2e (|ξ| = %.3e)\n", e.value, error, fd.norm());
+  EXPECT_LE(error, 1e-5);
+}
+
+TEST(LoadCases, TheLoadChangeTermIsNeeded) {
+  // The right traction's load changes with α: without the term −∇_α[ψᵀ(l_k − l)] the ξ of a case
+  // that scales it would differ from central differences (a test that can fail).
+  ElasticBody body(two_load_body());
+  ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWorst, {load_case("c", {0.8, 2.0})}));
+  const Eigen::VectorXd alpha = body.definition().initial_design;
+  const Evaluation e = oracle.evaluate_design(alpha);
+  ASSERT_TRUE(e.ok) << e.message;
+  const auto results = oracle.case_subgradients(alpha, 0, {sensitivity::default_piece(e.index_sets)});
+  Eigen::VectorXd psi = Eigen::VectorXd::Zero(body.mesh().num_dofs());
+  const auto& dofs = body.elasticity().dofs();
+  for (int k = 0; k < dofs.num_free(); ++k) psi(dofs.free_dofs()[static_cast<std::size_t>(k)]) = results[0].psi_u(k);
+  const Eigen::VectorXd term = oracle.load_cases()->load_change_shape_derivative(0, oracle.last_state().positions, psi);
+  const Eigen::VectorXd fd = fd_gradient(oracle, alpha);
+  EXPECT_LE((e.subgradient - fd).norm() / fd.norm(), 1e-5);
+  EXPECT_GT((e.subgradient - term - fd).norm() / fd.norm(), 1e-4) << "the term is not negligible here";
+}
+
+TEST(LoadCases, WorstCaseAtAStrictlyActiveCaseIsThatCasesSubgradient) {
+  ElasticBody body(two_load_body()), single_body(two_load_body());
+  ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWorst, {load_case("a", {1.0, 0.0}),
+                                                                       load_case("c", {0.8, 2.0}),
+                                                                       load_case("b", {1.0, 1.0})}));
+  const Eigen::VectorXd alpha = body.definition().initial_design;
+  const Evaluation e = oracle.evaluate_design(alpha);
+  ASSERT_TRUE(e.ok) << e.message;
+  const int s = e.selected_case;
+  std::printf("worst: J = (%.6e, %.6e, %.6e), selected %d\n", e.case_values[0], e.case_values[1], e.case_values[2], s);
+  for (int k = 0; k < 3; ++k)
+    if (k != s) {
+      ASSERT_LT(e.case_values[static_cast<std::size_t>(k)], 0.99 * e.value) << "strictly active";
+    }
+  // The selected case alone, as a one-case study: the same ξ.
+  ShapeOracle single(single_body, cost_with_cases(CaseCombination::kWorst,
+                                                  {oracle.load_cases()->definition().cases[static_cast<std::size_t>(s)]}));
+  const Evaluation one = single.evaluate_design(alpha);
+  ASSERT_TRUE(one.ok) << one.message;
+  EXPECT_NEAR(one.value, e.value, 1e-12 * e.value);
+  EXPECT_LE((one.subgradient - e.subgradient).norm(), 1e-8 * e.subgradient.norm());
+  const Eigen::VectorXd fd = fd_gradient(oracle, alpha);
+  const double error = (e.subgradient - fd).norm() / fd.norm();
+  std::printf("worst, strictly active: |ξ − FD|/|FD| = %.2e\n", error);
+  EXPECT_LE(error, 1e-5);
+}
+
+TEST(LoadCases, AtATieTheOneSidedDerivativesAreTheMaxOfTheCases) {
+  // Weights that make w_a J_a = w_c J_c at α exactly (up to rounding): Θ = max is at a kink, and
+  // for every direction h, Θ'(α; h) = max(w_a ξ_a·h, w_c ξ_c·h) (docs/theory/load-cases.md).
+  ElasticBody probe_body(two_load_body());
+  ShapeOracle probe(probe_body, cost_with_cases(CaseCombination::kWeighted, {load_case("a", {1.0, 0.0}),
+                                                                               load_case("c", {0.8, 2.0})}));
+  const Eigen::VectorXd alpha = probe_body.definition().initial_design;
+  const Evaluation p = probe.evaluate_design(alpha, false);
+  ASSERT_TRUE(p.ok) << p.message;
+  const double w_c = p.case_values[0] / p.case_values[1];
+  const auto xi = probe.case_subgradients(alpha, 0, {sensitivity::default_piece(probe.case_index_sets(alpha, 0))});
+  const auto xc = probe.case_subgradients(alpha, 1, {sensitivity::default_piece(probe.case_index_sets(alpha, 1))});
+  const Eigen::VectorXd xi_a = xi[0].subgradient, xi_c = w_c * xc[0].subgradient;
+
+  ElasticBody body(two_load_body());
+  ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWorst, {load_case("a", {1.0, 0.0}, 1.0),
+                                                                       load_case("c", {0.8, 2.0}, w_c)}));
+  const Evaluation e = oracle.evaluate_design(alpha);
+  ASSERT_TRUE(e.ok) << e.message;
+  EXPECT_NEAR(e.case_values[0], w_c * e.case_values[1], 1e-12 * e.value) << "a tie";
+  // A direction that separates the cases' slopes (the difference of the two subgradients, minus
+  // its mean to stay on the volume constraint), and the opposite one.
+  Eigen::VectorXd h = xi_a - xi_c;
+  h.array() -= h.mean();
+  h /= h.norm();
+  const double step = 1e-4 * alpha.cwiseAbs().maxCoeff();
+  for (double sign : {1.0, -1.0}) {
+    const Eigen::VectorXd d = sign * h;
+    // One-sided, second order: Richardson on forward differences with steps t and t/2.
+    const auto forward = [&](double t) { return (oracle.evaluate_design(alpha + t * d, false).value - e.value) / t; };
+    const double derivative = 2.0 * forward(step / 2) - forward(step);
+    const double expected = std::max(xi_a.dot(d), xi_c.dot(d));
+    std::printf("tie, sign %+g: one-sided %.8e, max(ξ_a·h, ξ_c·h) = %.8e (ξ_a·h %.8e, ξ_c·h %.8e)\n", sign, derivative,
+                expected, xi_a.dot(d), xi_c.dot(d));
+    EXPECT_NEAR(derivative, expected, 1e-5 * std::max(std::abs(xi_a.dot(d)), std::abs(xi_c.dot(d))));
+    // A kink indeed: the two slopes differ by much more than the tolerance.
+    EXPECT_GT(std::abs(xi_a.dot(d) - xi_c.dot(d)), 1e-2 * std::abs(expected));
+  }
+  // certify: both cases active, the generators are the union of their pieces.
+  CertifyOptions options;
+  options.clarke_only = true;
+  const Certificate c = certify(oracle, alpha, options);
+  ASSERT_EQ(c.status, Status::kConverged) << c.message;
+  std::printf("%s", c.report().c_str());
+  ASSERT_EQ(c.load_cases.size(), 2u);
+  EXPECT_TRUE(c.load_cases[0].active && c.load_cases[1].active);
+  ASSERT_EQ(c.subgradients.cols(), 2);
+  EXPECT_LE((c.subgradients.col(0) - xi_a).norm(), 1e-8 * xi_a.norm());
+  EXPECT_LE((c.subgradients.col(1) - xi_c).norm(), 1e-8 * xi_c.norm());
+}
+
+TEST(LoadCases, WeightedCertificateSumsOnePiecePerCase) {
+  // At a point strict in every case, 𝕃_k = {default}: the generators of Σ_k w_k ∂J_k are the one
+  // sum Σ_k w_k ξ_k, which is the oracle's ξ; every case is active.
+  ElasticBody body(two_load_body());
+  ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWeighted, {load_case("a", {1.0, 0.0}, 0.5),
+                                                                          load_case("b", {1.0, 1.0}, 1.0),
+                                                                          load_case("zero", {0.8, 2.0}, 0.0)}));
+  const Eigen::VectorXd alpha = body.definition().initial_design;
+  const Evaluation e = oracle.evaluate_design(alpha);
+  ASSERT_TRUE(e.ok) << e.message;
+  const Certificate c = certify(oracle, alpha);
+  ASSERT_EQ(c.status, Status::kConverged) << c.message;
+  std::printf("%s", c.report().c_str());
+  ASSERT_EQ(c.load_cases.size(), 3u);
+  EXPECT_TRUE(c.load_cases[0].active && c.load_cases[1].active);
+  EXPECT_FALSE(c.load_cases[2].active) << "a zero weight drops the case";
+  EXPECT_EQ(c.combine, "weighted");
+  ASSERT_EQ(c.subgradients.cols(), 1);
+  EXPECT_LE((c.subgradients.col(0) - e.subgradient).norm(), 1e-10 * e.subgradient.norm());
+  EXPECT_DOUBLE_EQ(e.value, 0.5 * e.case_values[0] + e.case_values[1]);
+  // (MF1′) per active case at its own state: a strict point, full row rank.
+  EXPECT_TRUE(c.load_cases[0].mf1.computed && c.load_cases[0].mf1.full_row_rank);
+  EXPECT_TRUE(c.load_cases[1].mf1.computed && c.load_cases[1].mf1.full_row_rank);
+  EXPECT_FALSE(c.load_cases[2].mf1.computed);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input (item 6): each an InvalidInput naming the field.
+
+std::string block_case(const std::string& extra) {
+  return R"(
+[geometry]
+dim = 3
+a = 1.0
+b = 1.0
+height = 0.5
+[mesh]
+cells = [4, 4, 2]
+[material]
+young = 7.0e10
+poisson = 0.33
+[[load]]
+face = "left"
+traction = [1.0e5, 0.0, 0.0]
+[[dirichlet]]
+face = "top"
+displacement = [0.0, 0.0, -1.0e-4]
+[design]
+control_points = [2, 2]
+initial = [0.0, 0.0, 0.0, 0.0]
+upper_bound = 1.0e-3
+[contact.friction]
+kind = "isotropic"
+mu = 0.3
+[cost]
+kind = "pressure_norm"
+)" + extra;
+}
+
+TEST(LoadCasesInput, ValidCasesParse) {
+  const io::CaseDescription c = io::parse_case(block_case(R"(
+[study]
+combine = "weighted"
+cases = ["pull", "press"]
+[[load_case]]
+name = "press"
+load_scale = [0.0]
+[[load_case]]
+name = "pull"
+load_scale = [2.0]
+dirichlet_scale = [0.5]
+weight = 3.0
+[[load_case]]
+name = "unused"
+)"),
+                                               "ok.toml");
+  ASSERT_TRUE(c.cost && c.cost->load_cases);
+  const LoadCasesDefinition& d = *c.cost->load_cases;
+  EXPECT_EQ(d.combine, CaseCombination::kWeighted);
+  ASSERT_EQ(d.cases.size(), 2u);
+  EXPECT_EQ(d.cases[0].name, "pull");  // the order of [study] cases
+  EXPECT_EQ(d.cases[0].weight, 3.0);
+  EXPECT_EQ(d.cases[1].load_scale, std::vector<double>{0.0});
+  EXPECT_EQ(c.problem_settings.count("load_case[1].weight"), 1u) << "the fingerprint of a run sees the cases";
+}
+
+TEST(LoadCasesInput, BadInputNamesTheField) {
+  using frictopt::testing::expect_invalid_case;
+  const std::string a = "[[load_case]]\nname = \"a\"\n";
+  expect_invalid_case(block_case(a + "weight = -1.0\n"), {"load_case[0].weight", "-1", ">= 0"});
+  expect_invalid_case(block_case(a + "weight = 0.0\n[[load_case]]\nname = \"b\"\nweight = 0\n"),
+                      {"load_case.weight", "all 2 weights are 0"});
+  expect_invalid_case(block_case(a + "[[load_case]]\nname = \"a\"\n"), {"load_case[1].name", "\"a\"", "unique"});
+  expect_invalid_case(block_case(a + "[study]\ncases = [\"a\", \"b\"]\n"), {"study.cases[1]", "\"b\"", "one of \"a\""});
+  expect_invalid_case(block_case(a + "[study]\ncombine = \"mean\"\n"), {"study.combine", "worst, weighted"});
+  expect_invalid_case(block_case(a + "load_scale = [1.0, 2.0]\n"),
+                      {"load_case[0].load_scale has 2 entries, but the case has 1 [[load]] table"});
+  expect_invalid_case(block_case("[study]\ncombine = \"worst\"\n"), {"load_case is missing"});
+  expect_invalid_case(block_case(a + "nmae = \"x\"\n"), {"load_case[0]", "nmae"});
+}
+
+TEST(LoadCasesInput, ComplianceWithLoadCasesIsRefused) {
+  io::CaseDescription c = io::parse_case(block_case("[[load_case]]\nname = \"a\"\n"), "ok.toml");
+  c.cost->kind = cost::CostKind::kCompliance;
+  ElasticBody body(c.body);
+  try {
+    ShapeOracle oracle(body, *c.cost);
+    ADD_FAILURE() << "compliance with load cases accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("compliance"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace frictopt::study
