@@ -294,16 +294,21 @@ class Run {
   // Relative stopping test (docs/optim.md): ‖z + ω‖ <= ε·G, σ + μᵀ(c − Cx) <= ε·F and −v <= ε·F
   // (the next step's predicted decrease is negligible: keeps a large t from stopping on a flat
   // aggregate), with
-  // G = max(‖g(x_k)‖, √ε·‖g(x_1)‖) and F = max(|f(x_k)|, √ε·|f(x_1)|): relative to the
-  // subgradient and value at the center, floored by √ε times those at the start so that a
+  // G = max(‖g(x_k)‖, √ε·‖g(x_1)‖) and F = max(|f(x_k)|, ε·|f(x_1)|): relative to the
+  // subgradient and value at the center, floored by a fraction of those at the start so that a
   // smooth minimum (g(x_k) → 0) or a zero optimal value (f(x_k) → 0) still ends the run.
+  // The value floor is ε·|f(x_1)|: a value is treated as zero only when it is below the test's
+  // relative accuracy of the starting value. The earlier √ε·|f(x_1)| made F, not |f|, set the
+  // test wherever the start is more than 1/√ε times the optimal value: MAD8 (f(x_1) = 2.2e4,
+  // f* = 0.507) said "converged" 1.0e-5 off f* at ε = 1e-6, the value test accepting errors of
+  // ε·F = 2.2e-5 (regression test LuksanVlcekRegression.Mad8AtTightEpsilonIsAccurateOrNotConverged).
   void update_scales(BundleTrust::IterationSummary& st) const {
     const double root_eps = std::sqrt(o_.epsilon);
     double g_center = 0.0;
     for (const BundleElement& b : st.bundle)
       if (b.is_center) g_center = b.g.norm();
     st.subgradient_scale = std::max(g_center, root_eps * st.g_start_norm);
-    st.value_scale = std::max(std::abs(st.f), root_eps * std::abs(st.f_start));
+    st.value_scale = std::max(std::abs(st.f), o_.epsilon * std::abs(st.f_start));
   }
   [[nodiscard]] bool stopping_test(const BundleTrust::IterationSummary& st, const DirectionQp& qp) const {
     const double eps = test_factor_ * o_.epsilon;

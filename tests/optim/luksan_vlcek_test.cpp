@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <cmath>
 #include <random>
 
 #include "common/finite_difference.hpp"
@@ -200,5 +201,21 @@ TEST(LuksanVlcekRegression, ShellDualDoesNotReportConvergedAtAnInaccurateValue) 
     EXPECT_LE(p.relative_error(s.f), kAccuracy) << s.brief_report();
   } else {
     EXPECT_NE(s.status, frictopt::Status::kNumericalFailure) << s.brief_report();
+  }
+}
+
+// Regression (issue 16, fourth round): with ε = 1e-6 MAD8 (f(x_1) = 2.2e4, f* = 0.507) said
+// "converged" 1.0e-5 off f*: the value scale of the stopping test was floored at √ε·|f(x_1)| =
+// 21.9, 43 times |f|, so the test accepted value errors up to ε·F = 2.2e-5. The floor is now
+// ε·|f(x_1)| (docs/optim.md), F = |f| at MAD8's optimum, and the run is accurate.
+TEST(LuksanVlcekRegression, Mad8AtTightEpsilonIsAccurateOrNotConverged) {
+  const auto p = fo::luksan_vlcek_problem("MAD8");
+  fo::BundleTrust::Options o;
+  o.epsilon = 1e-6;
+  fo::FunctionOracle oracle(p.evaluate);
+  const auto s = fo::BundleTrust(o, p.constraints).minimize(oracle, p.x0);
+  EXPECT_LE(s.value_scale, 2.0 * std::abs(s.f)) << s.brief_report();
+  if (s.converged()) {
+    EXPECT_LE(p.relative_error(s.f), 1e-6) << s.brief_report();
   }
 }
