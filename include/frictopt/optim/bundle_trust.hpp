@@ -68,13 +68,16 @@ class BundleTrust {
     std::vector<BundleElement> bundle;  ///< bundle after the update (size ≤ j_max)
     double objective_scale = 1.0;       ///< f seen by the method = f / objective_scale
     /// Scales of the relative stopping test (docs/optim.md), in the method's (scaled) units:
-    /// G = max(‖g(x_k)‖, √ε·‖g(x_1)‖), F = max(|f(x_k)|, ε·|f(x_1)|).
+    /// G = max(‖g(x_k)‖, √ε·‖g(x_1)‖), F = max(|f(x_k)|, √ε·|f(x_1)|).
     double subgradient_scale = kNaN;
     double value_scale = kNaN;
     double f_start = kNaN;      ///< f(x_1) in the method's units (for F)
     double g_start_norm = kNaN; ///< ‖g(x_1)‖ in the method's units (for G)
     double t_start = kNaN;      ///< t_1 (t_min = t_min_relative·t_1)
-    double t_reference = kNaN;  ///< unit of the locality γ s²/t_ref (= t_1; docs/optim.md)
+    /// Unit of the locality γ s²/t_ref: t_1, grown to 10·‖x_k − x_1‖∞/‖g(x_1)‖ once the
+    /// centers have moved that far (docs/optim.md).
+    double t_reference = kNaN;
+    Eigen::VectorXd x_start;    ///< x_1 (for t_reference); empty in old checkpoints: x_k is used
   };
   using IterationCallback = std::function<CallbackResult(const IterationSummary&)>;
 
@@ -102,7 +105,7 @@ class BundleTrust {
     // safeguard u_{k+1} >= u_k/10). > 1.
     double t_growth_limit = 10.0;
     // ε of the RELATIVE "almost stationary" test (docs/optim.md): ‖z + ω‖ <= ε·G and
-    // σ + μᵀ(c − Cx) <= ε·F, G = max(‖g(x_k)‖, √ε‖g(x_1)‖), F = max(|f(x_k)|, ε|f(x_1)|).
+    // σ + μᵀ(c − Cx) <= ε·F, G = max(‖g(x_k)‖, √ε‖g(x_1)‖), F = max(|f(x_k)|, √ε|f(x_1)|).
     // The test reads the same for f·c and for x scaled by any factor. >= 0.
     // Default 1e-5: a factor 10 below the accuracy 1e-4 the test set asks for, because the test
     // bounds the stationarity measures, not |f − f*| (docs/optim-testset.md).
