@@ -173,6 +173,8 @@ JsonValue checkpoint_to_json(const RunCheckpoint& c) {
   j["g_start_norm"] = s.g_start_norm;
   j["t_start"] = s.t_start;
   j["t_reference"] = s.t_reference;
+  // x_1: the locality unit grows with ‖x_k − x_1‖∞ (docs/optim.md); empty before a run
+  if (s.x_start.size() > 0) j["x_start"] = s.x_start;
   JsonValue bundle = JsonValue::array();
   for (const optim::BundleElement& e : s.bundle) {
     JsonValue element = JsonValue::object();
@@ -245,6 +247,7 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
   for (auto [key, field] : {std::pair{"f_start", &s.f_start}, std::pair{"g_start_norm", &s.g_start_norm},
                             std::pair{"t_start", &s.t_start}, std::pair{"t_reference", &s.t_reference}})
     if (j.contains(key)) *field = top.number(key);
+  if (j.contains("x_start")) s.x_start = top.vector("x_start", n);  // absent: resume() uses x
   const JsonValue& bundle = top.at("bundle");
   if (!bundle.is_array() || bundle.as_array().empty()) fail_field(origin, "bundle", "empty", "a non-empty list");
   for (std::size_t i = 0; i < bundle.as_array().size(); ++i) {

@@ -6,6 +6,13 @@
 // (docs/optim-testset.md, "TR48"). Three independent checks tie them to the report
 // (LuksanVlcek.Tr48DataMatchesThePublishedValues): a is symmetric, f(0) = −464816 and
 // f(x*) = −638565 = f* at the report's integer minimizer x* below.
+// Provenance and licence: the numbers (a, d, s, x*) come from the data module of the GPL-3
+// package `algormeter` (repository xedla/algormeter). They are tabulated data of the report's
+// problem, not derivable from its definition (the costs are a 48×48 table, not a formula), so
+// they could not be regenerated in our own words; the file holds only these numbers and is kept
+// apart from the code so that it can be replaced by the authors' TEST19.DAT. The SPDX line
+// above covers this file's code; the licence status of the numbers is noted in
+// docs/optim-testset.md ("TR48").
 #include "luksan_vlcek_tr48_data.hpp"
 
 namespace frictopt::optim::detail {

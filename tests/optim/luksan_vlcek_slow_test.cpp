@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The whole Lukšan–Vlček table of docs/optim-testset.md (39 problems + 32 scaled variants) with
+// The whole Lukšan–Vlček table of docs/optim-testset.md (40 problems + 32 scaled variants) with
 // DEFAULT options, and the tight run (ε = 1e-7 for accuracy 1e-6). Problems listed as open do
 // not reach f* yet (docs/optim-testset.md says why); they are checked not to be reported solved
 // by accident, so that fixing one fails this test until the list is updated.
@@ -51,12 +51,12 @@ TEST(LuksanVlcekFullSet, DefaultOptionsSolveTheTableExceptTheOpenProblems) {
   fo::BundleTrust::Options o;
   o.keep_history = false;
   // The report's relative accuracy |f − f*| <= 1e-4·max(unit, |f*|).
-  check_table(o, 1e-4, {"TR48", "BPfilter", "ShellDual"});
+  check_table(o, 1e-4, {"BPfilter", "ShellDual"});
 }
 
 TEST(LuksanVlcekFullSet, EpsilonOneTenthOfTheAccuracyReachesOneInAMillion) {
   fo::BundleTrust::Options o;
   o.keep_history = false;
   o.epsilon = 1e-7;
-  check_table(o, 1e-6, {"HS78", "TR48", "ShellDual", "BPfilter", "Dembo3", "Dembo7"});
+  check_table(o, 1e-6, {"HS78", "ShellDual", "BPfilter", "Dembo3", "Dembo7"});
 }

@@ -74,7 +74,10 @@ class BundleTrust {
     double f_start = kNaN;      ///< f(x_1) in the method's units (for F)
     double g_start_norm = kNaN; ///< ‖g(x_1)‖ in the method's units (for G)
     double t_start = kNaN;      ///< t_1 (t_min = t_min_relative·t_1)
-    double t_reference = kNaN;  ///< unit of the locality γ s²/t_ref (= t_1; docs/optim.md)
+    /// Unit of the locality γ s²/t_ref: t_1, grown to 10·‖x_k − x_1‖∞/‖g(x_1)‖ once the
+    /// centers have moved that far (docs/optim.md).
+    double t_reference = kNaN;
+    Eigen::VectorXd x_start;    ///< x_1 (for t_reference); empty in old checkpoints: x_k is used
   };
   using IterationCallback = std::function<CallbackResult(const IterationSummary&)>;
 
