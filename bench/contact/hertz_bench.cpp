@@ -6,7 +6,12 @@
 // peak RSS is this configuration's. Prints one `key=value` line; bench/contact/run_hertz.sh
 // runs the configurations side by side for this build and a previous one.
 //
-//   hertz_bench CELLS LAYERS GROWTH [MU SHIFT [DENSE_MAX [WIDTH HEIGHT [BOX_LO BOX_HI]]]]
+//   hertz_bench CELLS LAYERS GROWTH [MU SHIFT [DENSE_MAX [WIDTH HEIGHT [BOX_LO BOX_HI]]]] [fine_depth=D [vertical_growth=R]]
+//
+// Without fine_depth the vertical grading is the power law (below); fine_depth=D > 0 selects
+// the vertical grading "contact" ([mesh] vertical_grading = "contact"): equal layers down to
+// depth D, growing by at most vertical_growth (default 1.2) per layer above. key=value words
+// may stand anywhere; the others are positional.
 //
 // GROWTH = 1: uniform grid; > 1: in-plane grading toward [BOX_LO, BOX_HI]² (default
 // [0.3, 0.7]·WIDTH). MU = 0: frictionless; > 0: regular_polygon(MU, 16) and the top also moved
@@ -47,6 +52,7 @@ struct Config {
   int dense_max = 12000;
   double width = 1.0, height = 1.0, box_lo = -1, box_hi = -1;
   double radius = 2.0, young = 1e9, poisson = 0.3, depth = 0.012;
+  double fine_depth = 0.0, vertical_growth = 1.2;  // fine_depth > 0: vertical grading "contact"
 };
 
 double apex_cell(const Config& c) {
@@ -63,8 +69,14 @@ study::BodyDefinition block(const Config& c) {
   def.shape = shape::BezierShape::surface(c.width, c.width, 3, 3);
   def.height = c.height;
   def.resolution.cells = {c.cells, c.cells, c.layers};
-  def.resolution.grading =
-      std::clamp(std::log(c.height / apex_cell(c)) / std::log(static_cast<double>(c.layers)), 1.0, 10.0);
+  if (c.fine_depth > 0) {
+    def.resolution.vertical_grading = mesh::VerticalGrading::kContact;
+    def.resolution.fine_depth = c.fine_depth;
+    def.resolution.vertical_growth = c.vertical_growth;
+  } else {
+    def.resolution.grading =
+        std::clamp(std::log(c.height / apex_cell(c)) / std::log(static_cast<double>(c.layers)), 1.0, 10.0);
+  }
   if (c.growth != 1.0) {
     def.resolution.growth = c.growth;
     def.resolution.refine_box = std::array<double, 4>{c.box_lo, c.box_hi, c.box_lo, c.box_hi};
@@ -95,6 +107,23 @@ int main(int argc, char** argv) {
     return 2;
   }
   Config c;
+  std::vector<char*> positional{argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    const auto eq = word.find('=');
+    if (eq == std::string::npos) {
+      positional.push_back(argv[i]);
+    } else if (word.substr(0, eq) == "fine_depth") {
+      c.fine_depth = std::atof(word.c_str() + eq + 1);
+    } else if (word.substr(0, eq) == "vertical_growth") {
+      c.vertical_growth = std::atof(word.c_str() + eq + 1);
+    } else {
+      std::fprintf(stderr, "unknown option %s (expected fine_depth=D or vertical_growth=R)\n", argv[i]);
+      return 2;
+    }
+  }
+  argc = static_cast<int>(positional.size());
+  argv = positional.data();
   c.cells = std::atoi(argv[1]);
   c.layers = std::atoi(argv[2]);
   c.growth = std::atof(argv[3]);
@@ -163,16 +192,24 @@ int main(int argc, char** argv) {
   const double det = s0 * s2 - s1 * s1;
   const double intercept = (s2 * u0 - s1 * u1) / det, slope = (s0 * u1 - s1 * u0) / det;
   const double a_fit = std::sqrt(-intercept / slope), p_fit = std::sqrt(intercept);
+  // The thinnest layer of the grid at the apex column (the bottom of the paraboloid is at 0).
+  double thinnest_layer = c.height;
+  {
+    const std::vector<double> z =
+        c.fine_depth > 0 ? mesh::contact_layer_coordinates(c.height, c.layers, c.fine_depth, c.vertical_growth)
+                         : std::vector<double>{0.0, c.height * std::pow(1.0 / c.layers, definition.resolution.grading)};
+    for (std::size_t k = 0; k + 1 < z.size(); ++k) thinnest_layer = std::min(thinnest_layer, z[k + 1] - z[k]);
+  }
   int loaded = 0;
   for (Eigen::Index i = 0; i < lambda.size(); ++i) loaded += lambda(i) > 0;
 
   std::printf(
-      "cells=%d layers=%d growth=%g mu=%g width=%g unknowns=%d contact_unknowns=%lld loaded_nodes=%d "
+      "cells=%d layers=%d growth=%g fine_depth=%g vertical_growth=%g thinnest_layer=%.5f mu=%g width=%g unknowns=%d contact_unknowns=%lld loaded_nodes=%d "
       "delassus=%s floor_s=%.3f factorization_s=%.3f state_s=%.3f contact_setup_s=%.3f coulomb_s=%.3f "
       "subgradient_s=%.3f state_over_floor=%.3f state_over_factorization=%.3f subgradient_over_state=%.3f "
       "fp_its=%d qp_its=%d applies=%d kkt=%.2e ok=%d P=%.6e a_fit_err=%+.4f%% a_moment_err=%+.4f%% "
       "p_apex_err=%+.4f%% p_fit_err=%+.4f%% h_apex=%.5f floor_rss_MB=%.0f peak_rss_MB=%.0f ",
-      c.cells, c.layers, c.growth, c.mu, c.width, body.elasticity().dofs().num_free(),
+      c.cells, c.layers, c.growth, c.fine_depth, c.vertical_growth, thinnest_layer, c.mu, c.width, body.elasticity().dofs().num_free(),
       static_cast<long long>(boundary.num_unknowns()), loaded, state.contact->delassus->kind(), floor_s,
       e.state.factorization_seconds, state_s, e.state.solve_seconds - e.contact.time_seconds, e.contact.time_seconds,
       seconds(t1, t2), state_s / floor_s, state_s / e.state.factorization_seconds, seconds(t1, t2) / state_s,
