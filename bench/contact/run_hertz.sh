@@ -10,7 +10,7 @@
 #
 #   bench/contact/run_hertz.sh [SET] [REPEATS] [PREVIOUS_BENCH]
 #     SET = accuracy (default: uniform 24/32/40 cells with layers = cells/3; graded 32 cells with
-#           16/22 power-law layers; graded 30 and 32 cells with 18 "contact" layers:
+#           16/22 power-law layers; graded 28 × 16, 30 × 18 and 32 × 18 with "contact" layers:
 #           docs/contact-validation.md §1b, §1c), large (80 × 80 × 11 uniform: 19,683 contact
 #           unknowns), or a quoted list of hertz_bench argument lists separated by commas.
 #     PREVIOUS_BENCH: e.g. /tmp/frictopt-966f3ca/build/bench/contact/hertz_bench (966f3ca with
@@ -27,12 +27,15 @@ previous="${3:-}"
 case "$set_name" in
   accuracy)
     configs=""
-    contact_box="12000 1 1 0.34 0.66 fine_depth=0.16 vertical_growth=1.4"
     for mu in "0 0" "0.3 0.002"; do
       program=""
       [[ $mu == "0 0" ]] || program="program=1"
       for grid in "24 8 1" "32 11 1" "40 13 1" "32 16 1.2" "32 22 1.2"; do configs+="$grid $mu $program,"; done
-      for grid in "30 18 1.4" "32 18 1.3"; do configs+="$grid $mu $contact_box $program,"; done
+      # In-plane grading toward [0.34, 0.66]² and contact layers down to 0.16 m (§1c):
+      # "CELLS LAYERS GROWTH | VERTICAL_GROWTH".
+      for grid in "28 16 1.5|1.5" "30 18 1.4|1.4" "32 18 1.3|1.4"; do
+        configs+="${grid%|*} $mu 12000 1 1 0.34 0.66 fine_depth=0.16 vertical_growth=${grid#*|} $program,"
+      done
     done
     configs=${configs%,} ;;
   large) configs="80 11 1 0 0,80 11 1 0.3 0.002" ;;
