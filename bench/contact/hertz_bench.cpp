@@ -6,7 +6,12 @@
 // peak RSS is this configuration's. Prints one `key=value` line; bench/contact/run_hertz.sh
 // runs the configurations side by side for this build and a previous one.
 //
-//   hertz_bench CELLS LAYERS GROWTH [MU SHIFT [DENSE_MAX [WIDTH HEIGHT [BOX_LO BOX_HI]]]]
+//   hertz_bench CELLS LAYERS GROWTH [MU SHIFT [DENSE_MAX [WIDTH HEIGHT [BOX_LO BOX_HI]]]] [fine_depth=D [vertical_growth=R]]
+//
+// Without fine_depth the vertical grading is the power law (below); fine_depth=D > 0 selects
+// the vertical grading "contact" ([mesh] vertical_grading = "contact"): equal layers down to
+// depth D, growing by at most vertical_growth (default 1.2) per layer above. key=value words
+// may stand anywhere; the others are positional.
 //
 // GROWTH = 1: uniform grid; > 1: in-plane grading toward [BOX_LO, BOX_HI]² (default
 // [0.3, 0.7]·WIDTH). MU = 0: frictionless; > 0: regular_polygon(MU, 16) and the top also moved
@@ -14,6 +19,7 @@
 // as thick as the in-plane cell at the apex (as in tests/study/contact_validation.hpp).
 // Sources only the public API that the previous frictopt (966f3ca) already had.
 #include <sys/resource.h>
+#include <time.h>
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -28,6 +34,7 @@
 #include "frictopt/contact/friction_law.hpp"
 #include "frictopt/cost/cost_functional.hpp"
 #include "frictopt/mesh/graded_coordinates.hpp"
+#include "frictopt/study/loading_program.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 
 namespace {
@@ -35,6 +42,14 @@ namespace {
 using namespace frictopt;
 using Clock = std::chrono::steady_clock;
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+// CPU seconds of the whole process (all threads): on a machine shared with other jobs the wall
+// clock measures the load as much as the code; with one BLAS thread the CPU time is what an idle
+// core would take.
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 double peak_rss_megabytes() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -47,6 +62,8 @@ struct Config {
   int dense_max = 12000;
   double width = 1.0, height = 1.0, box_lo = -1, box_hi = -1;
   double radius = 2.0, young = 1e9, poisson = 0.3, depth = 0.012;
+  double fine_depth = 0.0, vertical_growth = 1.2;  // fine_depth > 0: vertical grading "contact"
+  bool program = false;  // MU > 0: normal load without friction, then the tangential shift (two steps)
 };
 
 double apex_cell(const Config& c) {
@@ -63,15 +80,26 @@ study::BodyDefinition block(const Config& c) {
   def.shape = shape::BezierShape::surface(c.width, c.width, 3, 3);
   def.height = c.height;
   def.resolution.cells = {c.cells, c.cells, c.layers};
-  def.resolution.grading =
-      std::clamp(std::log(c.height / apex_cell(c)) / std::log(static_cast<double>(c.layers)), 1.0, 10.0);
+  if (c.fine_depth > 0) {
+    def.resolution.vertical_grading = mesh::VerticalGrading::kContact;
+    def.resolution.fine_depth = c.fine_depth;
+    def.resolution.vertical_growth = c.vertical_growth;
+  } else {
+    def.resolution.grading =
+        std::clamp(std::log(c.height / apex_cell(c)) / std::log(static_cast<double>(c.layers)), 1.0, 10.0);
+  }
   if (c.growth != 1.0) {
     def.resolution.growth = c.growth;
     def.resolution.refine_box = std::array<double, 4>{c.box_lo, c.box_hi, c.box_lo, c.box_hi};
   }
   def.material.young = c.young;
   def.material.poisson = c.poisson;
-  def.dirichlet.push_back({"top", {}, Eigen::Vector3d(c.shift, 0.0, -c.depth)});
+  if (c.program) {  // the vertical and the tangential motion of the top, scaled per step
+    def.dirichlet.push_back({"top", {2}, Eigen::Vector3d(0.0, 0.0, -c.depth)});
+    def.dirichlet.push_back({"top", {0, 1}, Eigen::Vector3d(c.shift, 0.0, 0.0)});
+  } else {
+    def.dirichlet.push_back({"top", {}, Eigen::Vector3d(c.shift, 0.0, -c.depth)});
+  }
   def.admissible.upper_bound = c.height / 2;
   def.admissible.height = c.height;
   // Paraboloid ((x1 − L/2)² + (x2 − L/2)²)/(2R) as a 3 × 3 Bézier net (α_ij = c_i + c_j).
@@ -95,6 +123,25 @@ int main(int argc, char** argv) {
     return 2;
   }
   Config c;
+  std::vector<char*> positional{argv[0]};
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    const auto eq = word.find('=');
+    if (eq == std::string::npos) {
+      positional.push_back(argv[i]);
+    } else if (word.substr(0, eq) == "fine_depth") {
+      c.fine_depth = std::atof(word.c_str() + eq + 1);
+    } else if (word.substr(0, eq) == "vertical_growth") {
+      c.vertical_growth = std::atof(word.c_str() + eq + 1);
+    } else if (word.substr(0, eq) == "program") {
+      c.program = std::atoi(word.c_str() + eq + 1) != 0;
+    } else {
+      std::fprintf(stderr, "unknown option %s (expected fine_depth=D, vertical_growth=R or program=1)\n", argv[i]);
+      return 2;
+    }
+  }
+  argc = static_cast<int>(positional.size());
+  argv = positional.data();
   c.cells = std::atoi(argv[1]);
   c.layers = std::atoi(argv[2]);
   c.growth = std::atof(argv[3]);
@@ -106,29 +153,85 @@ int main(int argc, char** argv) {
   const study::BodyDefinition definition = block(c);
 
   // Floor: one factorization (CHOLMOD's own ordering) + one solve, no contact.
-  double floor_s = 0;
+  double floor_s = 0, floor_flops = 0;
+  const double floor_cpu0 = cpu_seconds();
   {
     study::BodyDefinition plain = definition;
     plain.contact.reset();
     study::ElasticBody elastic(plain);
     const study::BodyState s = elastic.solve(plain.initial_design);
     floor_s = s.summary.factorization_seconds + s.summary.solve_seconds;
+    floor_flops = elastic.elasticity().factorization().factor_flops();
   }
+  const double floor_cpu_s = cpu_seconds() - floor_cpu0;  // with the assembly (the wall floor_s has none)
   const double floor_rss = peak_rss_megabytes();
 
   study::ElasticBody body(definition);
-  study::ShapeOracle oracle(body, cost::make_compliance());
-  const auto t0 = Clock::now();
-  const study::Evaluation& e = oracle.evaluate_design(definition.initial_design, false);
-  const auto t1 = Clock::now();
-  const study::Evaluation& g = oracle.evaluate_design(definition.initial_design, true);
-  const auto t2 = Clock::now();
-  const study::BodyState& state = oracle.last_state();
-  const double state_s = seconds(t0, t1) - e.state.assembly_seconds;
+  const contact::ContactBoundary& boundary = *body.contact_boundary();
+  // What the line reports of the contact solve(s): the state without the assembly, and the
+  // normal forces the Hertz estimators read.
+  Eigen::VectorXd lambda;
+  double factorization_s = 0, state_s = 0, contact_setup_s = 0, coulomb_s = 0, subgradient_s = 0, kkt = 0;
+  int fp_its = 0, qp_its = 0, applies = 0;
+  bool ok = false;
+  std::string delassus, note;
+  const double solve_cpu0 = cpu_seconds();
+  double state_cpu_s = 0;  // the state (both steps of a program) with its assembly, CPU seconds
+  if (c.program) {
+    // Normal load without friction (Hertz: the errors are this step's), then friction on and
+    // the top moved SHIFT sideways (Cattaneo-Mindlin): one factorization for both steps.
+    study::LoadingProgramDefinition program;
+    program.steps.push_back({"normal", {}, {1.0, 0.0}, {}, false});
+    program.steps.push_back({"tangential", {}, {1.0, 1.0}, {}, true});
+    study::LoadingProgram runner(body, program);
+    const auto summary = runner.run(definition.initial_design, [&](const study::LoadStepResult& step) {
+      if (step.step == 1 && step.state.contact) lambda = step.state.contact->state.normal_forces();
+      if (step.state.contact) {
+        const auto& r = step.state.contact->summary;
+        fp_its += r.iterations;
+        qp_its += r.qp_iterations;
+        applies += r.operator_applications;
+        kkt = std::max(kkt, r.kkt_residual);
+        note += (note.empty() ? "" : "|") + r.message;
+        if (step.state.contact->delassus) delassus = step.state.contact->delassus->kind();
+      }
+      state_s += step.state.summary.factorization_seconds + step.state.summary.solve_seconds;
+    });
+    ok = summary.status == Status::kConverged;
+    state_cpu_s = cpu_seconds() - solve_cpu0;
+    factorization_s = summary.factorization_seconds;
+    coulomb_s = summary.contact_seconds;
+    contact_setup_s = state_s - factorization_s - coulomb_s;
+    if (!ok) note += "|" + summary.message;
+  } else {
+    study::ShapeOracle oracle(body, cost::make_compliance());
+    const auto t0 = Clock::now();
+    const study::Evaluation& e = oracle.evaluate_design(definition.initial_design, false);
+    const auto t1 = Clock::now();
+    state_cpu_s = cpu_seconds() - solve_cpu0;
+    const study::Evaluation& g = oracle.evaluate_design(definition.initial_design, true);
+    const auto t2 = Clock::now();
+    const study::BodyState& state = oracle.last_state();
+    state_s = seconds(t0, t1) - e.state.assembly_seconds;
+    lambda = state.contact->state.normal_forces();
+    factorization_s = e.state.factorization_seconds;
+    contact_setup_s = e.state.solve_seconds - e.contact.time_seconds;
+    coulomb_s = e.contact.time_seconds;
+    subgradient_s = seconds(t1, t2);
+    fp_its = e.contact.iterations;
+    qp_its = e.contact.qp_iterations;
+    applies = e.contact.operator_applications;
+    kkt = e.contact.kkt_residual;
+    ok = e.ok && g.ok;
+    delassus = state.contact->delassus->kind();
+    note = e.contact.message;
+  }
+  if (lambda.size() == 0) {
+    std::fprintf(stderr, "no contact state: %s\n", note.c_str());
+    return 3;
+  }
 
   // Hertz: E* = E/(1 − ν²), a = (3PR/(4E*))^{1/3}, p0 = 3P/(2πa²), P the measured load.
-  const contact::ContactBoundary& boundary = *body.contact_boundary();
-  const Eigen::VectorXd lambda = state.contact->state.normal_forces();
   const double load = lambda.sum();
   const double e_star = c.young / (1 - c.poisson * c.poisson);
   const double a_hertz = std::cbrt(3 * load * c.radius / (4 * e_star));
@@ -163,25 +266,34 @@ int main(int argc, char** argv) {
   const double det = s0 * s2 - s1 * s1;
   const double intercept = (s2 * u0 - s1 * u1) / det, slope = (s0 * u1 - s1 * u0) / det;
   const double a_fit = std::sqrt(-intercept / slope), p_fit = std::sqrt(intercept);
+  // The thinnest layer of the grid at the apex column (the bottom of the paraboloid is at 0).
+  double thinnest_layer = c.height;
+  {
+    const std::vector<double> z =
+        c.fine_depth > 0 ? mesh::contact_layer_coordinates(c.height, c.layers, c.fine_depth, c.vertical_growth)
+                         : std::vector<double>{0.0, c.height * std::pow(1.0 / c.layers, definition.resolution.grading)};
+    for (std::size_t k = 0; k + 1 < z.size(); ++k) thinnest_layer = std::min(thinnest_layer, z[k + 1] - z[k]);
+  }
   int loaded = 0;
   for (Eigen::Index i = 0; i < lambda.size(); ++i) loaded += lambda(i) > 0;
 
   std::printf(
-      "cells=%d layers=%d growth=%g mu=%g width=%g unknowns=%d contact_unknowns=%lld loaded_nodes=%d "
+      "cells=%d layers=%d growth=%g fine_depth=%g vertical_growth=%g thinnest_layer=%.5f mu=%g program=%d width=%g "
+      "unknowns=%d contact_unknowns=%lld loaded_nodes=%d "
       "delassus=%s floor_s=%.3f factorization_s=%.3f state_s=%.3f contact_setup_s=%.3f coulomb_s=%.3f "
       "subgradient_s=%.3f state_over_floor=%.3f state_over_factorization=%.3f subgradient_over_state=%.3f "
       "fp_its=%d qp_its=%d applies=%d kkt=%.2e ok=%d P=%.6e a_fit_err=%+.4f%% a_moment_err=%+.4f%% "
-      "p_apex_err=%+.4f%% p_fit_err=%+.4f%% h_apex=%.5f floor_rss_MB=%.0f peak_rss_MB=%.0f ",
-      c.cells, c.layers, c.growth, c.mu, c.width, body.elasticity().dofs().num_free(),
-      static_cast<long long>(boundary.num_unknowns()), loaded, state.contact->delassus->kind(), floor_s,
-      e.state.factorization_seconds, state_s, e.state.solve_seconds - e.contact.time_seconds, e.contact.time_seconds,
-      seconds(t1, t2), state_s / floor_s, state_s / e.state.factorization_seconds, seconds(t1, t2) / state_s,
-      e.contact.iterations, e.contact.qp_iterations, e.contact.operator_applications, e.contact.kkt_residual,
-      g.ok ? 1 : 0, load, 100 * (a_fit / a_hertz - 1), 100 * (a_moment / a_hertz - 1),
-      100 * (p_apex / p_hertz - 1), 100 * (p_fit / p_hertz - 1), apex_cell(c), floor_rss, peak_rss_megabytes());
+      "p_apex_err=%+.4f%% p_fit_err=%+.4f%% h_apex=%.5f floor_rss_MB=%.0f peak_rss_MB=%.0f floor_flops=%.3e "
+      "factor_flops=%.3e floor_cpu_s=%.3f state_cpu_s=%.3f ",
+      c.cells, c.layers, c.growth, c.fine_depth, c.vertical_growth, thinnest_layer, c.mu, c.program ? 1 : 0, c.width,
+      body.elasticity().dofs().num_free(), static_cast<long long>(boundary.num_unknowns()), loaded, delassus.c_str(),
+      floor_s, factorization_s, state_s, contact_setup_s, coulomb_s, subgradient_s, state_s / floor_s,
+      state_s / factorization_s, subgradient_s / state_s, fp_its, qp_its, applies, kkt, ok ? 1 : 0, load,
+      100 * (a_fit / a_hertz - 1), 100 * (a_moment / a_hertz - 1), 100 * (p_apex / p_hertz - 1),
+      100 * (p_fit / p_hertz - 1), apex_cell(c), floor_rss, peak_rss_megabytes(), floor_flops,
+      body.elasticity().factorization().factor_flops(), floor_cpu_s, state_cpu_s);
   // The Coulomb solver's own report (one word: the table script ignores it).
-  std::string note = e.contact.message;
   std::replace(note.begin(), note.end(), ' ', '_');
   std::printf("note=%s\n", note.c_str());
-  return e.ok && g.ok ? 0 : 3;
+  return ok ? 0 : 3;
 }

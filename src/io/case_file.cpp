@@ -235,6 +235,7 @@ mesh::GridResolution read_mesh(const TableReader& r, const Geometry& geometry) {
     m.grading = *grading;
   }
   read_in_plane_grading(r, geometry, m);
+  detail::read_vertical_grading(r, geometry.height, r.has("grading"), m);
   return m;
 }
 
@@ -922,7 +923,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   }
   const int dim = geometry.dim;
   body.height = geometry.height;
-  if (!imported) body.resolution = read_mesh(table("mesh", {"cells", "grading", "growth", "refine_box"}), geometry);
+  if (!imported) body.resolution = read_mesh(table("mesh", {"cells", "grading", "growth", "refine_box", "vertical_grading", "fine_depth", "vertical_growth"}), geometry);
   body.material = read_material(table("material", {"young", "poisson", "model"}), dim);
 
   if (const toml::array* loads = top.optional_table_array("load"))

@@ -10,6 +10,7 @@
 #include "frictopt/core/error.hpp"
 #include "frictopt/mesh/design_extension.hpp"
 #include "frictopt/mesh/gmsh_mesh.hpp"
+#include "frictopt/mesh/graded_coordinates.hpp"
 
 namespace frictopt::io::detail {
 namespace {
@@ -31,6 +32,42 @@ std::string read_group(const TableReader& r, std::string_view key, const mesh::M
 }
 
 }  // namespace
+
+void read_vertical_grading(const TableReader& r, double height, bool grading_given, mesh::GridResolution& m) {
+  const std::string kind = r.optional_string("vertical_grading").value_or("power");
+  const bool contact = kind == "contact";
+  if (!contact && kind != "power") r.fail_value("vertical_grading", "one of \"power\", \"contact\"");
+  if (!contact) {
+    for (std::string_view key : {"fine_depth", "vertical_growth"})
+      if (r.has(key))
+        r.fail(key, fmt::format("{} is only for mesh.vertical_grading = \"contact\"; the grid's vertical grading is "
+                                "\"{}\"",
+                                r.field(key), kind));
+    return;
+  }
+  if (grading_given)
+    r.fail("grading", fmt::format("{} is the power law of mesh.vertical_grading = \"power\"; expected no grading with "
+                                  "vertical_grading = \"contact\" (its layers are set by fine_depth and vertical_growth)",
+                                  r.field("grading")));
+  m.vertical_grading = mesh::VerticalGrading::kContact;
+  const double depth = r.required_number(
+      "fine_depth", fmt::format("a depth in (0, geometry.height = {}) m below the contact surface that keeps the "
+                                "thinnest layers (about the contact radius)",
+                                height));
+  if (!(depth > 0 && depth < height))
+    r.fail_value("fine_depth", fmt::format("a depth in (0, geometry.height = {}) m", height));
+  m.fine_depth = depth;
+  if (const auto growth = r.optional_number("vertical_growth")) {
+    if (!(*growth > 1.0 && *growth <= 2.0))
+      r.fail_value("vertical_growth", "1 < vertical_growth <= 2 (ratio of neighbouring layer thicknesses)");
+    m.vertical_growth = *growth;
+  }
+  try {
+    (void)mesh::contact_layer_coordinates(height, m.cells[2], m.fine_depth, m.vertical_growth);
+  } catch (const InvalidInput& e) {
+    r.fail("cells", e.what());
+  }
+}
 
 bool names_mesh_file(const toml::table& root) {
   const toml::table* mesh = root["mesh"].as_table();

@@ -1,17 +1,25 @@
 // SPDX-License-Identifier: MIT
-// The [mesh] table of a case that imports its body from a Gmsh file (issue 11), and the names
-// of the body's boundary groups in [[load]] / [[dirichlet]] tables. Private to io.
+// The [mesh] table of a case that imports its body from a Gmsh file (issue 11), the vertical
+// grading keys of a structured [mesh] (issue 18), and the names of the body's boundary groups
+// in [[load]] / [[dirichlet]] tables. Private to io.
 #pragma once
 
 #include <string>
 #include <string_view>
 #include <toml++/toml.h>
 
+#include "frictopt/mesh/grid_resolution.hpp"
 #include "frictopt/mesh/mesh.hpp"
 #include "frictopt/study/body_definition.hpp"
 #include "toml_reader.hpp"
 
 namespace frictopt::io::detail {
+
+/// Reads [mesh] vertical_grading ("power", the default, or "contact"), fine_depth [m] and
+/// vertical_growth of a structured grid into `m` (m.cells and m.grading already read), and
+/// checks with the mesh's own construction that the layers can be spaced so; InvalidInput
+/// naming the field otherwise (docs/case-format.md, "Vertical grading").
+void read_vertical_grading(const TableReader& r, double height, bool grading_given, mesh::GridResolution& m);
 
 /// Whether the root's [mesh] table names a file (an imported body) rather than grid cells.
 bool names_mesh_file(const toml::table& root);

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include "frictopt/core/error.hpp"
 
@@ -54,15 +56,9 @@ double side_ratio(double side, double h, int k, double growth) {
   return 0.5 * (lo + hi);
 }
 
-}  // namespace
-
-std::vector<double> graded_coordinates(double length, int cells, double lo, double hi, double growth,
-                                       const std::string& field) {
-  if (!(growth > 1.0 && growth <= 2.0))
-    throw InvalidInput(fmt::format("mesh.growth = {}; expected 1 < growth <= 2 for a graded grid", growth));
-  if (!(lo >= 0 && hi <= length && lo < hi))
-    throw InvalidInput(fmt::format("mesh.refine_box edges {} .. {} m along {}; expected 0 <= min < max <= {} m",
-                                   lo, hi, field, length));
+// The construction of graded_coordinates without its input checks: std::nullopt when `cells`
+// cannot grade [0, length] toward [lo, hi] with ratios in [1, growth].
+std::optional<std::vector<double>> graded_or_none(double length, int cells, double lo, double hi, double growth) {
   const double left = lo, right = length - hi, width = hi - lo;
   // The finest box cells first: m = cells, cells − 1, …; the first m whose sides can be filled
   // with ratios in [1, growth] by the cells that remain.
@@ -102,10 +98,40 @@ std::vector<double> graded_coordinates(double length, int cells, double lo, doub
     }
     return x;
   }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::vector<double> graded_coordinates(double length, int cells, double lo, double hi, double growth,
+                                       const std::string& field) {
+  if (!(growth > 1.0 && growth <= 2.0))
+    throw InvalidInput(fmt::format("mesh.growth = {}; expected 1 < growth <= 2 for a graded grid", growth));
+  if (!(lo >= 0 && hi <= length && lo < hi))
+    throw InvalidInput(fmt::format("mesh.refine_box edges {} .. {} m along {}; expected 0 <= min < max <= {} m",
+                                   lo, hi, field, length));
+  if (auto x = graded_or_none(length, cells, lo, hi, growth)) return std::move(*x);
   throw InvalidInput(fmt::format(
       "{} = {} cells cannot grade [0, {}] m toward the refinement box [{}, {}] m with mesh.growth = {}; expected "
       "more cells, a larger growth, or box edges at a side or at least one refined cell away from it",
       field, cells, length, lo, hi, growth));
+}
+
+std::vector<double> contact_layer_coordinates(double height, int layers, double fine_depth, double growth) {
+  if (!(growth > 1.0 && growth <= 2.0))
+    throw InvalidInput(fmt::format("mesh.vertical_growth = {}; expected 1 < vertical_growth <= 2", growth));
+  if (!(fine_depth > 0 && fine_depth < height))
+    throw InvalidInput(fmt::format("mesh.fine_depth = {} m; expected 0 < fine_depth < geometry.height = {} m "
+                                   "(the depth below the contact surface that keeps the thinnest layers)",
+                                   fine_depth, height));
+  // The fine zone [0, fine_depth] is a refinement interval at one end of [0, height]: the same
+  // construction as the in-plane columns, with no cells on its lower side.
+  if (auto z = graded_or_none(height, layers, 0.0, fine_depth, growth)) return std::move(*z);
+  throw InvalidInput(fmt::format(
+      "mesh.cells[vertical] = {} layers cannot keep equal layers down to mesh.fine_depth = {} m and grow by at most "
+      "mesh.vertical_growth = {} up to geometry.height = {} m; expected more layers, a larger vertical_growth or a "
+      "larger fine_depth",
+      layers, fine_depth, growth, height));
 }
 
 }  // namespace frictopt::mesh

@@ -42,6 +42,11 @@ std::array<int, 3> validated_cells(int dim, double height, const GridResolution&
   if (resolution.refine_box && resolution.growth == 1.0)
     throw InvalidInput("mesh.refine_box is given but mesh.growth = 1 (uniform columns); expected growth in (1, 2]");
   if (!(height > 0)) throw InvalidInput(fmt::format("geometry.height = {}; expected > 0", height));
+  if (resolution.vertical_grading == VerticalGrading::kContact && resolution.grading != 1.0)
+    throw InvalidInput(fmt::format("mesh.grading = {} with mesh.vertical_grading = \"contact\"; expected grading only "
+                                   "with vertical_grading = \"power\" (contact spaces its layers by fine_depth and "
+                                   "vertical_growth)",
+                                   resolution.grading));
   // Node, element and DOF indices are int: refuse a grid whose counts do not fit, before any
   // allocation (issue 17, item 6: the counts used to wrap around in 32-bit arithmetic).
   const StructuredGridSizes sizes = structured_grid_sizes(dim, resolution);
@@ -65,8 +70,16 @@ StructuredMesh::StructuredMesh(const shape::BezierShape& shape, double height, c
   const int dim = shape.dim();
   const int n1 = cells_[0], n2 = cells_[1], nv = cells_[2];
   const int num_nodes = num_columns_ * (nv + 1);
-  s_.resize(static_cast<std::size_t>(nv) + 1);
-  for (int k = 0; k <= nv; ++k) s_[static_cast<std::size_t>(k)] = std::pow(static_cast<double>(k) / nv, resolution.grading);
+  // The layer parameters ŝ_k only decide where the layers sit; the morph stays
+  // x_dim = ŝ_k·C4 + (1 − ŝ_k)·G_α(x'), linear in α for any fixed ŝ, so V stays constant.
+  if (resolution.vertical_grading == VerticalGrading::kContact) {
+    s_ = contact_layer_coordinates(height, nv, resolution.fine_depth, resolution.vertical_growth);
+    for (double& s : s_) s /= height;
+    s_.back() = 1.0;  // the top exactly (the morph's (1 − ŝ) vanishes there)
+  } else {
+    s_.resize(static_cast<std::size_t>(nv) + 1);
+    for (int k = 0; k <= nv; ++k) s_[static_cast<std::size_t>(k)] = std::pow(static_cast<double>(k) / nv, resolution.grading);
+  }
 
   const auto extent = shape.extents();
   // Column positions per in-plane direction: uniform (the formula of the uniform grid, so the

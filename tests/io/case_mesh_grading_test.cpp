@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The in-plane grading keys of [mesh] (issue 18, item 1): growth and refine_box, their
-// defaults, and the messages naming the field.
+// The grading keys of [mesh] (issue 18, item 1): growth and refine_box (in-plane),
+// vertical_grading, fine_depth and vertical_growth; their defaults, and the messages naming
+// the field.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -10,6 +11,7 @@
 #include "common/invalid_case.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
+#include "frictopt/mesh/grid_resolution.hpp"
 
 namespace frictopt::io {
 namespace {
@@ -61,6 +63,47 @@ TEST(CaseMeshGrading, BadValuesAreReportedWithTheField) {
   // Too few cells for the box and the sides at this growth: the message names the cell count.
   expect_invalid_case(case_text(2, "growth = 1.01\nrefine_box = [0.95, 1.05]\n"), {"mesh.cells[0] = 30", "growth = 1.01"});
   expect_invalid_case(case_text(2, "growth = 1.2\nrefin_box = [0.8, 1.2]\n"), {"refin_box", "refine_box"});
+}
+
+TEST(CaseMeshVerticalGrading, DefaultIsThePowerLaw) {
+  const CaseDescription c = parse_case(case_text(3, "grading = 2\n"), "case.toml");
+  EXPECT_EQ(c.body.resolution.vertical_grading, mesh::VerticalGrading::kPower);
+  EXPECT_EQ(c.body.resolution.grading, 2.0);
+  const CaseDescription p = parse_case(case_text(2, "vertical_grading = \"power\"\n"), "case.toml");
+  EXPECT_EQ(p.body.resolution.vertical_grading, mesh::VerticalGrading::kPower);
+}
+
+TEST(CaseMeshVerticalGrading, ReadsContactWithFineDepthAndGrowthIn2DAnd3D) {
+  const CaseDescription c2 =
+      parse_case(case_text(2, "vertical_grading = \"contact\"\nfine_depth = 0.3\n"), "case.toml");
+  EXPECT_EQ(c2.body.resolution.vertical_grading, mesh::VerticalGrading::kContact);
+  EXPECT_EQ(c2.body.resolution.fine_depth, 0.3);
+  EXPECT_EQ(c2.body.resolution.vertical_growth, 1.2);  // the default
+  const CaseDescription c3 = parse_case(
+      case_text(3, "growth = 1.2\nvertical_grading = \"contact\"\nfine_depth = 0.25\nvertical_growth = 1.5\n"),
+      "case.toml");
+  EXPECT_EQ(c3.body.resolution.vertical_grading, mesh::VerticalGrading::kContact);
+  EXPECT_EQ(c3.body.resolution.fine_depth, 0.25);
+  EXPECT_EQ(c3.body.resolution.vertical_growth, 1.5);
+  EXPECT_EQ(c3.body.resolution.growth, 1.2);
+}
+
+TEST(CaseMeshVerticalGrading, BadValuesAreReportedWithTheField) {
+  expect_invalid_case(case_text(2, "vertical_grading = \"geometric\"\n"),
+                      {"mesh.vertical_grading", "\"power\", \"contact\""});
+  expect_invalid_case(case_text(2, "vertical_grading = \"contact\"\n"), {"mesh.fine_depth", "missing"});
+  expect_invalid_case(case_text(2, "vertical_grading = \"contact\"\nfine_depth = 1.0\n"),
+                      {"mesh.fine_depth = 1", "(0, geometry.height = 1) m"});
+  expect_invalid_case(case_text(2, "vertical_grading = \"contact\"\nfine_depth = -0.1\n"), {"mesh.fine_depth = -0.1"});
+  expect_invalid_case(case_text(2, "vertical_grading = \"contact\"\nfine_depth = 0.2\nvertical_growth = 2.5\n"),
+                      {"mesh.vertical_growth = 2.5", "1 < vertical_growth <= 2"});
+  expect_invalid_case(case_text(2, "vertical_grading = \"contact\"\nfine_depth = 0.2\ngrading = 2\n"),
+                      {"mesh.grading", "vertical_grading = \"contact\""});
+  expect_invalid_case(case_text(2, "fine_depth = 0.2\n"), {"mesh.fine_depth", "only for mesh.vertical_grading"});
+  expect_invalid_case(case_text(3, "vertical_growth = 1.3\n"), {"mesh.vertical_growth", "only for"});
+  // 8 layers cannot grow from at least 0.01 m to the top by a ratio <= 1.05: named by the cells.
+  expect_invalid_case(case_text(2, "vertical_grading = \"contact\"\nfine_depth = 0.01\nvertical_growth = 1.05\n"),
+                      {"mesh.cells", "mesh.cells[vertical] = 8"});
 }
 
 }  // namespace

@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
-// Patch test on an in-plane graded, vertically graded and morphed structured grid (issue 18,
-// item 1): Q1 cells reproduce every linear displacement field exactly on any mesh of convex
-// cells, so a linear field prescribed on the whole boundary must come back exactly inside.
+// Patch test on an in-plane graded, vertically graded (power law and "contact") and morphed
+// structured grid (issue 18, item 1): Q1 cells reproduce every linear displacement field
+// exactly on any mesh of convex cells, so a linear field prescribed on the whole boundary must
+// come back exactly inside.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
 #include <limits>
 #include <set>
+#include <string>
+#include <utility>
 
 #include "frictopt/fem/linear_elasticity.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
@@ -15,12 +18,19 @@ namespace frictopt::mesh {
 namespace {
 
 TEST(GradedStructuredMesh, PassesThePatchTestIn2DAnd3D) {
-  for (int dim : {2, 3}) {
-    SCOPED_TRACE(std::to_string(dim) + "D");
+  for (const auto& [dim, contact_layers] : {std::pair{2, false}, std::pair{3, false}, std::pair{2, true}, std::pair{3, true}}) {
+    SCOPED_TRACE(std::to_string(dim) + "D" + (contact_layers ? ", vertical grading contact" : ", power law"));
     const auto shape = dim == 2 ? shape::BezierShape::curve(1.0, 4) : shape::BezierShape::surface(1.0, 0.8, 3, 3);
     GridResolution resolution{{12, 10, 5}, 1.6};
     resolution.growth = 1.25;
     resolution.refine_box = std::array<double, 4>{0.35, 0.6, 0.3, 0.5};
+    if (contact_layers) {  // issue 18: equal layers down to 0.25 m, growing by <= 1.5 above
+      resolution.grading = 1.0;
+      resolution.cells[2] = 8;
+      resolution.vertical_grading = VerticalGrading::kContact;
+      resolution.fine_depth = 0.25;
+      resolution.vertical_growth = 1.5;
+    }
     const StructuredMesh grid(shape, 1.0, resolution);
     const Mesh& mesh = grid.mesh();
     Eigen::VectorXd alpha = Eigen::VectorXd::Constant(shape.num_controls(), 0.1);

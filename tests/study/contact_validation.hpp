@@ -43,6 +43,9 @@ struct BlockSpec {
   /// [refine_min, refine_max]² around the apex; 1 keeps the uniform grid.
   double growth = 1.0;
   double refine_min = 0.0, refine_max = 0.0;  ///< [m], both in-plane directions
+  /// Vertical grading "contact" (issue 18) when fine_depth > 0: equal layers down to fine_depth,
+  /// growing by <= vertical_growth above; otherwise the power law of bottom_grading.
+  double fine_depth = 0.0, vertical_growth = 1.2;
 };
 
 /// The in-plane cell size at the apex: L/cells, or the refinement box's cell when graded.
@@ -87,7 +90,13 @@ inline BodyDefinition block_definition(const BlockSpec& s) {
   def.shape = s.dim == 2 ? shape::BezierShape::curve(s.width, 3) : shape::BezierShape::surface(s.width, s.width, 3, 3);
   def.height = s.height;
   def.resolution.cells = {s.cells, s.dim == 2 ? 1 : s.cells, s.layers};
-  def.resolution.grading = bottom_grading(s);
+  if (s.fine_depth > 0) {
+    def.resolution.vertical_grading = mesh::VerticalGrading::kContact;
+    def.resolution.fine_depth = s.fine_depth;
+    def.resolution.vertical_growth = s.vertical_growth;
+  } else {
+    def.resolution.grading = bottom_grading(s);
+  }
   if (s.growth != 1.0) {
     def.resolution.growth = s.growth;
     def.resolution.refine_box = std::array<double, 4>{s.refine_min, s.refine_max, s.refine_min, s.refine_max};

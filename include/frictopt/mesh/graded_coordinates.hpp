@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Column coordinates along one in-plane direction of the structured grid: uniform, or graded
-// geometrically toward a refinement interval (issue 18, item 1).
+// geometrically toward a refinement interval (issue 18, item 1), and the layer heights of the
+// vertical grading "contact".
 #pragma once
 
 #include <string>
@@ -22,5 +23,14 @@ std::vector<double> uniform_coordinates(double length, int cells);
 /// (1, 2], or when `cells` are too few (or a box edge is closer to a side than one box cell).
 std::vector<double> graded_coordinates(double length, int cells, double lo, double hi, double growth,
                                        const std::string& field);
+
+/// Layer heights 0 = z_0 < … < z_layers = height of the vertical grading "contact" (issue 18):
+/// equal layers of thickness t = fine_depth/m from the contact surface down to the depth
+/// fine_depth, then layers growing by a ratio r in [1, growth] per layer up to the top, filling
+/// it exactly. m is the largest count the layers allow (the thinnest fine layers), as in
+/// graded_coordinates with the refinement interval [0, fine_depth]. Throws InvalidInput naming
+/// mesh.fine_depth (not in (0, height)), mesh.vertical_growth (not in (1, 2]) or
+/// mesh.cells[vertical] (too few layers to reach the top).
+std::vector<double> contact_layer_coordinates(double height, int layers, double fine_depth, double growth);
 
 }  // namespace frictopt::mesh

@@ -7,12 +7,25 @@
 
 namespace frictopt::mesh {
 
+/// How the layers are spaced vertically (issue 18, item 1).
+enum class VerticalGrading {
+  kPower,   ///< ŝ_k = (k/n_vertical)^grading: one power law over the whole height
+  kContact  ///< equal layers down to fine_depth, geometric growth above (contact_layer_coordinates)
+};
+
 /// Grid resolution: cells along x1, (x2 in 3D,) and the vertical direction.
 struct GridResolution {
   std::array<int, 3> cells{1, 1, 1};  ///< (n1, n2, n_vertical); n2 is ignored in 2D
   /// Vertical bias toward the contact surface: layer k sits at ŝ_k = (k/n_vertical)^grading,
   /// so grading > 1 refines near the bottom where the contact stresses concentrate. In [1, 10].
   double grading = 1.0;
+  /// kPower (default) uses `grading`; kContact keeps the layers as thin as the layer count
+  /// allows down to fine_depth below the contact surface, where the contact stresses are set
+  /// (the Hertz pressure is governed by the stress field to a depth of about the contact radius),
+  /// and lets them grow by at most vertical_growth per layer to the top.
+  VerticalGrading vertical_grading = VerticalGrading::kPower;
+  double fine_depth = 0.0;       ///< [m], kContact only: depth of the equal fine layers, in (0, height)
+  double vertical_growth = 1.2;  ///< kContact only: largest ratio of neighbouring layer thicknesses, in (1, 2]
   /// In-plane grading (issue 18): 1 keeps the columns uniform (x_i = L·i/n). growth > 1 puts
   /// uniform cells inside refine_box and cells growing geometrically, by a ratio of at most
   /// `growth` between neighbours, from the box to the sides (graded_coordinates.hpp). In [1, 2].

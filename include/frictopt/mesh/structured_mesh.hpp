@@ -39,6 +39,8 @@ StructuredGridSizes structured_grid_sizes(int dim, const GridResolution& resolut
 /// layer k = 0 (bottom, Γ_c) .. n_vertical (top). Coordinates of a node in column c, layer k:
 ///   x' = (ξ1_i1, ξ2_i2),   x_dim = ŝ_k·C4 + (1 − ŝ_k)·G_α(x')        (spec 01, (A-MESH))
 /// so X(α) = X_ref + V α with X_ref(x_dim) = ŝ_k·C4 and V[(node, dim−1), :] = (1−ŝ_k)·basis(x').
+/// The layers ŝ_k follow resolution.vertical_grading: the power law (k/n_vertical)^grading, or
+/// "contact" (equal layers down to fine_depth, geometric growth above; contact_layer_coordinates).
 /// The column lines ξ are uniform (ξ1_i = i·a/n1) or, with resolution.growth > 1, graded toward
 /// the refinement box (graded_coordinates.hpp); either way the columns are fixed and V is the
 /// Bernstein basis at the actual column positions, so V stays constant.
@@ -49,7 +51,8 @@ StructuredGridSizes structured_grid_sizes(int dim, const GridResolution& resolut
 class StructuredMesh {
  public:
   /// `shape` gives the bottom surface (its extents are the body's a, b); `height` is C4.
-  /// Throws InvalidInput for a resolution < 1, a grading outside [1, 10], a growth outside [1, 2],
+  /// Throws InvalidInput for a resolution < 1, a grading outside [1, 10] (or != 1 with the
+  /// vertical grading "contact"), a fine_depth or vertical_growth that does not fit, a growth outside [1, 2],
   /// a refinement box that does not fit or too few cells to grade, a height <= 0, or a
   /// grid with more than 2^31 − 1 unknowns (node and DOF indices are 32-bit).
   StructuredMesh(const shape::BezierShape& shape, double height, const GridResolution& resolution);
