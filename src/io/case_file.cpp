@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <limits>
 #include <fstream>
 #include <map>
@@ -439,6 +440,8 @@ Friction read_friction(const TableReader& r, int dim) {
       used = {"kind", "mu"};
       break;
   }
+  // Every law but "none" may be turned in the tangent plane (2D: only by 0, checked below).
+  if (f.kind != FrictionKind::kNone) used.push_back("orientation_deg");
   for (auto&& [key, value] : r.table()) {
     if (std::find(used.begin(), used.end(), key.str()) != used.end()) continue;
     std::string list;
@@ -518,6 +521,17 @@ Friction read_friction(const TableReader& r, int dim) {
       }
     }
   }
+  // orientation_deg: the law turned counter-clockwise in the foundation's tangent plane, so
+  // μ(θ) becomes μ(θ − φ) (FrictionLaw::rotated).
+  if (const std::optional<double> degrees = r.optional_number("orientation_deg")) {
+    if (!(std::abs(*degrees) <= 360.0))
+      r.fail_value("orientation_deg", "an angle in degrees, −360 <= orientation_deg <= 360");
+    if (dim == 2 && *degrees != 0.0)
+      r.fail_value("orientation_deg",
+                   "0 in 2D (the tangent space of a 2D contact is a line; for a direction-dependent 2D law "
+                   "give mu_plus and mu_minus)");
+    f.law = f.law.rotated(*degrees * std::numbers::pi / 180.0);
+  }
   return f;
 }
 // [contact] and [contact.friction]: the law; the solver options come from [solver].
@@ -527,7 +541,7 @@ Friction read_contact(const TableReader& r, int dim, std::string_view origin) {
   if (const toml::table* friction = r.optional_table("friction"))
     return read_friction(
         TableReader(*friction, r.field("friction"), origin,
-                    {"kind", "mu", "n", "mu_vertices", "mu_x", "mu_y", "mu_plus", "mu_minus"}),
+                    {"kind", "mu", "n", "mu_vertices", "mu_x", "mu_y", "mu_plus", "mu_minus", "orientation_deg"}),
         dim);
   return {FrictionKind::kNone, dim == 2 ? contact::FrictionLaw::interval(0.0, 0.0) : contact::FrictionLaw::disc(0.0)};
 }
