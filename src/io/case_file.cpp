@@ -27,6 +27,7 @@
 #include "frictopt/study/shape_optimization.hpp"
 #include "case_solver_section.hpp"
 #include "case_program_section.hpp"
+#include "case_foundation_section.hpp"
 #include "case_mesh_section.hpp"
 #include "text_input.hpp"
 #include "toml_reader.hpp"
@@ -915,7 +916,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                         {"geometry", "mesh", "material", "load", "dirichlet", "design", "contact",
                          "solver", "cost", "optimization", "output", "identification",
                          // issue 12's sections (case_program_section.hpp)
-                         "force", "constraint", "program", "experiment"});
+                         "force", "constraint", "program", "experiment", "foundation"});
   const auto table = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
     const toml::table* t = top.optional_table(key);
     if (t == nullptr) top.fail_missing(key, fmt::format("a table [{}]", key));
@@ -1001,7 +1002,14 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     study::ContactDefinition contact_definition;
     contact_definition.law = friction->law;
     contact_definition.coulomb = coulomb;
+    if (const toml::table* foundation = top.optional_table("foundation"))
+      contact_definition.foundation =
+          detail::read_foundation(TableReader(*foundation, "foundation", origin, {"normal", "offset", "axis1"}), dim);
     body.contact = std::move(contact_definition);
+  } else if (top.optional_table("foundation")) {
+    throw InvalidInput(fmt::format("{}: [foundation] needs a [contact] table (a body without contact never meets "
+                                   "the foundation); expected [contact] or no [foundation]",
+                                   origin));
   }
   if (!imported) check_free_unknowns(c, dim, fixed_by);  // the structured grid's layers
 

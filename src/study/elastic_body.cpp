@@ -79,7 +79,12 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
       throw InvalidInput(fmt::format("contact.friction: a {}D friction law for a {}D body",
                                      definition_.contact->law.dim(), mesh_->dim()));
     definition_.contact->coulomb.validate();
-    boundary_ = std::make_unique<contact::ContactBoundary>(*mesh_, fem_->dofs(), definition_.contact_surface);
+    boundary_ = std::make_unique<contact::ContactBoundary>(*mesh_, fem_->dofs(), definition_.contact_surface,
+                                                           definition_.contact->foundation);
+    if (definition_.engine.kind == StateEngine::kPetsc && !boundary_->standard_foundation())
+      throw InvalidInput(
+          "foundation: solver.engine = \"petsc\" supports the default foundation only (normal = e_dim, offset = 0, "
+          "axis1 = e1); expected engine = \"direct\" for a tilted or offset foundation (docs/petsc-engine.md)");
     if (definition_.engine.kind == StateEngine::kPetsc) {
 #ifdef FRICTOPT_HAVE_PETSC
       petsc::ContactNewtonSolver::Options options;
@@ -98,7 +103,9 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
     }
     // Contact DOFs last, in z order: the trailing factor gives the Delassus matrix (spec 02 §5).
     // A backend without that capability gets M by solves instead (solve()).
-    if (fem_->factorization().supports_trailing_factor()) {
+    // The Schur factor gives M = D S⁻¹ D with D the signs of G's ±unit rows: the standard
+    // foundation only; a tilted frame's M comes from solves with G (dense_delassus).
+    if (fem_->factorization().supports_trailing_factor() && boundary_->standard_foundation()) {
       std::vector<int> trailing;
       for (Eigen::Index i = 0; i < boundary_->num_nodes(); ++i)
         for (int c = 0; c < mesh_->dim(); ++c) trailing.push_back(boundary_->free_dof(i, c));
@@ -251,8 +258,12 @@ BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha
       }
       if (translations_free) {
         // Σλ = −F_ν and Σq = F_t (the contact balances the net load).
-        excess = friction_capacity_excess(law, dim == 3 ? Eigen::Vector2d(net(0), net(1)) : Eigen::Vector2d(net(0), 0.0),
-                                          -net(dim - 1), dim);
+        // In the foundation's frame: tangential t_k·F, normal n·F.
+        const mesh::PlaneFrame& frame = boundary_->foundation().frame;
+        const Eigen::VectorXd net_tangential = frame.tangents.transpose() * net.head(dim);
+        excess = friction_capacity_excess(
+            law, dim == 3 ? Eigen::Vector2d(net_tangential(0), net_tangential(1)) : Eigen::Vector2d(net_tangential(0), 0.0),
+            -frame.normal.dot(net.head(dim)), dim);
       }
       contact::FloatingCoulombSolver::Options fo;
       fo.coulomb = cd.coulomb;
@@ -286,7 +297,7 @@ BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha
     }
     if (result.summary.converged()) warm_start_ = result.state;
     result.resultants = contact::contact_resultants(result.state, boundary_->tributary_areas(),
-                                                    boundary_->plane_coordinates());
+                                                    boundary_->plane_coordinates(), boundary_->frame_rows());
     // u_f = A⁻¹(l + Gᵀz): the body under its loads and the contact forces.
     Eigen::VectorXd w = Eigen::VectorXd::Zero(fem_->dofs().num_free());
     boundary_->add_transpose_times(result.state.z, w);

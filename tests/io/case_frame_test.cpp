@@ -64,5 +64,48 @@ TEST(CaseFrictionOrientation, RefusesANonzeroAngleIn2dAndAnAngleOutOfRange) {
                       {"contact.friction.orientation_deg", "not used by kind = \"none\""});
 }
 
+// [foundation]: normal (normalized), offset, axis1; the defaults are the thesis' foundation.
+TEST(CaseFoundation, ReadsNormalOffsetAndAxis) {
+  const std::string base = read_case("fclib3d.toml");
+  const contact::Foundation plain = parse_case(base, "case.toml").body.contact->foundation;
+  EXPECT_TRUE(plain.is_standard(3));
+  const contact::Foundation f =
+      parse_case(base + "\n[foundation]\nnormal = [0.0, 0.0, 2.0]\noffset = -1.0e-3\naxis1 = [1.0, 1.0, 0.0]\n", "case.toml")
+          .body.contact->foundation;
+  EXPECT_EQ(f.offset, -1e-3);
+  EXPECT_LE((f.frame.normal - Eigen::Vector3d::UnitZ()).norm(), 1e-15);
+  EXPECT_LE((f.frame.tangents.col(0) - Eigen::Vector3d(1.0, 1.0, 0.0).normalized()).norm(), 1e-15);
+  EXPECT_LE((f.frame.tangents.col(1) - Eigen::Vector3d(-1.0, 1.0, 0.0).normalized()).norm(), 1e-15);
+  // Default axis1: e1 projected onto the plane.
+  const contact::Foundation tilted =
+      parse_case(base + "\n[foundation]\nnormal = [1.0, 0.0, 1.0]\n", "case.toml").body.contact->foundation;
+  EXPECT_LE((tilted.frame.tangents.col(0) - Eigen::Vector3d(1.0, 0.0, -1.0).normalized()).norm(), 1e-15);
+  EXPECT_FALSE(tilted.is_standard(3));
+  // Explicitly standard: still the thesis' foundation.
+  EXPECT_TRUE(parse_case(base + "\n[foundation]\nnormal = [0, 0, 1]\noffset = 0\n", "case.toml")
+                  .body.contact->foundation.is_standard(3));
+  const std::string base2d = read_case("fclib2d.toml");
+  const contact::Foundation f2 =
+      parse_case(base2d + "\n[foundation]\nnormal = [0.0, 1.0]\n", "case.toml").body.contact->foundation;
+  EXPECT_TRUE(f2.is_standard(2));
+}
+
+TEST(CaseFoundation, RefusesABadNormalOrAxisNamingTheKey) {
+  const std::string base = read_case("fclib3d.toml");
+  expect_invalid_case(base + "\n[foundation]\nnormal = [0.0, 0.0, 0.0]\n", {"foundation.normal", "not all zero"});
+  expect_invalid_case(base + "\n[foundation]\nnormal = [0.0, 1.0]\n", {"foundation.normal", "a list of 3 numbers"});
+  expect_invalid_case(base + "\n[foundation]\nnormal = [0.0, 0.0, 1.0]\naxis1 = [0.0, 0.0, -3.0]\n",
+                      {"foundation.axis1", "is parallel to foundation.normal"});
+  expect_invalid_case(base + "\n[foundation]\naxis1 = [0.0, 0.0, 0.0]\n", {"foundation.axis1", "not all zero"});
+  expect_invalid_case(base + "\n[foundation]\noffset = \"low\"\n", {"foundation.offset"});
+  expect_invalid_case(base + "\n[foundation]\nnormale = [0.0, 0.0, 1.0]\n", {"normale"});
+  const std::string base2d = read_case("fclib2d.toml");
+  expect_invalid_case(base2d + "\n[foundation]\naxis1 = [1.0, 0.0, 0.0]\n", {"foundation.axis1", "expected no axis1 in 2D"});
+  const std::size_t contact = base.find("[contact.friction]");
+  ASSERT_NE(contact, std::string::npos);
+  expect_invalid_case(base.substr(0, contact) + "[foundation]\nnormal = [0.0, 0.0, 1.0]\n",
+                      {"[foundation] needs a [contact] table"});
+}
+
 }  // namespace
 }  // namespace frictopt::io

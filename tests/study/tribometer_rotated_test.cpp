@@ -10,6 +10,7 @@
 #include <numbers>
 #include <string>
 
+#include "frictopt/core/error.hpp"
 #include "frictopt/study/tribometer.hpp"
 #include "study/contact_validation.hpp"
 
@@ -76,6 +77,20 @@ TEST(TribometerWithATurnedLaw, SlidingForceIsTheUnturnedLawsAtTheShiftedAngle) {
       EXPECT_LE(a.normality_residual, 1e-6);
       EXPECT_NEAR(std::remainder(a.slip_angle_degrees - a.angle_degrees, 360.0), 0.0, 1e-3);
     }
+  }
+}
+
+TEST(TribometerWithATurnedLaw, RefusesATiltedFoundation) {
+  BodyDefinition def = specimen(FrictionLaw::disc(0.3));
+  def.contact->foundation.offset = 1e-3;
+  TribometerDefinition e;
+  e.normal_force = 1e3;
+  e.pull_displacement = 1e-6;
+  try {
+    Tribometer tribometer(def, e);
+    ADD_FAILURE() << "a tribometer on a moved foundation was accepted";
+  } catch (const InvalidInput& error) {
+    EXPECT_NE(std::string(error.what()).find("needs the default foundation"), std::string::npos) << error.what();
   }
 }
 
