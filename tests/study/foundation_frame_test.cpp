@@ -76,7 +76,8 @@ double relative(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a 
 
 struct Outcome {
   BodyState state;
-  Evaluation evaluation;
+  Evaluation evaluation;  // compliance
+  Evaluation slip;        // total slip: reads u_t in the foundation's frame
 };
 
 Outcome solve(const BodyDefinition& def) {
@@ -85,6 +86,8 @@ Outcome solve(const BodyDefinition& def) {
   Outcome out;
   out.evaluation = oracle.evaluate_design(def.initial_design);
   out.state = oracle.last_state();
+  ShapeOracle slip_oracle(body, cost::make_total_slip(1e-9));
+  out.slip = slip_oracle.evaluate_design(def.initial_design);
   return out;
 }
 
@@ -106,6 +109,12 @@ void expect_invariant(const BodyDefinition& def, const Eigen::MatrixXd& R, const
   const double e_u = relative(b.state.displacement, u_turned);
   const double e_theta = std::abs(b.evaluation.value - a.evaluation.value) / std::abs(a.evaluation.value);
   const double e_xi = relative(b.evaluation.subgradient, a.evaluation.subgradient);
+  ASSERT_TRUE(a.slip.ok && b.slip.ok) << a.slip.message << b.slip.message;
+  const double e_slip = std::abs(b.slip.value - a.slip.value) / std::abs(a.slip.value);
+  const double e_slip_xi = relative(b.slip.subgradient, a.slip.subgradient);
+  std::printf("%s total slip: Θ %.1e, ξ %.1e\n", name.c_str(), e_slip, e_slip_xi);
+  EXPECT_LE(e_slip, 1e-9);
+  EXPECT_LE(e_slip_xi, 1e-9);
   std::printf("%s: λ %.1e, z %.1e, u %.1e, Θ %.1e, ξ %.1e (%d slip, %d stick)\n", name.c_str(), e_lambda, e_z, e_u,
               e_theta, e_xi, a.state.contact->resultants.num_slip, a.state.contact->resultants.num_stick);
   EXPECT_GT(a.state.contact->resultants.num_slip, 0);
