@@ -103,9 +103,7 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
     }
     // Contact DOFs last, in z order: the trailing factor gives the Delassus matrix (spec 02 §5).
     // A backend without that capability gets M by solves instead (solve()).
-    // The Schur factor gives M = D S⁻¹ D with D the signs of G's ±unit rows: the standard
-    // foundation only; a tilted frame's M comes from solves with G (dense_delassus).
-    if (fem_->factorization().supports_trailing_factor() && boundary_->standard_foundation()) {
+    if (fem_->factorization().supports_trailing_factor()) {
       std::vector<int> trailing;
       for (Eigen::Index i = 0; i < boundary_->num_nodes(); ++i)
         for (int c = 0; c < mesh_->dim(); ++c) trailing.push_back(boundary_->free_dof(i, c));
@@ -187,12 +185,16 @@ BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha
     if (reuse) {
       result.delassus = step_delassus_;
       result.delassus_matrix = step_delassus_matrix_;
-    } else if (solver.trailing_size() > 0) {
+    } else if (solver.trailing_size() > 0 && (boundary_->standard_foundation() || result.dense_delassus)) {
+      // The Schur factor gives M = D S⁻¹ D with D the signs of the standard foundation's ±unit
+      // rows of G; a tilted foundation's dense M is that turned per node (turn_delassus).
       auto schur = std::make_shared<contact::SchurDelassus>(solver.trailing_factor(), dim);
       if (result.dense_delassus) {
         // One copy of the dense M, shared by the QP operator and readers of delassus_matrix; the
         // Schur factor is released at the end of this scope.
-        result.delassus_matrix = std::make_shared<const Eigen::MatrixXd>(schur->dense());
+        result.delassus_matrix = std::make_shared<const Eigen::MatrixXd>(
+            boundary_->standard_foundation() ? schur->dense()
+                                             : contact::turn_delassus(schur->dense(), boundary_->frame_rows()));
         result.delassus = std::make_shared<contact::DenseDelassus>(result.delassus_matrix);
       } else {
         result.delassus = std::move(schur);

@@ -16,6 +16,7 @@
 
 #include "common/test_bodies.hpp"
 #include "frictopt/contact/contact_boundary.hpp"
+#include "frictopt/contact/delassus.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/cost/cost_functional.hpp"
 #include "frictopt/study/build_mesh.hpp"
@@ -188,6 +189,18 @@ TEST(FoundationFrame, GHasTheFrameRowsAndItsTransposeIsConsistent) {
   Eigen::VectorXd full = Eigen::VectorXd::Zero(body.mesh().num_dofs());
   full.segment(3 * node, 3) = Eigen::Vector3d(0.3, -0.2, 0.7);
   EXPECT_LE((G.times_full(full).head(3) - F * Eigen::Vector3d(0.3, -0.2, 0.7)).norm(), 1e-15);
+}
+
+// The tilted foundation's dense M from the Schur factor (turn_delassus of the standard one)
+// equals M = G A⁻¹ Gᵀ formed by solves with the tilted G.
+TEST(FoundationFrame, TurnedSchurDelassusEqualsSolvesWithTheTiltedG) {
+  ElasticBody body(rotated(block_3d(contact::FrictionLaw::disc(0.3)), rotation_3d()));
+  const BodyState s = body.solve(body.definition().initial_design);
+  ASSERT_TRUE(s.contact && s.contact->delassus_matrix);
+  const Eigen::MatrixXd by_solves = contact::dense_delassus(body.elasticity().factorization(), *body.contact_boundary());
+  const double error = (*s.contact->delassus_matrix - by_solves).norm() / by_solves.norm();
+  std::printf("turned Schur M vs solves with G: %.1e\n", error);
+  EXPECT_LE(error, 1e-12);
 }
 
 TEST(FoundationFrame, ThePetscEngineRefusesATiltedFoundationNamingIt) {

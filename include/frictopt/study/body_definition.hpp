@@ -43,8 +43,9 @@ struct ContactDefinition {
   /// factorization so that L comes with it.
   int dense_delassus_max_unknowns = 12000;
   /// The foundation plane n·x = d and the friction law's frame in it (issue 11 item 4; default
-  /// n = e_dim, d = 0). A non-standard one forms M by solves (dense_delassus) or applies it
-  /// through the factorization, not from the Schur factor, whose rows assume ±unit rows of G.
+  /// n = e_dim, d = 0). A non-standard one turns the Schur factor's dense M per node
+  /// (contact::turn_delassus); above dense_delassus_max_unknowns it applies M through the
+  /// factorization (the Schur operator assumes the standard ±unit rows of G).
   contact::Foundation foundation;
 };
 
