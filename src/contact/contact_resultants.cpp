@@ -37,6 +37,15 @@ std::string ContactResultants::brief_report() const {
 ContactResultants contact_resultants(const ContactState& state,
                                      const Eigen::Ref<const Eigen::VectorXd>& areas,
                                      const Eigen::Ref<const Eigen::MatrixXd>& plane) {
+  Eigen::MatrixXd rows = Eigen::MatrixXd::Identity(state.dim, state.dim);
+  rows.topLeftCorner(state.dim - 1, state.dim - 1) *= -1.0;
+  return contact_resultants(state, areas, plane, rows);
+}
+
+ContactResultants contact_resultants(const ContactState& state,
+                                     const Eigen::Ref<const Eigen::VectorXd>& areas,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& plane,
+                                     const Eigen::Ref<const Eigen::MatrixXd>& frame_rows) {
   const Eigen::Index p = state.num_nodes();
   if (areas.size() != p || plane.rows() != p || plane.cols() != state.dim - 1 ||
       static_cast<Eigen::Index>(state.nodes.size()) != p)
@@ -45,6 +54,9 @@ ContactResultants contact_resultants(const ContactState& state,
         "classified nodes; "
         "expected {} each (plane: {} columns)",
         p, areas.size(), plane.rows(), plane.cols(), state.nodes.size(), p, state.dim - 1));
+  if (frame_rows.rows() != state.dim || frame_rows.cols() != state.dim)
+    throw InvalidInput(fmt::format("contact_resultants: frame rows {}×{}; expected {}×{}", frame_rows.rows(),
+                                   frame_rows.cols(), state.dim, state.dim));
   ContactResultants r;
   r.dim = state.dim;
   Eigen::Vector2d weighted = Eigen::Vector2d::Zero();
@@ -71,6 +83,10 @@ ContactResultants contact_resultants(const ContactState& state,
         break;
     }
   }
+  // Σ Fᵀz_i = Fᵀ Σz_i: the force on the body in global axes.
+  Eigen::VectorXd total = Eigen::VectorXd::Zero(state.dim);
+  for (Eigen::Index i = 0; i < p; ++i) total += state.z.segment(state.dim * i, state.dim);
+  r.global_force.head(state.dim) = frame_rows.transpose() * total;
   r.tangential_force_norm = r.tangential_force.norm();
   if (r.normal_force > 0.0) r.force_ratio = r.tangential_force_norm / r.normal_force;
   r.contact_area = r.stick_area + r.slip_area;

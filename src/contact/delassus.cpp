@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/contact/delassus.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "frictopt/linalg/dense_blas.hpp"
@@ -218,6 +220,24 @@ Eigen::MatrixXd FactorizedDelassus::block(const std::vector<Eigen::Index>& rows,
     for (std::size_t i = 0; i < rows.size(); ++i) out(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = column(rows[i]);
   }
   return out;
+}
+
+Eigen::MatrixXd turn_delassus(const Eigen::MatrixXd& standard, const Eigen::MatrixXd& frame_rows) {
+  const Eigen::Index dim = frame_rows.rows();
+  if (frame_rows.cols() != dim || (dim != 2 && dim != 3) || standard.rows() != standard.cols() ||
+      standard.rows() % dim != 0)
+    throw InvalidInput(fmt::format("turn_delassus: M {}×{} and frame rows {}×{}; expected a square M of a multiple "
+                                   "of dim rows and a dim × dim frame (dim 2 or 3)",
+                                   standard.rows(), standard.cols(), frame_rows.rows(), frame_rows.cols()));
+  // Q = F D: F's rows with the standard signs D = diag(−1, (−1,) 1) undone.
+  Eigen::MatrixXd Q = frame_rows;
+  Q.leftCols(dim - 1) *= -1.0;
+  const Eigen::Index p = standard.rows() / dim;
+  Eigen::MatrixXd M(standard.rows(), standard.cols());
+  for (Eigen::Index j = 0; j < p; ++j)
+    for (Eigen::Index i = 0; i < p; ++i)
+      M.block(dim * i, dim * j, dim, dim) = Q * standard.block(dim * i, dim * j, dim, dim) * Q.transpose();
+  return 0.5 * (M + M.transpose());
 }
 
 Eigen::MatrixXd dense_delassus(const linalg::SpdSolver& solver, const ContactBoundary& boundary,

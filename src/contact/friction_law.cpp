@@ -235,6 +235,28 @@ FrictionLaw FrictionLaw::make_polygon(FrictionLawKind kind, std::vector<Eigen::V
   return law;
 }
 
+FrictionLaw FrictionLaw::rotated(double angle) const {
+  if (!std::isfinite(angle))
+    throw InvalidInput("FrictionLaw::rotated: angle = " + num(angle) + "; expected a finite angle in radians");
+  if (angle == 0.0) return *this;
+  if (kind_ == FrictionLawKind::kInterval)
+    throw InvalidInput("FrictionLaw::rotated: " + describe() + " is a 2D law (its tangent space is a line); angle = " +
+                       num(angle) + "; expected 0");
+  FrictionLaw law = *this;
+  law.orientation_ = orientation_ + angle;
+  // R(φ) from the total angle (not a product of turns), so frame() does not drift with the
+  // number of rotated() calls.
+  const double c = std::cos(law.orientation_), s = std::sin(law.orientation_);
+  law.frame_ << c, -s, s, c;
+  // Polygons turn by the increment: vertices and normals are stored in the tangent plane.
+  const double ci = std::cos(angle), si = std::sin(angle);
+  Eigen::Matrix2d turn;
+  turn << ci, -si, si, ci;
+  for (auto& w : law.vertices_) w = turn * w;
+  for (auto& e : law.normals_) e = turn * e;
+  return law;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Geometry
 
@@ -257,9 +279,12 @@ Eigen::Vector2d FrictionLaw::project(const Eigen::Vector2d& q, double s) const {
       // min ‖x − q‖² s.t. (x/a)² + (y/b)² <= 1: x_k = a_k² q_k/(a_k² + t) with t >= 0 the root
       // of f(t) = Σ (a_k q_k/(a_k² + t))² − 1, which is convex and decreasing; Newton from a
       // lower bound of the root increases monotonically to it (no safeguard needed).
+      // In the law's own frame (a rotation preserves distances, so the projection commutes
+      // with it).
       const Eigen::Vector2d a = s * semi_axes_;
-      const Eigen::Vector2d aq = a.cwiseProduct(q);
-      if ((q.cwiseQuotient(a)).squaredNorm() <= 1.0) return q;
+      const Eigen::Vector2d ql = to_law_frame(q);
+      const Eigen::Vector2d aq = a.cwiseProduct(ql);
+      if ((ql.cwiseQuotient(a)).squaredNorm() <= 1.0) return q;
       double t = std::max({0.0, std::abs(aq.x()) - a.x() * a.x(), std::abs(aq.y()) - a.y() * a.y()});
       for (int it = 0; it < 100; ++it) {
         const Eigen::Vector2d den = (a.cwiseProduct(a)).array() + t;
@@ -272,7 +297,7 @@ Eigen::Vector2d FrictionLaw::project(const Eigen::Vector2d& q, double s) const {
         if (step <= 4.0 * std::numeric_limits<double>::epsilon() * t) break;
       }
       const Eigen::Vector2d den = (a.cwiseProduct(a)).array() + t;
-      return a.cwiseProduct(aq).cwiseQuotient(den);
+      return from_law_frame(a.cwiseProduct(aq).cwiseQuotient(den));
     }
     default: {
       const int n = static_cast<int>(vertices_.size());
@@ -305,9 +330,10 @@ double FrictionLaw::support(const Eigen::Vector2d& u) const {
   switch (kind_) {
     case FrictionLawKind::kInterval:
       return u.x() >= 0.0 ? mu_vertices_[1] * u.x() : -mu_vertices_[0] * u.x();
-    case FrictionLawKind::kDisc:
-    case FrictionLawKind::kEllipse:
+    case FrictionLawKind::kDisc:  // rotation-invariant: no turn, no rounding
       return semi_axes_.cwiseProduct(u).norm();
+    case FrictionLawKind::kEllipse:
+      return semi_axes_.cwiseProduct(to_law_frame(u)).norm();
     default: {
       double best = -std::numeric_limits<double>::infinity();
       for (const auto& w : vertices_) best = std::max(best, w.dot(u));
@@ -327,10 +353,12 @@ Eigen::Vector2d FrictionLaw::exposed_point(const Eigen::Vector2d& u) const {
       return Eigen::Vector2d::Zero();
     case FrictionLawKind::kDisc:
     case FrictionLawKind::kEllipse: {
-      // ∇N_W(u) = diag(μ²) u / ‖diag(μ) u‖.
-      const double nu = semi_axes_.cwiseProduct(u).norm();
+      // ∇N_W(u) = R diag(μ²) Rᵀu / ‖diag(μ) Rᵀu‖ (the disc's R is harmless: diag(μ²) = μ² I).
+      const Eigen::Vector2d ul = kind_ == FrictionLawKind::kDisc ? u : to_law_frame(u);
+      const double nu = semi_axes_.cwiseProduct(ul).norm();
       if (nu == 0.0) return Eigen::Vector2d::Zero();
-      return semi_axes_.cwiseProduct(semi_axes_).cwiseProduct(u) / nu;
+      const Eigen::Vector2d w = semi_axes_.cwiseProduct(semi_axes_).cwiseProduct(ul) / nu;
+      return kind_ == FrictionLawKind::kDisc ? w : from_law_frame(w);
     }
     default: {
       if (u.isZero(0.0)) return Eigen::Vector2d::Zero();
@@ -355,7 +383,8 @@ double FrictionLaw::max_step(const Eigen::Vector2d& q, double s, const Eigen::Ve
     case FrictionLawKind::kDisc:
     case FrictionLawKind::kEllipse: {
       const Eigen::Vector2d a = s * semi_axes_;
-      return disc_max_step(q.cwiseQuotient(a), d.cwiseQuotient(a));
+      if (kind_ == FrictionLawKind::kDisc) return disc_max_step(q / a.x(), d / a.x());
+      return disc_max_step(to_law_frame(q).cwiseQuotient(a), to_law_frame(d).cwiseQuotient(a));
     }
     default: {
       double alpha = kInf;
@@ -376,7 +405,7 @@ double FrictionLaw::boundary_offset(const Eigen::Vector2d& q, double s) const {
     case FrictionLawKind::kDisc:
       return q.norm() - s * semi_axes_.x();
     case FrictionLawKind::kEllipse:
-      return (q.cwiseQuotient(semi_axes_).norm() - s) * min_coefficient_;
+      return (to_law_frame(q).cwiseQuotient(semi_axes_).norm() - s) * min_coefficient_;
     default: {
       double offset = -std::numeric_limits<double>::infinity();
       for (std::size_t j = 0; j < normals_.size(); ++j)
@@ -478,6 +507,7 @@ std::string FrictionLaw::describe() const {
       out << ']';
       break;
   }
+  if (orientation_ != 0.0) out << ", orientation_deg=" << orientation_ * 180.0 / std::numbers::pi;
   out << ')';
   return out.str();
 }

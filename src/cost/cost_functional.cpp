@@ -117,11 +117,12 @@ class TotalSlip final : public CostFunctional {
     out.value = 0.0;
     for (Eigen::Index i = 0; i < in.boundary.num_nodes(); ++i) {
       const int node = in.boundary.nodes()[static_cast<std::size_t>(i)];
-      double norm2 = 0.0;
-      for (int c = 0; c < dim - 1; ++c) norm2 += std::pow(in.displacement(node * dim + c), 2);
-      const double r = std::sqrt(norm2 + delta_ * delta_);
+      // u_t in the foundation's frame: (t_c·u_node)_c (standard foundation: the x1 (, x2) components).
+      const Eigen::MatrixXd& tangents = in.boundary.foundation().frame.tangents;
+      const Eigen::VectorXd ut = tangents.transpose() * in.displacement.segment(node * dim, dim);
+      const double r = std::sqrt(ut.squaredNorm() + delta_ * delta_);
       out.value += r - delta_;
-      for (int c = 0; c < dim - 1; ++c) out.d_displacement(node * dim + c) = in.displacement(node * dim + c) / r;
+      out.d_displacement.segment(node * dim, dim) = tangents * ut / r;
     }
     return out;
   }

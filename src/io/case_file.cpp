@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <limits>
 #include <fstream>
 #include <map>
@@ -27,6 +28,7 @@
 #include "case_solver_section.hpp"
 #include "case_load_case_section.hpp"
 #include "case_program_section.hpp"
+#include "case_foundation_section.hpp"
 #include "case_mesh_section.hpp"
 #include "text_input.hpp"
 #include "toml_reader.hpp"
@@ -437,6 +439,8 @@ Friction read_friction(const TableReader& r, int dim) {
       used = {"kind", "mu"};
       break;
   }
+  // Every law but "none" may be turned in the tangent plane (2D: only by 0, checked below).
+  if (f.kind != FrictionKind::kNone) used.push_back("orientation_deg");
   for (auto&& [key, value] : r.table()) {
     if (std::find(used.begin(), used.end(), key.str()) != used.end()) continue;
     std::string list;
@@ -516,6 +520,17 @@ Friction read_friction(const TableReader& r, int dim) {
       }
     }
   }
+  // orientation_deg: the law turned counter-clockwise in the foundation's tangent plane, so
+  // μ(θ) becomes μ(θ − φ) (FrictionLaw::rotated).
+  if (const std::optional<double> degrees = r.optional_number("orientation_deg")) {
+    if (!(std::abs(*degrees) <= 360.0))
+      r.fail_value("orientation_deg", "an angle in degrees, −360 <= orientation_deg <= 360");
+    if (dim == 2 && *degrees != 0.0)
+      r.fail_value("orientation_deg",
+                   "0 in 2D (the tangent space of a 2D contact is a line; for a direction-dependent 2D law "
+                   "give mu_plus and mu_minus)");
+    f.law = f.law.rotated(*degrees * std::numbers::pi / 180.0);
+  }
   return f;
 }
 // [contact] and [contact.friction]: the law; the solver options come from [solver].
@@ -525,7 +540,7 @@ Friction read_contact(const TableReader& r, int dim, std::string_view origin) {
   if (const toml::table* friction = r.optional_table("friction"))
     return read_friction(
         TableReader(*friction, r.field("friction"), origin,
-                    {"kind", "mu", "n", "mu_vertices", "mu_x", "mu_y", "mu_plus", "mu_minus"}),
+                    {"kind", "mu", "n", "mu_vertices", "mu_x", "mu_y", "mu_plus", "mu_minus", "orientation_deg"}),
         dim);
   return {FrictionKind::kNone, dim == 2 ? contact::FrictionLaw::interval(0.0, 0.0) : contact::FrictionLaw::disc(0.0)};
 }
@@ -891,7 +906,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                         {"geometry", "mesh", "material", "load", "dirichlet", "design", "contact",
                          "solver", "cost", "optimization", "output", "identification",
                          // issue 12's sections (case_program_section.hpp)
-                         "force", "constraint", "program", "experiment",
+                         "force", "constraint", "program", "experiment", "foundation",
                          // issue 13's load cases (case_load_case_section.hpp)
                          "load_case", "study"});
   const auto table = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
@@ -979,7 +994,14 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     study::ContactDefinition contact_definition;
     contact_definition.law = friction->law;
     contact_definition.coulomb = coulomb;
+    if (const toml::table* foundation = top.optional_table("foundation"))
+      contact_definition.foundation =
+          detail::read_foundation(TableReader(*foundation, "foundation", origin, {"normal", "offset", "axis1"}), dim);
     body.contact = std::move(contact_definition);
+  } else if (top.optional_table("foundation")) {
+    throw InvalidInput(fmt::format("{}: [foundation] needs a [contact] table (a body without contact never meets "
+                                   "the foundation); expected [contact] or no [foundation]",
+                                   origin));
   }
   if (!imported) check_free_unknowns(c, dim, fixed_by);  // the structured grid's layers
 

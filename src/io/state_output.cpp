@@ -30,10 +30,14 @@ void add_contact_fields(VtuGrid& grid, const study::ElasticBody& body, const stu
     gap(n) = cs.normal_gap(i);
     traction.row(n).setZero();
     slip.row(n).setZero();
-    for (int c = 0; c < dim - 1; ++c) {
-      traction(n, c) = -cs.z(dim * i + c) / area(i);  // τ = −q: the traction the foundation exerts
-      slip(n, c) = -cs.gradient(dim * i + c);          // ∇_q K = −u_t
-    }
+    // In global axes: component c of the frame's tangent t_c carries τ_c and u_t,c (the
+    // standard foundation: t_c = e_c).
+    const Eigen::MatrixXd& tangents = boundary.foundation().frame.tangents;
+    for (int c = 0; c < dim - 1; ++c)
+      for (int k = 0; k < dim; ++k) {
+        traction(n, k) += tangents(k, c) * (-cs.z(dim * i + c) / area(i));  // τ = −q: the traction the foundation exerts
+        slip(n, k) += tangents(k, c) * (-cs.gradient(dim * i + c));          // ∇_q K = −u_t
+      }
     status(n) = static_cast<int>(cs.nodes[static_cast<std::size_t>(i)].status);
   }
   grid.point_data.push_back(DataArray::scalars("contact_pressure", pressure));

@@ -84,6 +84,9 @@ JsonValue to_json(const contact::ContactResultants& r) {
   j["total_normal_force"] = r.normal_force;
   j["total_tangential_force"] = Eigen::VectorXd(r.tangential_force.head(r.dim - 1));
   j["total_tangential_force_norm"] = r.tangential_force_norm;
+  // The same total force in global axes (differs from the frame's components only on a tilted
+  // [foundation]): the foundation's force on the body.
+  j["total_force_global"] = Eigen::VectorXd(r.global_force.head(r.dim));
   j["tangential_to_normal_ratio"] = r.force_ratio;
   j["contact_area"] = r.contact_area;
   j["num_stick"] = r.num_stick;

@@ -17,7 +17,10 @@ Eigen::Matrix2d polygon_jacobian(const contact::FrictionLaw& law, const Eigen::V
   return t * t.transpose();
 }
 
-Eigen::Matrix2d ellipse_jacobian(const contact::FrictionLaw& law, const Eigen::Vector2d& y, const Eigen::Vector2d& p) {
+// In the law's own frame (a turned law: R J₀(Rᵀy, Rᵀp) Rᵀ, FrictionLaw::frame).
+Eigen::Matrix2d ellipse_jacobian(const contact::FrictionLaw& law, const Eigen::Vector2d& y_plane, const Eigen::Vector2d& p_plane) {
+  const Eigen::Matrix2d& R = law.frame();
+  const Eigen::Vector2d y = R.transpose() * y_plane, p = R.transpose() * p_plane;
   const Eigen::Vector2d axes = law.semi_axes();
   const Eigen::Vector2d D(1.0 / (axes.x() * axes.x()), 1.0 / (axes.y() * axes.y()));
   const Eigen::Vector2d Dp = D.cwiseProduct(p);
@@ -26,7 +29,7 @@ Eigen::Matrix2d ellipse_jacobian(const contact::FrictionLaw& law, const Eigen::V
   const double gamma = std::max(0.0, (y - p).dot(Dp) / Dp.squaredNorm());
   const Eigen::Vector2d M = (Eigen::Vector2d::Ones() + gamma * D).cwiseInverse();
   const Eigen::Vector2d MDp = M.cwiseProduct(Dp);
-  return Eigen::Matrix2d(M.asDiagonal()) - MDp * MDp.transpose() / Dp.dot(MDp);
+  return R * (Eigen::Matrix2d(M.asDiagonal()) - MDp * MDp.transpose() / Dp.dot(MDp)) * R.transpose();
 }
 
 }  // namespace

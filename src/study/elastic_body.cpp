@@ -79,7 +79,12 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
       throw InvalidInput(fmt::format("contact.friction: a {}D friction law for a {}D body",
                                      definition_.contact->law.dim(), mesh_->dim()));
     definition_.contact->coulomb.validate();
-    boundary_ = std::make_unique<contact::ContactBoundary>(*mesh_, fem_->dofs(), definition_.contact_surface);
+    boundary_ = std::make_unique<contact::ContactBoundary>(*mesh_, fem_->dofs(), definition_.contact_surface,
+                                                           definition_.contact->foundation);
+    if (definition_.engine.kind == StateEngine::kPetsc && !boundary_->standard_foundation())
+      throw InvalidInput(
+          "foundation: solver.engine = \"petsc\" supports the default foundation only (normal = e_dim, offset = 0, "
+          "axis1 = e1); expected engine = \"direct\" for a tilted or offset foundation (docs/petsc-engine.md)");
     if (definition_.engine.kind == StateEngine::kPetsc) {
 #ifdef FRICTOPT_HAVE_PETSC
       petsc::ContactNewtonSolver::Options options;
@@ -180,12 +185,16 @@ BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha
     if (reuse) {
       result.delassus = step_delassus_;
       result.delassus_matrix = step_delassus_matrix_;
-    } else if (solver.trailing_size() > 0) {
+    } else if (solver.trailing_size() > 0 && (boundary_->standard_foundation() || result.dense_delassus)) {
+      // The Schur factor gives M = D S⁻¹ D with D the signs of the standard foundation's ±unit
+      // rows of G; a tilted foundation's dense M is that turned per node (turn_delassus).
       auto schur = std::make_shared<contact::SchurDelassus>(solver.trailing_factor(), dim);
       if (result.dense_delassus) {
         // One copy of the dense M, shared by the QP operator and readers of delassus_matrix; the
         // Schur factor is released at the end of this scope.
-        result.delassus_matrix = std::make_shared<const Eigen::MatrixXd>(schur->dense());
+        result.delassus_matrix = std::make_shared<const Eigen::MatrixXd>(
+            boundary_->standard_foundation() ? schur->dense()
+                                             : contact::turn_delassus(schur->dense(), boundary_->frame_rows()));
         result.delassus = std::make_shared<contact::DenseDelassus>(result.delassus_matrix);
       } else {
         result.delassus = std::move(schur);
@@ -251,8 +260,12 @@ BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha
       }
       if (translations_free) {
         // Σλ = −F_ν and Σq = F_t (the contact balances the net load).
-        excess = friction_capacity_excess(law, dim == 3 ? Eigen::Vector2d(net(0), net(1)) : Eigen::Vector2d(net(0), 0.0),
-                                          -net(dim - 1), dim);
+        // In the foundation's frame: tangential t_k·F, normal n·F.
+        const mesh::PlaneFrame& frame = boundary_->foundation().frame;
+        const Eigen::VectorXd net_tangential = frame.tangents.transpose() * net.head(dim);
+        excess = friction_capacity_excess(
+            law, dim == 3 ? Eigen::Vector2d(net_tangential(0), net_tangential(1)) : Eigen::Vector2d(net_tangential(0), 0.0),
+            -frame.normal.dot(net.head(dim)), dim);
       }
       contact::FloatingCoulombSolver::Options fo;
       fo.coulomb = cd.coulomb;
@@ -286,7 +299,7 @@ BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha
     }
     if (result.summary.converged()) warm_start_ = result.state;
     result.resultants = contact::contact_resultants(result.state, boundary_->tributary_areas(),
-                                                    boundary_->plane_coordinates());
+                                                    boundary_->plane_coordinates(), boundary_->frame_rows());
     // u_f = A⁻¹(l + Gᵀz): the body under its loads and the contact forces.
     Eigen::VectorXd w = Eigen::VectorXd::Zero(fem_->dofs().num_free());
     boundary_->add_transpose_times(result.state.z, w);

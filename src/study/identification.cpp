@@ -88,7 +88,8 @@ double gauge(const contact::FrictionLaw& law, const Eigen::Vector2d& x) {
     return g;
   }
   const Eigen::Vector2d a = law.semi_axes();
-  return std::hypot(x(0) / a(0), x(1) / a(1));
+  const Eigen::Vector2d xl = law.frame().transpose() * x;  // in the law's own axes
+  return std::hypot(xl(0) / a(0), xl(1) / a(1));
 }
 
 }  // namespace

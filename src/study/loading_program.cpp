@@ -95,14 +95,7 @@ StepLoads StepLoadBuilder::build(const std::vector<double>& load_scale,
 Eigen::VectorXd StepLoadBuilder::tangential_displacement(
     const Eigen::VectorXd& displacement) const {
   const contact::ContactBoundary* boundary = body_.contact_boundary();
-  const int dim = body_.mesh().dim();
-  const Eigen::Index p = boundary ? boundary->num_nodes() : 0;
-  Eigen::VectorXd ut = Eigen::VectorXd::Zero((dim - 1) * p);
-  for (Eigen::Index i = 0; i < p; ++i)
-    for (int c = 0; c < dim - 1; ++c)
-      ut((dim - 1) * i + c) =
-          displacement(boundary->nodes()[static_cast<std::size_t>(i)] * dim + c);
-  return ut;
+  return boundary ? boundary->tangential_displacements(displacement) : Eigen::VectorXd();  // in the foundation's frame
 }
 
 void LoadingProgramDefinition::validate(const BodyDefinition& body) const {

@@ -83,6 +83,13 @@ Tribometer::Tribometer(BodyDefinition body, TribometerDefinition experiment)
         "tangential direction and no friction polar");
   if (!body_.contact)
     throw InvalidInput("experiment: the specimen needs a [contact] table (a friction law)");
+  // The platen presses along −x3 and pulls in the (x1, x2) plane: the foundation must be that
+  // plane (a law turned relative to the specimen is orientation_deg, not a tilted foundation).
+  if (!body_.contact->foundation.is_standard(3))
+    throw InvalidInput(
+        "experiment: the tribometer presses along −x3 and pulls in the (x1, x2) plane, so it needs the default "
+        "foundation (no [foundation] table, or normal = [0, 0, 1], offset = 0, axis1 = [1, 0, 0]); to turn the "
+        "friction law relative to the specimen use [contact.friction] orientation_deg");
 }
 
 Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {

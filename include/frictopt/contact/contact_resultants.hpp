@@ -26,6 +26,9 @@ struct ContactResultants {
   Eigen::Vector2d tangential_force = Eigen::Vector2d::Zero();  ///< T = Σ τ_i (2D: component 1 is 0)
   double tangential_force_norm = 0.0;                          ///< |T|
   double force_ratio = kNaN;                                   ///< |T| / P (NaN when P = 0)
+  /// The same total force in global axes, Σ Fᵀz_i with F the foundation's frame rows
+  /// (ContactBoundary::frame_rows): P n + T_1 t1 (+ T_2 t2). 2D: component 2 is 0.
+  Eigen::Vector3d global_force = Eigen::Vector3d::Zero();
   double contact_area = 0.0;  ///< Σ a_i over nodes with a normal force (stick + slip)
   int num_stick = 0;
   int num_slip = 0;
@@ -42,8 +45,14 @@ struct ContactResultants {
 };
 
 /// Resultants of `state` (classified: state.nodes filled) for contact nodes with tributary
-/// areas `areas` (p) and in-plane coordinates `plane` (p × dim−1). Throws InvalidInput on size
-/// mismatches.
+/// areas `areas` (p) and in-plane coordinates `plane` (p × dim−1), forces in the foundation's
+/// frame and, through `frame_rows` (dim × dim, ContactBoundary::frame_rows), in global axes.
+/// Throws InvalidInput on size mismatches.
+[[nodiscard]] ContactResultants contact_resultants(const ContactState& state,
+                                                   const Eigen::Ref<const Eigen::VectorXd>& areas,
+                                                   const Eigen::Ref<const Eigen::MatrixXd>& plane,
+                                                   const Eigen::Ref<const Eigen::MatrixXd>& frame_rows);
+/// The same for the standard foundation (frame rows diag(−1, (−1,) 1)).
 [[nodiscard]] ContactResultants contact_resultants(const ContactState& state,
                                                    const Eigen::Ref<const Eigen::VectorXd>& areas,
                                                    const Eigen::Ref<const Eigen::MatrixXd>& plane);

@@ -121,6 +121,13 @@ class FactorizedDelassus final : public DelassusMatrix {
   mutable Eigen::VectorXd diagonal_;
 };
 
+/// The dense M of a tilted foundation from the standard one: with G = 𝓕 E (E the standard
+/// foundation's ±unit rows D on the node DOFs, 𝓕 = diag(F D) per node, F the frame rows of
+/// ContactBoundary::frame_rows), M = 𝓕 M_std 𝓕ᵀ blockwise (Q M_ij Qᵀ, Q = F D): m²·2·dim flops,
+/// so a tilted foundation keeps the Schur factor's dense route. Symmetrized. Throws
+/// InvalidInput when the sizes do not match.
+Eigen::MatrixXd turn_delassus(const Eigen::MatrixXd& standard, const Eigen::MatrixXd& frame_rows);
+
 /// The dense M = G A⁻¹ Gᵀ (dim·p square), by solves with blocks of `block_columns` right-hand
 /// sides (BLAS-3 in a supernodal backend's solve). Symmetrized to remove round-off asymmetry.
 Eigen::MatrixXd dense_delassus(const linalg::SpdSolver& solver, const ContactBoundary& boundary,

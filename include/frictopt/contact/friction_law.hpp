@@ -89,6 +89,15 @@ class FrictionLaw {
   /// 3D polygon with vertices (μ_x cos φ_j, μ_y sin φ_j) on the ellipse, φ_j as above.
   static FrictionLaw ellipse_polygon(double mu_x, double mu_y, int n);
 
+  /// The same law turned by `angle` radians counter-clockwise in the tangent plane: W_φ = R(φ)·W
+  /// with R(φ) = [[cos φ, −sin φ], [sin φ, cos φ]], so μ_φ(θ) = μ(θ − φ) (issue 12 item 4). Polygon
+  /// vertices and edge normals turn (vertex/edge indices keep their meaning, heights h_j do not
+  /// change); a disc or ellipse keeps its semi-axes in the law's own frame and every method
+  /// turns its argument into that frame, acts, and turns the result back. Orientations add up.
+  /// Throws InvalidInput for a non-finite angle, and for a nonzero one on a 2D interval law (a
+  /// 1D tangent line has no rotation).
+  FrictionLaw rotated(double angle) const;
+
   FrictionLawKind kind() const { return kind_; }
   /// Spatial dimension of the contact problem: 2 (interval) or 3.
   int dim() const { return kind_ == FrictionLawKind::kInterval ? 2 : 3; }
@@ -106,8 +115,13 @@ class FrictionLaw {
   std::span<const Eigen::Vector2d> edge_normals() const { return normals_; }
   /// Heights h_j = ⟨e_j, w_j⟩ of the edges (polygons only).
   std::span<const double> edge_heights() const { return heights_; }
-  /// Semi-axes (μ_x, μ_y) of an ellipse law; (μ, μ) for a disc.
+  /// Semi-axes (μ_x, μ_y) of an ellipse law; (μ, μ) for a disc. They lie along the columns of
+  /// frame(), not along the tangent-plane axes, when orientation() ≠ 0.
   Eigen::Vector2d semi_axes() const { return semi_axes_; }
+  /// φ: the angle [rad] by which the law is turned (rotated() sums them; 0 for the factories).
+  double orientation() const { return orientation_; }
+  /// R(φ): its columns are the law's own axes (the μ_x and μ_y directions) in the tangent plane.
+  const Eigen::Matrix2d& frame() const { return frame_; }
 
   /// Euclidean projection of q onto s·W, s >= 0 (asserted). Exact for every law (ellipse:
   /// Newton on the Lagrange multiplier, converged to rounding).
@@ -134,7 +148,8 @@ class FrictionLaw {
   /// Force face and slip face at a node (spec 03, §3.2 and §14.2).
   FrictionClassification classify(const Eigen::Vector2d& q, double s, const Eigen::Vector2d& u,
                                   const ClassificationTolerance& tolerance) const;
-  /// One line, e.g. "polygon(n=4, mu=[0.3, 0.5, 0.3, 0.5])".
+  /// One line, e.g. "polygon(n=4, mu=[0.3, 0.5, 0.3, 0.5])"; a turned law adds
+  /// ", orientation_deg=30".
   std::string describe() const;
 
  private:
@@ -142,8 +157,14 @@ class FrictionLaw {
   static FrictionLaw make_polygon(FrictionLawKind kind, std::vector<Eigen::Vector2d> vertices,
                                   std::vector<double> mu_vertices, const char* context);
 
+  // The smooth laws' (disc, ellipse) vectors in the law's own frame and back: Rᵀv and R v.
+  Eigen::Vector2d to_law_frame(const Eigen::Vector2d& v) const { return frame_.transpose() * v; }
+  Eigen::Vector2d from_law_frame(const Eigen::Vector2d& v) const { return frame_ * v; }
+
   FrictionLawKind kind_ = FrictionLawKind::kDisc;
   bool zero_ = false;
+  double orientation_ = 0.0;
+  Eigen::Matrix2d frame_ = Eigen::Matrix2d::Identity();
   double max_coefficient_ = 0.0;
   double min_coefficient_ = 0.0;  // smallest semi-axis / μ_j (used for the ellipse offset)
   Eigen::Vector2d semi_axes_ = Eigen::Vector2d::Zero();

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The friction coefficients of a law as controls (issue 4 item 4, thesis §4 remark that other
 // controls than the shape fit the same adjoint): their names, values, and the derivatives of
-// the friction set's vertices (polygonal laws) or semi-axes (disc, ellipse).
+// the friction set's vertices (polygonal laws) or semi-axes and orientation (disc, ellipse).
+// The orientation φ of a turned law (FrictionLaw::rotated) is a parameter only when asked for
+// (issue 13 item 3: the law's orientation as a design variable).
 #pragma once
 
 #include <Eigen/Core>
@@ -13,16 +15,31 @@
 namespace frictopt::sensitivity {
 
 struct FrictionParameters {
-  std::vector<std::string> names;  ///< e.g. "mu", "mu_vertices[2]", "mu_x", "mu_minus"
+  std::vector<std::string> names;  ///< e.g. "mu", "mu_vertices[2]", "mu_x", "mu_minus", "orientation"
   Eigen::VectorXd values;
-  /// Polygonal laws: vertex_derivatives[k][j] = ∂w_j/∂p_k.
+  /// Polygonal laws: vertex_derivatives[k][j] = ∂w_j/∂p_k (for the orientation: J w_j, J the
+  /// quarter turn, since w_j(φ) = R(φ) w_j(0) and R' = J R).
   std::vector<std::vector<Eigen::Vector2d>> vertex_derivatives;
-  /// Disc/ellipse: semi_axis_derivatives[k] = ∂(μ_x, μ_y)/∂p_k.
+  /// Disc/ellipse: semi_axis_derivatives[k] = ∂(μ_x, μ_y)/∂p_k (in the law's own frame).
   std::vector<Eigen::Vector2d> semi_axis_derivatives;
+  /// Disc/ellipse: orientation_derivatives[k] = ∂φ/∂p_k (1 for the orientation, 0 otherwise); the
+  /// exposed point then moves by ∂w/∂φ = J w(u) − (∂w/∂u) J u (friction_geometry.hpp).
+  std::vector<double> orientation_derivatives;
+};
+
+/// Which parameters friction_parameters() lists.
+struct FrictionParameterOptions {
+  /// Append the orientation φ [rad] (FrictionLaw::orientation) as the last parameter, named
+  /// "orientation". 3D laws only: InvalidInput for a 2D interval law.
+  bool orientation = false;
 };
 
 /// Parameters per law kind: interval (μ₋, μ₊); disc μ; regular_polygon μ; polygon μ_j
-/// (w_j = μ_j v_j); ellipse and ellipse_polygon (μ_x, μ_y).
-FrictionParameters friction_parameters(const contact::FrictionLaw& law);
+/// (w_j = μ_j R(φ) v_j); ellipse and ellipse_polygon (μ_x, μ_y); then φ if asked for.
+FrictionParameters friction_parameters(const contact::FrictionLaw& law, FrictionParameterOptions options = {});
+
+/// The orientation φ alone (one parameter, "orientation"), e.g. for a design variable that turns
+/// the law; InvalidInput for a 2D interval law.
+FrictionParameters orientation_parameter(const contact::FrictionLaw& law);
 
 }  // namespace frictopt::sensitivity

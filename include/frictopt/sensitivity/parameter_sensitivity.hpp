@@ -16,19 +16,27 @@
 
 namespace frictopt::sensitivity {
 
-/// The law of the same kind (and polygon size) as `law` whose friction_parameters() values are
-/// `values` (the inverse of friction_parameters(law).values). Throws InvalidInput when `values`
-/// has the wrong size or the law rejects them (negative, non-convex polygon), naming the law.
-contact::FrictionLaw with_friction_parameters(const contact::FrictionLaw& law, const Eigen::Ref<const Eigen::VectorXd>& values);
+/// The law of the same kind (and polygon size) as `law` whose friction_parameters(law, options)
+/// values are `values` (their inverse); without the orientation among them the law keeps
+/// law.orientation(). Throws InvalidInput when `values` has the wrong size or the law rejects
+/// them (negative, non-convex polygon, non-finite angle), naming the law.
+contact::FrictionLaw with_friction_parameters(const contact::FrictionLaw& law, const Eigen::Ref<const Eigen::VectorXd>& values,
+                                              FrictionParameterOptions options = {});
 
 /// ∂r/∂p_k at fixed (u, z) for the contact rows r = S G u + C_z z (+ g) of linearize_piece and
 /// the parameters p of friction_parameters(law): column k (dim·p entries) holds, per gap-closed
 /// node, vertex slip −λ ∂w_j/∂p_k; ray slip on edge j (d = w_{j+1} − w_j, ∂d = ∂w_{j+1} − ∂w_j)
 /// ∂d × q − λ(∂d × w_j + d × ∂w_j) and ⟨∂d, u_t⟩; smooth slip −λ ∂w(u_t)/∂(μ_x, μ_y)·∂(μ_x, μ_y)/∂p_k;
-/// stick, zero force and zero friction rows do not depend on p. The adjoint's friction
+/// stick, zero force and zero friction rows do not depend on p. For the orientation φ (see
+/// FrictionParameterOptions) the same formulas hold with ∂w_j/∂φ = J w_j, and a smooth slip
+/// row is −λ ∂w(u_t)/∂φ = −λ (J w − (∂w/∂u) J u_t). The adjoint's friction
 /// gradient (AdjointSensitivity::Result::friction_gradient) equals this matrix transposed times ψ_z.
 Eigen::MatrixXd friction_parameter_rows(const Piece& piece, const contact::FrictionLaw& law,
                                         const contact::ContactState& state);
+/// The same for the parameters `params` (e.g. friction_parameters(law, {.orientation = true}) or
+/// orientation_parameter(law)): ∂Θ/∂φ = friction_parameter_rows(…, orientation_parameter(law))ᵀ ψ_z.
+Eigen::MatrixXd friction_parameter_rows(const Piece& piece, const contact::FrictionLaw& law,
+                                        const contact::ContactState& state, const FrictionParameters& params);
 
 /// Derivatives of a piece's contact state along k parameter directions, in contact space.
 struct ContactStateDerivative {

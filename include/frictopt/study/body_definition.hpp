@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "frictopt/contact/contact_boundary.hpp"
 #include "frictopt/contact/coulomb_solver.hpp"
 #include "frictopt/contact/friction_law.hpp"
 #include "frictopt/cost/cost_kind.hpp"
@@ -27,7 +28,8 @@
 
 namespace frictopt::study {
 
-/// Unilateral contact with Coulomb friction on Γ_c against the foundation x_dim <= 0.
+/// Unilateral contact with Coulomb friction on Γ_c against the rigid foundation (default
+/// x_dim <= 0; `foundation` for any plane and law frame).
 struct ContactDefinition {
   /// The friction law at every contact node (2D: an interval law; 3D: disc, polygon, ellipse).
   contact::FrictionLaw law = contact::FrictionLaw::disc(0.0);
@@ -41,6 +43,11 @@ struct ContactDefinition {
   /// bounds the dense M at 1.15 GB. The contact DOFs are always ordered last in the
   /// factorization so that L comes with it.
   int dense_delassus_max_unknowns = 12000;
+  /// The foundation plane n·x = d and the friction law's frame in it (issue 11 item 4; default
+  /// n = e_dim, d = 0). A non-standard one turns the Schur factor's dense M per node
+  /// (contact::turn_delassus); above dense_delassus_max_unknowns it applies M through the
+  /// factorization (the Schur operator assumes the standard ±unit rows of G).
+  contact::Foundation foundation;
 };
 
 /// The cost functional of a study (spec 05 §2.4; cost module).
