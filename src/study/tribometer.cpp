@@ -11,17 +11,16 @@
 #include "frictopt/core/error.hpp"
 #include "frictopt/study/elastic_body.hpp"
 #include "frictopt/study/loading_program.hpp"
+#include "tribometer_readings.hpp"
 
 namespace frictopt::study {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
+using detail::kDegree;
 // The press is solved to this relative accuracy in P; P(δ) is piecewise linear and increasing,
 // and exactly linear (one secant step) for a flat specimen in full contact.
 constexpr double kPressTolerance = 1e-10;
 constexpr int kMaxPressIterations = 30;
-
-double angle_degrees(const Eigen::Vector2d& v) { return std::atan2(v(1), v(0)) / kDegree; }
 
 constexpr auto kDrives = frictopt::detail::make_enum_table<TribometerDrive>(
     std::pair{TribometerDrive::kDisplacement, "displacement"}, std::pair{TribometerDrive::kForce, "force"});
@@ -193,14 +192,7 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
         return fail(s, fmt::format("pull at {} degrees, step {}", angle_deg, k));
       previous = builder.tangential_displacement(s.displacement);
       const contact::ContactResultants& c = s.contact->resultants;
-      TribometerRampPoint point;
-      point.pull = pull;
-      point.normal_force = c.normal_force;
-      point.tangential_force = c.tangential_force;
-      point.stick_fraction = c.contact_area > 0.0 ? c.stick_area / c.contact_area : 0.0;
-      point.num_stick = c.num_stick;
-      point.num_slip = c.num_slip;
-      r.ramp.push_back(point);
+      r.ramp.push_back(detail::ramp_point(pull, c));
       const bool sliding = c.num_stick == 0 && c.num_slip > 0;
       if (!r.gross_sliding && sliding) {
         r.gross_sliding = true;
@@ -209,29 +201,7 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
         r.onset_force = c.tangential_force_norm;
         r.onset_normal_force = c.normal_force;
       }
-      if (k == experiment_.ramp_steps && sliding && r.onset_step < k - 1) {
-        r.steady_sliding = true;
-        r.sliding_force = c.tangential_force_norm;
-        r.sliding_normal_force = c.normal_force;
-        const Eigen::Vector2d resistance =
-            -c.tangential_force / c.normal_force;  // Σq/P ∈ W: along the pull
-        r.force_angle_degrees = angle_degrees(resistance);
-        Eigen::Vector2d slip = Eigen::Vector2d::Zero();
-        for (Eigen::Index i = 0; i < p; ++i)
-          if (s.contact->state.is_slip(i))
-            slip += s.contact->state.lambda(i) *
-                    s.contact->state.nodes[static_cast<std::size_t>(i)].slip_direction;
-        slip.normalize();
-        r.slip_angle_degrees = angle_degrees(slip);
-        r.measured_coefficient = resistance.norm();
-        // μ(φ) = the radial function of W in the force direction: the largest t with t·d ∈ W.
-        r.law_coefficient = law.max_step(Eigen::Vector2d::Zero(), 1.0, resistance.normalized());
-        r.coefficient_error =
-            std::abs(r.measured_coefficient - r.law_coefficient) / r.law_coefficient;
-        r.sliding_resistance = slip.dot(resistance);
-        r.law_resistance = law.support(slip);
-        r.normality_residual = std::abs(r.law_resistance - r.sliding_resistance) / r.law_resistance;
-      }
+      if (k == experiment_.ramp_steps && sliding && r.onset_step < k - 1) detail::read_sliding_law(s, law, r);
     }
     if (on_angle) on_angle(r);
     summary.angles.push_back(std::move(r));

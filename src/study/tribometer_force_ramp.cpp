@@ -25,26 +25,15 @@
 #include "frictopt/study/elastic_body.hpp"
 #include "frictopt/study/loading_program.hpp"
 #include "frictopt/study/tribometer.hpp"
+#include "tribometer_readings.hpp"
 
 namespace frictopt::study {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
 // Bisection steps: the bracket halves per step, so 60 reach any tolerance >= 1e-18·Q_max.
 constexpr int kMaxBisections = 60;
-
-double angle_degrees(const Eigen::Vector2d& v) { return std::atan2(v(1), v(0)) / kDegree; }
-
-TribometerRampPoint ramp_point(double pull, const contact::ContactResultants& c) {
-  TribometerRampPoint point;
-  point.pull = pull;
-  point.normal_force = c.normal_force;
-  point.tangential_force = c.tangential_force;
-  point.stick_fraction = c.contact_area > 0.0 ? c.stick_area / c.contact_area : 0.0;
-  point.num_stick = c.num_stick;
-  point.num_slip = c.num_slip;
-  return point;
-}
+using detail::kDegree;
+using detail::ramp_point;
 
 }  // namespace
 
@@ -151,28 +140,7 @@ Tribometer::Summary Tribometer::run_force_ramp(const AngleCallback& on_angle) {
         r.ramp.push_back(ramp_point(lo * q_max, c));
         r.onset_force = c.tangential_force_norm;
         r.onset_normal_force = c.normal_force;
-        if (lo > 0.0) {
-          r.steady_sliding = true;
-          r.sliding_force = c.tangential_force_norm;
-          r.sliding_normal_force = c.normal_force;
-          const Eigen::Vector2d resistance = -c.tangential_force / c.normal_force;  // Σq/P ∈ W
-          r.force_angle_degrees = angle_degrees(resistance);
-          // The slip of the limit step's increment, λ-weighted over the slipping nodes.
-          Eigen::Vector2d slip = Eigen::Vector2d::Zero();
-          for (Eigen::Index i = 0; i < p; ++i)
-            if (limit.contact->state.is_slip(i))
-              slip += limit.contact->state.lambda(i) * limit.contact->state.nodes[static_cast<std::size_t>(i)].slip_direction;
-          r.measured_coefficient = resistance.norm();
-          r.law_coefficient = law.max_step(Eigen::Vector2d::Zero(), 1.0, resistance.normalized());
-          r.coefficient_error = std::abs(r.measured_coefficient - r.law_coefficient) / r.law_coefficient;
-          if (slip.norm() > 0.0) {
-            slip.normalize();
-            r.slip_angle_degrees = angle_degrees(slip);
-            r.sliding_resistance = slip.dot(resistance);
-            r.law_resistance = law.support(slip);
-            r.normality_residual = std::abs(r.law_resistance - r.sliding_resistance) / r.law_resistance;
-          }
-        }
+        if (lo > 0.0) detail::read_sliding_law(limit, law, r);  // the limit equilibrium
         break;
       }
       if (s.summary.status != Status::kConverged)

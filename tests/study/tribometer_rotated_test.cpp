@@ -12,27 +12,14 @@
 
 #include "frictopt/core/error.hpp"
 #include "frictopt/study/tribometer.hpp"
-#include "study/contact_validation.hpp"
+#include "study/tribometer_specimen.hpp"
 
 namespace frictopt::study {
 namespace {
 
 using contact::FrictionLaw;
 
-BodyDefinition specimen(const FrictionLaw& law) {
-  validation::BlockSpec s;
-  s.width = 0.1;
-  s.height = 0.05;
-  s.cells = 6;
-  s.layers = 3;
-  s.young = 7e10;
-  s.poisson = 0.33;
-  s.law = law;
-  s.top_displacement = Eigen::Vector3d(0.0, 0.0, -1e-6);
-  BodyDefinition def = validation::block_definition(s);
-  def.initial_design.setZero();  // flat bottom
-  return def;
-}
+BodyDefinition specimen(const FrictionLaw& law) { return testing::tribometer_specimen(law); }
 
 struct LawCase {
   std::string name;
