@@ -926,7 +926,15 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     const TableReader g = table("geometry", {"dim"});
     geometry.dim = g.required_int("dim", "2 or 3");
     if (geometry.dim != 2 && geometry.dim != 3) g.fail_value("dim", "2 or 3");
-    detail::ImportedBody ib = detail::read_imported_mesh(table("mesh", {"file", "size", "contact", "patch", "extension"}), geometry.dim, origin);
+    // The design moves the patch along the foundation's normal (issue 11 item 3), so a tilted
+    // [foundation] sets the motion's frame and the patch chart's plane too.
+    mesh::PlaneFrame design_frame = mesh::PlaneFrame::standard(geometry.dim);
+    if (const toml::table* foundation = top.optional_table("foundation"))
+      design_frame = detail::read_foundation(TableReader(*foundation, "foundation", origin, {"normal", "offset", "axis1"}),
+                                             geometry.dim)
+                         .frame;
+    detail::ImportedBody ib = detail::read_imported_mesh(table("mesh", {"file", "size", "contact", "patch", "extension"}),
+                                                         geometry.dim, origin, design_frame);
     geometry.a = ib.a;
     geometry.b = ib.b;
     geometry.height = ib.height;

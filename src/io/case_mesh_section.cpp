@@ -74,7 +74,8 @@ bool names_mesh_file(const toml::table& root) {
   return mesh != nullptr && mesh->contains("file");
 }
 
-ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view case_origin) {
+ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view case_origin,
+                                const mesh::PlaneFrame& design_frame) {
   const std::string file_text = r.required_string("file", "a Gmsh .msh or .geo file, relative to the case file");
   std::filesystem::path file(file_text);
   if (file.is_relative()) file = std::filesystem::path(case_origin).parent_path() / file;
@@ -107,7 +108,7 @@ ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view 
   definition.file = file;
   definition.motion.patch = r.has("patch") ? read_group(r, "patch", *reference, "the design patch", file_text)
                                            : body.contact_surface;
-  definition.motion.frame = mesh::PlaneFrame::standard(dim);
+  definition.motion.frame = design_frame;
   if (const auto extension = r.optional_string("extension")) {
     try {
       definition.motion.extension = mesh::parse_extension_kind(*extension);

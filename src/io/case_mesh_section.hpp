@@ -36,7 +36,10 @@ struct ImportedBody {
 /// extension, and reads the mesh (mesh::GmshMesh). Throws InvalidInput naming the field: a
 /// missing file, a mesh of another dimension than geometry.dim, an unknown group (the message
 /// lists the groups the file has), a patch without extent on the foundation plane.
-ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view case_origin);
+/// `design_frame` is the foundation's frame ([foundation], standard by default): the patch moves
+/// along its normal and the patch chart lies in its plane.
+ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view case_origin,
+                                const mesh::PlaneFrame& design_frame);
 
 /// `boundary = "Group"` of a [[load]] or [[dirichlet]] table on an imported body: the name of
 /// one of the mesh's boundary groups (else InvalidInput listing them).

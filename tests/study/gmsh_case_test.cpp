@@ -44,6 +44,31 @@ TEST(GmshCase, ReadsAnImportedBodyWithExtentsFromTheMesh) {
   EXPECT_EQ(body.contact_boundary()->num_nodes(), 9);
 }
 
+// Issue 11 items 3 and 4: on a tilted foundation the design moves the patch along the
+// foundation's normal (not along x3), and the chart lies in the foundation plane.
+TEST(GmshCase, TiltedFoundationSetsTheDesignMotionsFrame) {
+  const io::CaseDescription c = io::parse_case(
+      block_case("file = \"block41.msh\"\ncontact = \"Bottom\"\nextension = \"sweep\"") +
+          "\n[foundation]\nnormal = [0.1, 0.0, 1.0]\naxis1 = [1.0, 0.0, 0.0]\n",
+      kOrigin);
+  ASSERT_TRUE(c.body.imported_mesh.has_value());
+  const Eigen::Vector3d n = Eigen::Vector3d(0.1, 0.0, 1.0).normalized();
+  EXPECT_LE((c.body.imported_mesh->motion.frame.normal - n).norm(), 1e-15);
+  EXPECT_LE((c.body.contact->foundation.frame.normal - n).norm(), 1e-15);
+  ElasticBody body(c.body);
+  const BodyState s = body.solve(c.body.initial_design);
+  EXPECT_EQ(s.summary.status, Status::kConverged) << s.summary.message;
+  // Each control point moves the patch's nodes along n: the motion's rows at a patch node are
+  // parallel to n (zero component orthogonal to it).
+  const Eigen::MatrixXd V(body.mesh().design_jacobian());
+  ASSERT_GT(V.norm(), 0.0);
+  for (int a = 0; a < body.mesh().num_nodes(); ++a)
+    for (Eigen::Index j = 0; j < V.cols(); ++j) {
+      const Eigen::Vector3d move(V(3 * a, j), V(3 * a + 1, j), V(3 * a + 2, j));
+      EXPECT_LE((move - move.dot(n) * n).norm(), 1e-12 * (1.0 + move.norm())) << "node " << a;
+    }
+}
+
 TEST(GmshCase, BadImportedBodiesAreInvalidInputNamingFileFieldAndGroup) {
   const auto message = [](const std::string& text) {
     return invalid_input_message([&] { (void)io::parse_case(text, kOrigin); });
