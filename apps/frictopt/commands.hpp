@@ -26,6 +26,13 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
                        double relative_step);
 int run_optimize(const std::filesystem::path& case_argument, const std::filesystem::path& out_dir, bool resume,
                  bool force);
+#ifdef FRICTOPT_HAVE_PETSC
+/// optimize --resume under mpirun (issue 14): rank 0 owns the run directory `out_dir` (its lock,
+/// checkpoint and history); it broadcasts the files a resume reads (case.toml, checkpoint.json,
+/// history.csv) and every other rank writes them into its own `out_dir` (its scratch
+/// directory), so that every rank's bundle method resumes from rank 0's checkpoint. Collective.
+void mirror_run_for_resume(const std::filesystem::path& out_dir);
+#endif
 int run_certify(const std::filesystem::path& run_dir, int cap);
 int run_identify(const std::filesystem::path& case_path, const std::filesystem::path& out_dir, bool generate,
                  std::uint64_t seed, bool noise_free);

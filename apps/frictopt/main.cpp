@@ -115,10 +115,6 @@ int main(int argc, char** argv) {
   const frictopt::petsc::PetscSession petsc_session;
   std::filesystem::path scratch;
   if (frictopt::petsc::PetscSession::launcher_rank() > 0) {
-    if (resume) {
-      std::fprintf(stderr, "error: optimize --resume is not supported under mpirun yet; resume with one process\n");
-      return kExitInvalidInput;
-    }
     std::string pattern = (std::filesystem::temp_directory_path() / "frictopt-rank-XXXXXX").string();
     if (mkdtemp(pattern.data()) == nullptr) {
       std::fprintf(stderr, "error: rank %d could not create its scratch directory\n",
@@ -141,6 +137,9 @@ int main(int argc, char** argv) {
     if (*solve) return run_solve(case_path, out_dir);
     if (*optimize) {
       if (resume && force) throw frictopt::InvalidInput("--resume and --force exclude each other; choose one");
+#ifdef FRICTOPT_HAVE_PETSC
+      if (resume && frictopt::petsc::PetscSession::launcher_size() > 1) mirror_run_for_resume(out_dir);
+#endif
       return run_optimize(case_path, out_dir, resume, force);
     }
     if (*check_gradient) return run_check_gradient(case_path, design_path, relative_step);

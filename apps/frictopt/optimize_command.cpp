@@ -6,10 +6,17 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <string_view>
 
+#include "frictopt/core/error.hpp"
 #include "frictopt/io/optimization_run.hpp"
 #include "frictopt/io/run_directory.hpp"
+#ifdef FRICTOPT_HAVE_PETSC
+#include "frictopt/petsc/petsc_session.hpp"
+#endif
 
 namespace frictopt::app {
 
@@ -32,5 +39,27 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
   const Status status = result.summary.status;
   return status == Status::kConverged || status == Status::kMaxIterations ? kExitOk : kExitNumericalFailure;
 }
+
+#ifdef FRICTOPT_HAVE_PETSC
+void mirror_run_for_resume(const std::filesystem::path& out_dir) {
+  const bool root = petsc::PetscSession::launcher_rank() == 0;
+  if (!root) std::filesystem::create_directories(out_dir);
+  for (const std::string_view name : {io::RunDirectory::kCaseCopy, io::RunDirectory::kCheckpoint, io::RunDirectory::kHistory}) {
+    // "1" + content for a file rank 0 has, "0" for one it has not (the other ranks then lack it
+    // too, and refuse the resume as rank 0 does).
+    std::string message = "0";
+    if (root) {
+      std::ifstream in(out_dir / name, std::ios::binary);
+      if (in) message = "1" + std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    petsc::PetscSession::broadcast_from_rank0(message);
+    if (!root && message[0] == '1') {
+      std::ofstream out(out_dir / name, std::ios::binary);
+      out << std::string_view(message).substr(1);
+      if (!out) throw InvalidInput(fmt::format("{}: could not write a rank's copy of {}", (out_dir / name).string(), name));
+    }
+  }
+}
+#endif
 
 }  // namespace frictopt::app

@@ -16,6 +16,7 @@
 #include "frictopt/petsc/petsc_session.hpp"
 #include "petsc_check.hpp"
 #include "projection_jacobian.hpp"
+#include "transposed_adjoint.hpp"
 
 namespace frictopt::petsc {
 namespace {
@@ -65,6 +66,8 @@ void ContactNewtonSolver::Options::validate() const {
   if (!(augmentation > 0 && std::isfinite(augmentation))) fail("augmentation", fmt::format("{:g}", augmentation), "finite and > 0");
   if (!(classification_tolerance > 0 && classification_tolerance < 1))
     fail("classification_tolerance", fmt::format("{:g}", classification_tolerance), "in (0, 1)");
+  if (!(adjoint_relative_tolerance > 0 && adjoint_relative_tolerance < 1))
+    fail("adjoint_relative_tolerance", fmt::format("{:g}", adjoint_relative_tolerance), "in (0, 1)");
 }
 
 std::string ContactNewtonSolver::Summary::brief_report() const {
@@ -73,6 +76,12 @@ std::string ContactNewtonSolver::Summary::brief_report() const {
       "{:.2e}, KKT residual {:.2e}, complementarity gap {:.2e}; assembly {:.3f} s, solve {:.3f} s",
       to_string(status), message, newton_iterations, krylov_iterations, krylov_type, num_ranks, relative_residual,
       kkt_residual, complementarity_gap, assembly_seconds, solve_seconds);
+}
+
+std::string ContactNewtonSolver::AdjointSummary::brief_report() const {
+  return fmt::format("petsc adjoint (one transposed solve): {} ({}); {} Krylov iterations ({}), relative residual {:.2e}; "
+                     "{:.3f} s",
+                     to_string(status), message, krylov_iterations, krylov_type, relative_residual, seconds);
 }
 
 struct ContactNewtonSolver::Impl {
@@ -93,6 +102,7 @@ struct ContactNewtonSolver::Impl {
   bool jacobian_is_stiffness = false;  // J = K with Γ_u eliminated (no contact rows)
   KSP spd_ksp = nullptr;               // CG for solves with that J (the Delassus columns)
   PetscOptions database = nullptr;  // the solver's own options (Options::petsc_options)
+  std::unique_ptr<detail::TransposedAdjoint> adjoint;  // created at the first subgradient()
   double rho = 0.0;
 
   Impl(const fem::LinearElasticity& f, const contact::ContactBoundary& b, contact::FrictionLaw l, const Options& o)
@@ -129,6 +139,7 @@ struct ContactNewtonSolver::Impl {
   }
 
   ~Impl() {
+    adjoint.reset();  // its KSP reads `database`
     KSPDestroy(&ksp);
     KSPDestroy(&spd_ksp);
     PetscOptionsDestroy(&database);
@@ -531,6 +542,121 @@ std::vector<ContactNewtonSolver::NodePiece> ContactNewtonSolver::newton_piece() 
     out[i].face = {static_cast<contact::FrictionFace>(code[3 * i + 1]), code[3 * i + 2] - 1};
   }
   return out;
+}
+
+ContactNewtonSolver::SubgradientResult ContactNewtonSolver::subgradient(
+    const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& u,
+    const Eigen::Ref<const Eigen::VectorXd>& d_alpha, const Eigen::Ref<const Eigen::VectorXd>& d_displacement,
+    const Eigen::Ref<const Eigen::VectorXd>& d_contact, const Eigen::Ref<const Eigen::MatrixXd>& gap_matrix) {
+  Impl& m = *impl_;
+  const auto start = std::chrono::steady_clock::now();
+  const int dim = m.dim;
+  const int t = dim - 1;
+  const Eigen::Index p = m.boundary.num_nodes();
+  const Eigen::Index num_dofs = m.fem.mesh().num_dofs();
+  if (u.size() != num_dofs || d_displacement.size() != num_dofs || (d_contact.size() != 0 && d_contact.size() != dim * p) ||
+      gap_matrix.rows() != p || (d_alpha.size() != 0 && d_alpha.size() != gap_matrix.cols()))
+    throw InvalidInput(fmt::format(
+        "ContactNewtonSolver::subgradient: sizes u {}, ∇_u J {}, ∇_z J {}, B̃ {} × {}, ∇_α J {}; expected {} DOFs, {} "
+        "contact unknowns (or none), {} gap rows and as many design columns as ∇_α J",
+        u.size(), d_displacement.size(), d_contact.size(), gap_matrix.rows(), gap_matrix.cols(), d_alpha.size(),
+        num_dofs, dim * p, p));
+  FRICTOPT_ASSERT(m.linearization.size() == m.contact_nodes.size(), "subgradient() after a solve()");
+  const int first = m.stiffness.first_dof(), end = m.stiffness.end_dof();
+  const fem::DofMap& dofs = m.fem.dofs();
+  const auto gz = [&](Eigen::Index k) { return d_contact.size() ? d_contact(k) : 0.0; };
+
+  // w = Pᵀ∇_z J: z = (q, λ) = (−r_t, r_ν) at a contact node, so the z-part of the cost enters
+  // through r = K u − f.
+  Vec w = m.stiffness.create_vector(), b = m.stiffness.create_vector(), psi = m.stiffness.create_vector();
+  FRICTOPT_PETSC_CALL(VecSet(w, 0.0));
+  {
+    PetscScalar* wa = nullptr;
+    FRICTOPT_PETSC_CALL(VecGetArray(w, &wa));
+    for (const LocalContactNode& node : m.contact_nodes) {
+      for (int c = 0; c < t; ++c) wa[node.local_dof + c] = -gz(dim * node.index + c);
+      wa[node.local_dof + t] = gz(dim * node.index + t);
+    }
+    FRICTOPT_PETSC_CALL(VecRestoreArray(w, &wa));
+  }
+  // b = −(∇_u J + K w) on the free DOFs, 0 on Γ_u (J_N's rows and columns there are ρ·I).
+  FRICTOPT_PETSC_CALL(MatMult(m.stiffness.matrix(), w, b));
+  {
+    PetscScalar* ba = nullptr;
+    FRICTOPT_PETSC_CALL(VecGetArray(b, &ba));
+    for (int dof = first; dof < end; ++dof)
+      ba[dof - first] = dofs.is_free(dof) ? -(ba[dof - first] + d_displacement(dof)) : 0.0;
+    FRICTOPT_PETSC_CALL(VecRestoreArray(b, &ba));
+  }
+
+  // J_N at the converged state: the linearizations stored by the last residual (the accepted
+  // point's), so the piece is newton_piece().
+  m.jacobian(true);
+  if (!m.adjoint)
+    m.adjoint = std::make_unique<detail::TransposedAdjoint>(m.stiffness.near_null_space(), m.database,
+                                                            m.options.adjoint_relative_tolerance,
+                                                            m.options.krylov_max_iterations);
+  const detail::TransposedAdjoint::Solve solved = m.adjoint->solve(m.J, b, psi);
+  SubgradientResult result;
+  result.summary.krylov_iterations = solved.iterations;
+  result.summary.relative_residual = solved.relative_residual;
+  result.summary.krylov_type = solved.krylov_type;
+  result.summary.krylov_reason = KSPConvergedReasons[solved.reason];
+
+  // v = L_rᵀψ + w and the gap coefficients c_i. Per contact node (rows ν, t of F; see jacobian()):
+  //   ∂F_ν = (1 − χ) ∂r_ν + χρ ∂u_ν + χρ ∂g,
+  //   ∂F_t = (I − J_P) ∂r_t + χ ∂_sP ∂r_ν + ρ J_P ∂u_t − χρ ∂_sP (∂u_ν + ∂g),
+  // so (L_rᵀψ)_t = (I − J_P)ᵀψ_t, (L_rᵀψ)_ν = (1 − χ)ψ_ν + χ ∂_sPᵀψ_t, c = χρ(ψ_ν − ∂_sPᵀψ_t).
+  // Elsewhere F = r on free DOFs (L_r = I) and v = ψ; ψ = 0 on Γ_u (exactly: its rows of b are 0).
+  Eigen::VectorXd coefficients = Eigen::VectorXd::Zero(p);
+  {
+    PetscScalar* va = nullptr;
+    const PetscScalar* wa = nullptr;
+    FRICTOPT_PETSC_CALL(VecGetArray(psi, &va));
+    FRICTOPT_PETSC_CALL(VecGetArrayRead(w, &wa));
+    for (int dof = first; dof < end; ++dof) {
+      const int l = dof - first;
+      va[l] = dofs.is_free(dof) ? va[l] + wa[l] : 0.0;
+    }
+    for (std::size_t k = 0; k < m.contact_nodes.size(); ++k) {
+      const LocalContactNode& node = m.contact_nodes[k];
+      const NodeLinearization& lin = m.linearization[k];
+      const double chi = lin.in_contact ? 1.0 : 0.0;
+      const Eigen::Matrix2d& JP = lin.projection.d_x;
+      double psi_t[2] = {0.0, 0.0};
+      for (int a = 0; a < t; ++a) psi_t[a] = va[node.local_dof + a] - wa[node.local_dof + a];
+      const double psi_n = va[node.local_dof + t] - wa[node.local_dof + t];
+      double ds_psi = 0.0;
+      for (int a = 0; a < t; ++a) ds_psi += chi * lin.projection.d_s(a) * psi_t[a];
+      for (int c = 0; c < t; ++c) {
+        double value = wa[node.local_dof + c];
+        for (int a = 0; a < t; ++a) value += ((a == c ? 1.0 : 0.0) - JP(a, c)) * psi_t[a];
+        va[node.local_dof + c] = value;
+      }
+      va[node.local_dof + t] = wa[node.local_dof + t] + (1.0 - chi) * psi_n + ds_psi;
+      coefficients(node.index) = chi * m.rho * psi_n - m.rho * ds_psi;
+    }
+    FRICTOPT_PETSC_CALL(VecRestoreArrayRead(w, &wa));
+    FRICTOPT_PETSC_CALL(VecRestoreArray(psi, &va));
+  }
+  MPI_Allreduce(MPI_IN_PLACE, coefficients.data(), static_cast<int>(p), MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  const Eigen::VectorXd v = m.gather(psi);
+  for (Vec* vec : {&w, &b, &psi}) FRICTOPT_PETSC_CALL(VecDestroy(vec));
+
+  // ξ = ∇_α J + ∇_α[vᵀ(K(α)u − f(α))] + B̃ᵀc (fem's element-wise shape-derivative kernel).
+  result.subgradient = m.fem.shape_derivative(X, u, v);
+  if (d_alpha.size()) result.subgradient += d_alpha;
+  result.subgradient += gap_matrix.transpose() * coefficients;
+  if (solved.reason < 0) {
+    result.summary.status = Status::kNumericalFailure;
+    result.summary.message = fmt::format("the transposed Krylov solve did not converge: {} after {} iterations",
+                                         result.summary.krylov_reason, solved.iterations);
+  } else {
+    result.summary.status = Status::kConverged;
+    result.summary.message = fmt::format("Jᵀψ solved ({})", result.summary.krylov_reason);
+  }
+  result.summary.seconds = seconds_since(start);
+  return result;
 }
 
 std::unique_ptr<linalg::SpdSolver> ContactNewtonSolver::stiffness_solver() {

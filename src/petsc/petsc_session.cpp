@@ -4,7 +4,9 @@
 #include <fmt/format.h>
 #include <petscsys.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <string>
 
 #include "frictopt/core/error.hpp"
 #include "petsc_check.hpp"
@@ -78,6 +80,18 @@ int PetscSession::launcher_rank() {
 
 int PetscSession::launcher_size() {
   return environment_int({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_NTASKS"}, 1);
+}
+
+void PetscSession::broadcast_from_rank0(std::string& text) {
+  require();
+  unsigned long long size = text.size();
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, PETSC_COMM_WORLD);
+  text.resize(size);
+  // In chunks: MPI counts are int.
+  constexpr std::size_t kChunk = std::size_t{1} << 30;
+  for (std::size_t offset = 0; offset < size; offset += kChunk)
+    MPI_Bcast(text.data() + offset, static_cast<int>(std::min<std::size_t>(kChunk, size - offset)), MPI_CHAR, 0,
+              PETSC_COMM_WORLD);
 }
 
 }  // namespace frictopt::petsc

@@ -370,4 +370,25 @@ BodyState ElasticBody::solve_with_petsc(BodyState state) {
 #endif
 }
 
+sensitivity::AdjointSensitivity::Result ElasticBody::petsc_subgradient(const BodyState& state,
+                                                                       const sensitivity::CostPartials& partials,
+                                                                       const Eigen::MatrixXd& gap_matrix) {
+#ifdef FRICTOPT_HAVE_PETSC
+  FRICTOPT_ASSERT(petsc_engine_ != nullptr, "petsc_subgradient needs engine = \"petsc\"");
+  const petsc::ContactNewtonSolver::SubgradientResult r =
+      petsc_engine_->subgradient(state.positions, state.displacement, partials.d_alpha, partials.d_displacement,
+                                 partials.d_contact, gap_matrix);
+  sensitivity::AdjointSensitivity::Result result;
+  result.subgradient = r.subgradient;
+  result.summary.status = r.summary.status;
+  result.summary.message = r.summary.brief_report();
+  result.summary.relative_residual = r.summary.relative_residual;
+  result.summary.time_seconds = r.summary.seconds;
+  return result;
+#else
+  (void)state, (void)partials, (void)gap_matrix;
+  throw InvalidInput("solver.engine = \"petsc\": this frictopt was built without PETSc");
+#endif
+}
+
 }  // namespace frictopt::study

@@ -55,6 +55,9 @@ class ContactNewtonSolver {
     double augmentation = 1.0;
     /// ε_cl of the node classification (spec 03, §3.2), as contact::TrescaSolver's.
     double classification_tolerance = 1e-8;
+    /// Relative tolerance of the adjoint's transposed Krylov solve (subgradient(); default,
+    /// -ksp_rtol overrides). Tighter than the Newton steps': ψ is read as exact. In (0, 1).
+    double adjoint_relative_tolerance = 1e-10;
     /// PETSc options (e.g. "-ksp_type cg -pc_type hypre") inserted into PETSc's database before
     /// the KSP reads them; an option no PETSc object uses is an error (InvalidInput).
     std::string petsc_options;
@@ -105,9 +108,45 @@ class ContactNewtonSolver {
   [[nodiscard]] Summary solve(const Eigen::Ref<const Eigen::MatrixXd>& X, const Eigen::Ref<const Eigen::VectorXd>& gaps,
                               Eigen::VectorXd& displacement, contact::ContactState& state);
 
+  /// How the adjoint's one transposed solve went (subgradient()).
+  struct AdjointSummary {
+    Status status = Status::kNotRun;
+    std::string message = "subgradient() has not been called";
+    int krylov_iterations = 0;
+    double relative_residual = kNaN;  ///< ‖Jᵀψ − b‖₂/‖b‖₂ of the transposed system
+    std::string krylov_type;          ///< e.g. "gmres+gamg"
+    std::string krylov_reason;        ///< PETSc's KSPConvergedReason
+    double seconds = 0.0;
+    bool converged() const { return status == Status::kConverged; }
+    std::string brief_report() const;
+  };
+  struct SubgradientResult {
+    Eigen::VectorXd subgradient;  ///< ξ (d), on every rank
+    AdjointSummary summary;
+  };
+
+  /// ξ of the cost Θ(α) = J(α, u, z) for the piece of the Newton linearization at the last
+  /// solve() (docs/petsc-engine.md, "Subgradient"; spec 03 §9 for the structure): with J_N the
+  /// generalized Jacobian at the converged state and z = (q, λ) = (−r_t, r_ν) the contact
+  /// residual, one transposed Krylov solve
+  ///   J_Nᵀ ψ = −(∇_u J + K Pᵀ ∇_z J)   (P: the contact rows of r with the sign of z)
+  /// gives ξ = ∇_α J + ∇_α[vᵀ(K(α)u − f(α))] + B̃ᵀ c, v = L_rᵀψ + Pᵀ∇_z J, where L_r and the
+  /// node coefficients c are the r- and gap-derivatives of the contact rows of F. `X`, `u`:
+  /// the design's positions and the returned displacement (full, on every rank); the cost's
+  /// partials d_alpha (d or empty), d_displacement (num_dofs; prescribed entries ignored),
+  /// d_contact (dim·p or empty); `gap_matrix` B̃ (p × d): g = B̃α. Valid until the next solve();
+  /// collective like solve(). A Krylov failure is a status (kNumericalFailure, PETSc's reason).
+  [[nodiscard]] SubgradientResult subgradient(const Eigen::Ref<const Eigen::MatrixXd>& X,
+                                              const Eigen::Ref<const Eigen::VectorXd>& u,
+                                              const Eigen::Ref<const Eigen::VectorXd>& d_alpha,
+                                              const Eigen::Ref<const Eigen::VectorXd>& d_displacement,
+                                              const Eigen::Ref<const Eigen::VectorXd>& d_contact,
+                                              const Eigen::Ref<const Eigen::MatrixXd>& gap_matrix);
+
   /// M = G A⁻¹ Gᵀ at the last solved design (A: the stiffness on the free DOFs), applied and
   /// read in blocks by Krylov solves (CG + GAMG, one per column): what the sensitivity module
-  /// reads. Valid until the next solve() (which reassembles); collective like solve().
+  /// reads for pieces other than the Newton one (subgradient() needs no M). Valid until the next
+  /// solve() (which reassembles); collective like solve().
   [[nodiscard]] std::shared_ptr<const contact::DelassusMatrix> delassus();
 
   /// The piece of the generalized Jacobian at the returned state, per contact node (every rank).

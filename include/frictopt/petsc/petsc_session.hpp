@@ -33,6 +33,10 @@ class PetscSession {
   /// (OpenMPI, MPICH/PMI, Slurm) without initializing MPI; 0 when not launched by mpirun.
   static int launcher_rank();
   static int launcher_size();
+  /// Rank 0's `text` on every rank (MPI_Bcast over PETSC_COMM_WORLD); initializes PETSc if
+  /// needed (collective: every rank calls it). How rank 0, which owns a run directory, hands
+  /// the files of a run to the other ranks (optimize --resume under mpirun).
+  static void broadcast_from_rank0(std::string& text);
 };
 
 }  // namespace frictopt::petsc

@@ -18,6 +18,7 @@
 #include "frictopt/fem/linear_elasticity.hpp"
 #include "frictopt/fem/stress_recovery.hpp"
 #include "frictopt/mesh/mesh.hpp"
+#include "frictopt/sensitivity/adjoint.hpp"
 #include "frictopt/shape/admissible_set.hpp"
 #include "frictopt/study/body_definition.hpp"
 
@@ -127,6 +128,17 @@ class ElasticBody {
   /// read). A run's checkpoint stores it so that a resumed run repeats the uninterrupted one
   /// bit for bit (io::RunCheckpoint).
   const std::optional<contact::ContactState>& warm_start() const { return warm_start_; }
+
+  /// True with engine = "petsc": the subgradient of the default piece is then the engine's own
+  /// (petsc_subgradient), one transposed Krylov solve instead of a Delassus block.
+  bool uses_petsc_engine() const { return petsc_engine_ != nullptr; }
+  /// ξ at `state`, which must be the last one solve() returned, for the piece of the engine's
+  /// Newton linearization (docs/petsc-engine.md, "Subgradient"); `gap_matrix` is B̃ (p × d).
+  /// The result's psi_u, psi_z and friction_gradient are empty (the engine's adjoint lives on
+  /// the displacements, not on the dual system). Collective under MPI. Only with the PETSc engine.
+  [[nodiscard]] sensitivity::AdjointSensitivity::Result petsc_subgradient(const BodyState& state,
+                                                                          const sensitivity::CostPartials& partials,
+                                                                          const Eigen::MatrixXd& gap_matrix);
   void set_warm_start(std::optional<contact::ContactState> state) { warm_start_ = std::move(state); }
 
  private:
