@@ -71,5 +71,7 @@ function(frictopt_add_benchmark name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} benchmark::benchmark)
+  # bench/common/*.hpp: the shared timing helpers and test bodies of the benchmarks.
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/bench)
   frictopt_target_defaults(${name})
 endfunction()

@@ -36,12 +36,15 @@
 #include "frictopt/mesh/graded_coordinates.hpp"
 #include "frictopt/study/loading_program.hpp"
 #include "frictopt/study/shape_oracle.hpp"
+#include "common/timing.hpp"
 
 namespace {
 
+using frictopt::bench::Clock;
+using frictopt::bench::seconds;
+using frictopt::bench::peak_rss_megabytes;
+
 using namespace frictopt;
-using Clock = std::chrono::steady_clock;
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 // CPU seconds of the whole process (all threads): on a machine shared with other jobs the wall
 // clock measures the load as much as the code; with one BLAS thread the CPU time is what an idle
 // core would take.
@@ -49,11 +52,6 @@ double cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-double peak_rss_megabytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
 struct Config {

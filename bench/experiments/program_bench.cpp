@@ -11,32 +11,14 @@
 #include <chrono>
 
 #include "frictopt/study/loading_program.hpp"
+#include "common/timing.hpp"
+#include "common/punch.hpp"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double>(b - a).count();
-}
-
-frictopt::study::BodyDefinition punch(int n, int layers) {
-  using namespace frictopt;
-  study::BodyDefinition b;
-  b.shape = shape::BezierShape::surface(1.0, 1.0, 4, 4);
-  b.height = 0.5;
-  b.resolution = {{n, n, layers}, 1.5};
-  b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{"top", {}, Eigen::Vector3d(1e-4, 0.0, -1.2e-3)}};
-  b.admissible.upper_bound = 5e-3;
-  b.admissible.height = 0.5;
-  b.initial_design.resize(16);
-  b.initial_design << 1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3, 1.0e-3, 0.5e-3, 0.5e-3, 1.0e-3, 1.0e-3,
-      0.5e-3, 0.5e-3, 1.0e-3, 1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3;
-  study::ContactDefinition c;
-  c.law = contact::FrictionLaw::regular_polygon(0.3, 16);
-  b.contact = c;
-  return b;
-}
+using frictopt::bench::Clock;
+using frictopt::bench::seconds;
+using frictopt::bench::punch;
 
 void BM_LoadingProgram(benchmark::State& state) {
   using namespace frictopt;

@@ -11,17 +11,13 @@
 
 #include "frictopt/fem/linear_elasticity.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
+#include "common/timing.hpp"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-
-double peak_rss_megabytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports kilobytes
-}
+using frictopt::bench::Clock;
+using frictopt::bench::seconds;
+using frictopt::bench::peak_rss_megabytes;
 
 // A cube of n³ hexahedra with a curved Bézier bottom, clamped on the left face and pressed on top.
 void BM_ElasticityPhases(benchmark::State& state) {

@@ -21,39 +21,22 @@
 #include "frictopt/mesh/design_extension.hpp"
 #include "frictopt/mesh/gmsh_mesh.hpp"
 #include "frictopt/study/elastic_body.hpp"
+#include "common/timing.hpp"
+#include "common/punch.hpp"
 
 namespace {
 
+using frictopt::bench::Clock;
+using frictopt::bench::seconds_since;
+using frictopt::bench::median;
+
 using namespace frictopt;
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 // Processor time of the process (all threads): on a machine shared with other jobs the wall
 // time of a phase grows with the load, its processor time much less.
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
-// The punch of cases3d/punch-anisotropic on an n × n × n/2 grid (graded 1.5), isotropic 16-gon.
-study::BodyDefinition punch(int n) {
-  study::BodyDefinition b;
-  b.shape = shape::BezierShape::surface(1.0, 1.0, 4, 4);
-  b.height = 0.5;
-  b.resolution = {{n, n, n / 2}, 1.5};
-  b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{"top", {}, Eigen::Vector3d(1e-4, 0.0, -1.2e-3)}};
-  b.admissible.upper_bound = 5e-3;
-  b.admissible.height = 0.5;
-  b.initial_design.resize(16);
-  b.initial_design << 1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3, 1.0e-3, 0.5e-3, 0.5e-3, 1.0e-3, 1.0e-3, 0.5e-3, 0.5e-3, 1.0e-3,
-      1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3;
-  study::ContactDefinition c;
-  c.law = contact::FrictionLaw::regular_polygon(0.3, 16);
-  b.contact = c;
-  return b;
-}
+study::BodyDefinition punch(int n) { return frictopt::bench::punch(n, n / 2); }
 
 struct Timing {
   double import_s = 0, extension_s = 0, state_s = 0;       // wall

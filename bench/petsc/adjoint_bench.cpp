@@ -20,16 +20,14 @@
 #include "frictopt/petsc/petsc_session.hpp"
 #include "frictopt/study/elastic_body.hpp"
 #include "frictopt/study/shape_oracle.hpp"
+#include "common/timing.hpp"
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+using frictopt::bench::Clock;
+using frictopt::bench::seconds_since;
+using frictopt::bench::peak_rss_megabytes;
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
-double peak_rss_megabytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
-}
 }  // namespace
 
 int main(int argc, char** argv) {

@@ -11,37 +11,15 @@
 
 #include "frictopt/cost/cost_functional.hpp"
 #include "frictopt/study/shape_oracle.hpp"
+#include "common/timing.hpp"
+#include "common/punch.hpp"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-double peak_rss_megabytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
-}
-
-// The punch of cases3d/punch with an n × n × n/2 grid: a plate presses the top down and
-// sideways, a dish-shaped 4 × 4 Bézier bottom, isotropic 16-gon friction μ = 0.3.
-frictopt::study::BodyDefinition punch(int n, int layers) {
-  using namespace frictopt;
-  study::BodyDefinition b;
-  b.shape = shape::BezierShape::surface(1.0, 1.0, 4, 4);
-  b.height = 0.5;
-  b.resolution = {{n, n, layers}, 1.5};
-  b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{"top", {}, Eigen::Vector3d(1e-4, 0.0, -1.2e-3)}};
-  b.admissible.upper_bound = 5e-3;
-  b.admissible.height = 0.5;
-  b.initial_design.resize(16);
-  b.initial_design << 1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3, 1.0e-3, 0.5e-3, 0.5e-3, 1.0e-3, 1.0e-3, 0.5e-3, 0.5e-3, 1.0e-3,
-      1.5e-3, 1.0e-3, 1.0e-3, 1.5e-3;
-  study::ContactDefinition c;
-  c.law = contact::FrictionLaw::regular_polygon(0.3, 16);
-  b.contact = c;
-  return b;
-}
+using frictopt::bench::Clock;
+using frictopt::bench::seconds;
+using frictopt::bench::peak_rss_megabytes;
+using frictopt::bench::punch;
 
 void BM_CoulombSolveAndSubgradient(benchmark::State& state) {
   using namespace frictopt;
