@@ -427,6 +427,9 @@ bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, con
 // piece; otherwise (or when a step's 𝕃_k is sampled) the certificate is sampled.
 bool history_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const CertifyOptions& options,
                         Certificate& c) {
+  // pieces() re-solves the program if the oracle's cache answered without touching the state:
+  // from here on the history's states are those at α.
+  (void)oracle.pieces(alpha, 1);
   ProgramHistory& history = *oracle.history();
   const std::vector<sensitivity::Piece> defaults = history.default_pieces();
   std::vector<Eigen::VectorXd> columns;
@@ -449,6 +452,8 @@ bool history_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const
     const sensitivity::PieceEnumeration enumeration = history.pieces(k, options.cap);
     c.cardinality *= enumeration.cardinality;
     c.sampled |= enumeration.sampled;
+    c.history_steps.push_back(fmt::format("step {}: {}; |L_k| = {:.0f}{}", k + 1, history.index_sets(k).summary(),
+                                          enumeration.cardinality, enumeration.sampled ? " (sampled)" : ""));
     steps_with_choices += enumeration.cardinality > 1.0;
     for (const sensitivity::Piece& piece : enumeration.pieces) {
       if (piece.nodes == defaults[static_cast<std::size_t>(k)].nodes) continue;
@@ -494,6 +499,11 @@ std::string Certificate::report() const {
       s += fmt::format("  {:<16} {:.6e} {:.6e} {:<6} {} {}\n", lc.name, lc.value, lc.weighted_value,
                        lc.active ? "active" : "-", lc.index_sets.summary(),
                        lc.active ? fmt::format("|L_k| = {:.0f}{}", lc.cardinality, lc.sampled ? " (sampled)" : "") : "-");
+  }
+  if (!history_steps.empty()) {
+    s += fmt::format("loading history: {} steps, generators = the default pieces varied one step at a time\n",
+                     history_steps.size());
+    for (const std::string& line : history_steps) s += "  " + line + "\n";
   }
   s += fmt::format("index sets: {} ({} weak nodes)\n", index_sets.summary(), index_sets.num_weak_nodes());
   s += fmt::format("|L| = {:.0f}{}; {} subgradients computed, {} distinct; scale max_i |xi_i| = {:.6e}\n", cardinality,

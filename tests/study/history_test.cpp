@@ -201,6 +201,7 @@ TEST(HistoryAdjoint, AtAKinkEachOneSidedDerivativeIsAnEnumeratedSelections) {
   // ξ_(i1, i2)·h for some i2 ∈ 𝕃_2 (step 1 strict, its default piece).
   BodyDefinition def = frictopt::testing::thesis_body_2d(contact::FrictionLaw::interval(0.3, 0.3), 3, 2);
   def.initial_design = Eigen::VectorXd::Zero(def.shape.num_controls());
+  def.admissible.volume.reset();  // α = 0 in Υ (on its lower bounds), for certify below
   auto program = std::make_shared<LoadingProgramDefinition>();
   program->steps = {step({1.0}, {}), step({0.0}, {})};
   CostDefinition cost = history_cost(cost::CostKind::kTargetPressure, program);
@@ -243,6 +244,18 @@ TEST(HistoryAdjoint, AtAKinkEachOneSidedDerivativeIsAnEnumeratedSelections) {
   }
   std::printf("%zu selections; %d of 6 directions are off the default ξ\n", xi.size(), separated);
   EXPECT_GT(separated, 0) << "no kink seen: the test would not detect a wrong selection";
+  // certify: only step 2 has a choice, so its generators are all of 𝕃 = 𝕃_1 × 𝕃_2 (not sampled).
+  // (Its classification is its own: at this degenerate state — λ = 0 up to the solver's
+  // tolerance — a warm-started solve may see another node as weak than the cold one above.)
+  CertifyOptions options;
+  options.clarke_only = true;
+  const Certificate c = certify(oracle, alpha, options);
+  ASSERT_EQ(c.status, Status::kConverged) << c.message;
+  std::printf("%s", c.report().c_str());
+  EXPECT_FALSE(c.sampled);
+  EXPECT_GT(c.cardinality, 1.0);
+  EXPECT_EQ(static_cast<double>(c.subgradients.cols()), c.cardinality);
+  ASSERT_EQ(c.history_steps.size(), 2u);
 }
 
 TEST(HistoryAdjoint, CertifyVariesOneStepAtATime) {
@@ -260,6 +273,8 @@ TEST(HistoryAdjoint, CertifyVariesOneStepAtATime) {
   ASSERT_EQ(c.subgradients.cols(), 1);
   EXPECT_LE((c.subgradients.col(0) - e.subgradient).norm(), 1e-12 * e.subgradient.norm());
   EXPECT_FALSE(c.mf1.computed);
+  ASSERT_EQ(c.history_steps.size(), 2u);
+  EXPECT_NE(c.report().find("loading history: 2 steps"), std::string::npos);
 }
 
 }  // namespace
