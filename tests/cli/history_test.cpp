@@ -91,6 +91,7 @@ TEST(HistoryCli, OptimizeAndCertifyReadTheProgram) {
   EXPECT_NE(certified.output.find("cost dissipation"), std::string::npos) << certified.output;
   EXPECT_NE(certified.output.find("not computed for a cost along a loading history"), std::string::npos)
       << certified.output;
+  EXPECT_NE(frictopt::testing::read_text(out / "certificate.json").find("\"history_steps\""), std::string::npos);
 }
 
 TEST(HistoryCli, HistoryCostOnAOneStepCaseExits2) {
