@@ -125,8 +125,29 @@ INSTANTIATE_TEST_SUITE_P(
                       FdCase{"Block3D_TractionUniformity_Step1", true, cost::CostKind::kTractionUniformity, 1},
                       FdCase{"Block3D_Dissipation", true, cost::CostKind::kDissipation, 0},
                       FdCase{"Thesis2D_ForcePower_LastStep", false, cost::CostKind::kNormalForcePower, 0},
-                      FdCase{"Thesis2D_Dissipation", false, cost::CostKind::kDissipation, 0}),
+                      FdCase{"Thesis2D_Dissipation", false, cost::CostKind::kDissipation, 0},
+                      FdCase{"Thesis2D_PressureNorm_Step2", false, cost::CostKind::kPressureNorm, 2},
+                      FdCase{"Thesis2D_TotalSlip_Step2", false, cost::CostKind::kTotalSlip, 2},
+                      FdCase{"Thesis2D_TargetPressureInitialMean_Step1", false, cost::CostKind::kTargetPressure, 1},
+                      FdCase{"Thesis2D_TractionUniformity_Last", false, cost::CostKind::kTractionUniformity, 0}),
     [](const ::testing::TestParamInfo<FdCase>& p) { return p.param.name; });
+
+TEST(HistoryAdjoint, InitialMeanTargetIsThatOfTheStepTheCostReads) {
+  // target = "initial_mean" after step 1 of three: λ̄ = (Σλ¹/Σa)·a from step 1's state at α⁰.
+  ElasticBody body(two_load_body_2d());
+  CostDefinition d = history_cost(cost::CostKind::kTargetPressure, three_steps_2d(), 1);  // target NaN
+  ShapeOracle oracle(body, d);
+  const Evaluation e = oracle.evaluate_design(body.definition().initial_design, false);
+  ASSERT_TRUE(e.ok) << e.message;
+  const Eigen::VectorXd lambda = oracle.history()->state(0)->contact->state.normal_forces();
+  const Eigen::VectorXd& areas = body.contact_boundary()->tributary_areas();
+  const double expected = ((lambda.sum() / areas.sum()) * areas - lambda).squaredNorm();
+  std::printf("initial_mean after step 1: Θ(α⁰) = %.10e, expected %.10e\n", e.value, expected);
+  EXPECT_NEAR(e.value, expected, 1e-12 * expected);
+  // Not the last step's mean: that target would give another value.
+  const Eigen::VectorXd last = oracle.history()->state(2)->contact->state.normal_forces();
+  EXPECT_GT(std::abs(((last.sum() / areas.sum()) * areas - lambda).squaredNorm() - expected), 1e-3 * expected);
+}
 
 TEST(HistoryAdjoint, DroppingTheCouplingBetweenStepsIsWrong) {
   for (cost::CostKind kind : {cost::CostKind::kNormalForcePower, cost::CostKind::kDissipation}) {
