@@ -44,16 +44,26 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
       fmt::print("load case {:<16} J = {:.10e}  w J = {:.10e}{}\n", (*cases)[static_cast<int>(k)].name, e.case_values[k],
                  (*cases)[static_cast<int>(k)].weight * e.case_values[k],
                  static_cast<int>(k) == e.selected_case ? "  (selected)" : "");
+  int weak_nodes = e.index_sets.num_weak_nodes();
+  if (const study::ProgramHistory* history = oracle.history()) {  // issue 13 item 2: every step's sets
+    fmt::print("loading program: {} steps; the cost ({}) reads {}\n", history->num_steps(), history->name(),
+               history->dissipation() ? std::string("every step") : fmt::format("step {}", history->cost_step() + 1));
+    weak_nodes = 0;
+    for (std::size_t k = 0; k < e.step_index_sets.size(); ++k) {
+      fmt::print("step {}: index sets: {}\n", k + 1, e.step_index_sets[k].summary());
+      weak_nodes += e.step_index_sets[k].num_weak_nodes();
+    }
+  }
   fmt::print("{}\n{}\n", e.contact.brief_report(), e.adjoint.brief_report());
   if (!e.ok) {
     fmt::print("error: {}\n", e.message);
     return kExitNumericalFailure;
   }
   fmt::print("index sets: {}; |L| = {:.0f}\n", e.index_sets.summary(), check.cardinality);
-  if (e.index_sets.num_weak_nodes() > 0)
+  if (weak_nodes > 0)
     fmt::print("note: {} weak node(s): Θ has a kink here and the difference quotients need not match ξ "
                "(compare one-sided quotients with the pieces of L instead)\n",
-               e.index_sets.num_weak_nodes());
+               weak_nodes);
   fmt::print("central differences with h = {:.3e} (relative step {:.1e} of max|α|)\n", check.step, relative_step);
   fmt::print("{:>4} {:>20} {:>20} {:>12}\n", "k", "finite difference", "adjoint", "rel. error");
   for (std::size_t k = 0; k < check.components.size(); ++k) {

@@ -583,6 +583,42 @@ contact::CoulombSolver::Options read_solver(const TableReader& r, std::string_vi
   return s;
 }
 
+// [cost] step and the loading program a history cost reads (issue 13 item 2; study/history.hpp):
+// `step` is "last" (the default) or a 1-based step of the [[program.step]] tables; a step or the
+// dissipation on a case without a program is a history cost on a one-step case.
+void read_cost_history(const TableReader& r, const std::optional<study::LoadingProgramDefinition>& program,
+                       study::CostDefinition& c) {
+  const std::size_t steps = program ? program->steps.size() : 0;
+  const std::string expectation =
+      program ? fmt::format("\"last\" or an integer step in [1, {}] (the case has {} [[program.step]] table{})", steps,
+                            steps, steps == 1 ? "" : "s")
+              : std::string("no step: the case has no [[program.step]] tables (a history cost on a one-step case)");
+  if (const toml::node* step = r.node("step")) {
+    if (!program) r.fail_value("step", expectation);
+    if (step->is_string()) {
+      if (step->value<std::string>().value_or("") != "last") r.fail_value("step", expectation);
+      c.step = 0;
+    } else if (step->is_integer()) {
+      const std::int64_t k = step->value<std::int64_t>().value_or(0);
+      if (k < 1 || k > static_cast<std::int64_t>(steps)) r.fail_value("step", expectation);
+      c.step = static_cast<int>(k);
+    } else {
+      r.fail_value("step", expectation);
+    }
+  }
+  if (c.kind == cost::CostKind::kDissipation && !program)
+    r.fail_value("kind", "a cost of one state (the case has no [[program.step]] tables: \"dissipation\" is a history "
+                         "cost on a one-step case)");
+  if (program) {
+    if (c.kind == cost::CostKind::kCompliance)
+      r.fail_value("kind", "a contact cost or \"dissipation\" with [[program.step]] tables (the compliance reads the "
+                           "case file's own loads, not a step's)");
+    if (c.kind == cost::CostKind::kDissipation && r.has("step"))
+      r.fail_value("step", "no step for \"dissipation\" (it reads every step of the program)");
+    c.program = std::make_shared<const study::LoadingProgramDefinition>(*program);
+  }
+}
+
 // [cost] into the study's cost definition (spec 05 §2.4). `dim` checks the traction target.
 study::CostDefinition read_cost(const TableReader& r, int dim) {
   using cost::CostKind;
@@ -1016,7 +1052,9 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   if (const toml::table* cost = top.optional_table("cost")) {
     if (!body.contact)
       throw InvalidInput(fmt::format("{}: [cost] needs a [contact] table: every cost reads the contact state", origin));
-    c.cost = read_cost(TableReader(*cost, "cost", origin, {"kind", "target", "exponent", "smoothing"}), dim);
+    const TableReader r(*cost, "cost", origin, {"kind", "target", "exponent", "smoothing", "step"});
+    c.cost = read_cost(r, dim);
+    read_cost_history(r, c.program, *c.cost);
   }
   detail::read_load_case_sections(top, origin, c);
   c.optimization = study::default_study_options(body);

@@ -421,6 +421,55 @@ bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, con
   return true;
 }
 
+// A cost along a loading history (issue 13 item 2; docs/theory/history-adjoint.md §4): the
+// default ξ (every step's default piece), then each step's pieces varied one step at a time with
+// the others at their defaults. That is all of 𝕃 = Π_k 𝕃_k when at most one step has more than one
+// piece; otherwise (or when a step's 𝕃_k is sampled) the certificate is sampled.
+bool history_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const CertifyOptions& options,
+                        Certificate& c) {
+  // pieces() re-solves the program if the oracle's cache answered without touching the state:
+  // from here on the history's states are those at α.
+  (void)oracle.pieces(alpha, 1);
+  ProgramHistory& history = *oracle.history();
+  const std::vector<sensitivity::Piece> defaults = history.default_pieces();
+  std::vector<Eigen::VectorXd> columns;
+  const auto add = [&](const std::vector<sensitivity::Piece>& pieces, std::string summary) {
+    const HistorySubgradient r = history.subgradient(pieces);
+    if (r.summary.status != Status::kConverged || !r.subgradient.allFinite()) {
+      c.status = Status::kNumericalFailure;
+      c.message = fmt::format("{}: {}", summary, r.summary.brief_report());
+      return false;
+    }
+    columns.push_back(r.subgradient);
+    c.piece_summaries.push_back(std::move(summary));
+    return true;
+  };
+  if (!add(defaults, "every step's default piece")) return false;
+  c.default_piece_column = 0;
+  c.cardinality = 1.0;
+  int steps_with_choices = 0;
+  for (int k = 0; k < history.num_steps(); ++k) {
+    const sensitivity::PieceEnumeration enumeration = history.pieces(k, options.cap);
+    c.cardinality *= enumeration.cardinality;
+    c.sampled |= enumeration.sampled;
+    c.history_steps.push_back(fmt::format("step {}: {}; |L_k| = {:.0f}{}", k + 1, history.index_sets(k).summary(),
+                                          enumeration.cardinality, enumeration.sampled ? " (sampled)" : ""));
+    steps_with_choices += enumeration.cardinality > 1.0;
+    for (const sensitivity::Piece& piece : enumeration.pieces) {
+      if (piece.nodes == defaults[static_cast<std::size_t>(k)].nodes) continue;
+      std::vector<sensitivity::Piece> chosen = defaults;
+      chosen[static_cast<std::size_t>(k)] = piece;
+      if (!add(chosen, fmt::format("step {}: {}", k + 1, piece.summary()))) return false;
+    }
+  }
+  c.sampled |= steps_with_choices > 1;
+  c.index_sets = history.index_sets(history.cost_step());
+  c.subgradients.resize(alpha.size(), static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t j = 0; j < columns.size(); ++j) c.subgradients.col(static_cast<Eigen::Index>(j)) = columns[j];
+  c.scale = c.subgradients.colwise().norm().maxCoeff();
+  return true;
+}
+
 }  // namespace
 
 void CertifyOptions::validate() const {
@@ -450,6 +499,11 @@ std::string Certificate::report() const {
       s += fmt::format("  {:<16} {:.6e} {:.6e} {:<6} {} {}\n", lc.name, lc.value, lc.weighted_value,
                        lc.active ? "active" : "-", lc.index_sets.summary(),
                        lc.active ? fmt::format("|L_k| = {:.0f}{}", lc.cardinality, lc.sampled ? " (sampled)" : "") : "-");
+  }
+  if (!history_steps.empty()) {
+    s += fmt::format("loading history: {} steps, generators = the default pieces varied one step at a time\n",
+                     history_steps.size());
+    for (const std::string& line : history_steps) s += "  " + line + "\n";
   }
   s += fmt::format("index sets: {} ({} weak nodes)\n", index_sets.summary(), index_sets.num_weak_nodes());
   s += fmt::format("|L| = {:.0f}{}; {} subgradients computed, {} distinct; scale max_i |xi_i| = {:.6e}\n", cardinality,
@@ -504,6 +558,8 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   const int selected_case = e.selected_case;
   if (oracle.load_cases()) {
     if (!load_case_generators(oracle, alpha, case_values, c.value, selected_case, options, c)) return c;
+  } else if (oracle.history()) {
+    if (!history_generators(oracle, alpha, options, c)) return c;
   } else {
   // pieces() re-solves if the cache answered without touching the state: from here on the
   // oracle's last state (and the body's factorization) is the one at α.
@@ -548,6 +604,11 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   if (options.clarke_only) {
     c.mf1.not_computed_reason = "not asked for (Clarke distance only)";
     c.mordukhovich.message = "not asked for (Clarke distance only)";
+  } else if (oracle.history()) {
+    c.mf1.not_computed_reason =
+        "not computed for a cost along a loading history (the tight system couples the steps; "
+        "docs/theory/history-adjoint.md §4)";
+    c.mordukhovich.message = "not computed for a cost along a loading history";
   } else if (oracle.load_cases()) {
     // (MF1′) per active case: each case's tight system at its own state (same A(α) and M).
     for (std::size_t k = 0; k < c.load_cases.size(); ++k) {

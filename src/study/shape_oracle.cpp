@@ -65,6 +65,9 @@ std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition
         for (int c = 0; c < nt; ++c) mean(c) -= cs.z(cs.dim * i + c);  // τ_i = −q_i
       return cost::make_traction_uniformity(mean / body.contact_boundary()->tributary_areas().sum());
     }
+    case Kind::kDissipation:
+      throw InvalidInput("cost.kind = \"dissipation\" reads the history of a loading program: a history cost on a "
+                         "one-step case; expected [[program.step]] tables (study::ProgramHistory evaluates it)");
   }
   return nullptr;
 }
@@ -80,6 +83,18 @@ ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : 
   const bool needs_initial_state =
       (definition.kind == cost::CostKind::kTargetPressure && std::isnan(definition.target_pressure)) ||
       (definition.kind == cost::CostKind::kTractionUniformity && definition.target_traction_initial_mean);
+  if (definition.program) {
+    // A cost along a loading history (issue 13 item 2; study/history.hpp).
+    if (definition.load_cases)
+      throw InvalidInput("[[load_case]] tables with [[program.step]] tables: load cases given as programs are not "
+                         "supported; expected either load cases or a loading program");
+    history_ = std::make_unique<ProgramHistory>(body_, definition, gap_matrix_);
+    return;
+  }
+  if (definition.step != 0)
+    throw InvalidInput(fmt::format("cost.step = {} on a case without [[program.step]] tables: a history cost on a "
+                                   "one-step case; expected [[program.step]] tables or no cost.step",
+                                   definition.step));
   if (definition.load_cases) {
     // The compliance reads the work of the case file's tractions (cost::CostInput::fem), not a
     // case's: with other loads per case its value would be wrong.
@@ -109,6 +124,19 @@ ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : 
 void ShapeOracle::solve_state(const Eigen::VectorXd& alpha) {
   if (state_ && state_alpha_.size() == alpha.size() && state_alpha_ == alpha) return;
   if (cases_) return solve_cases(alpha);
+  if (history_) {
+    // Every step at α on one factorization; the oracle's state is the one the cost reads.
+    history_->solve(alpha);
+    const int k = history_->ok() ? history_->cost_step() : history_->num_steps() - 1;
+    state_ = history_->state(k);
+    for (int j = k; !state_; --j) state_ = history_->state(j - 1);  // the failed step: the last solved
+    state_alpha_ = alpha;
+    delassus_ = state_->contact ? state_->contact->delassus : nullptr;
+    recent_.push_front(state_);
+    if (recent_.size() > kRecentStates) recent_.pop_back();
+    ++state_solves_;
+    return;
+  }
   if (state_ && state_->contact) {
     // The previous state stays readable for output; its Delassus operator (up to m² doubles)
     // is released — the sensitivity needs it only for the last design, with its factorization.
@@ -266,6 +294,33 @@ void ShapeOracle::evaluate_cases(Evaluation& e, bool with_subgradient) {
   e.subgradient_seconds = seconds_since(start);
 }
 
+void ShapeOracle::evaluate_history(Evaluation& e, bool with_subgradient) {
+  e.state = state_->summary;
+  e.contact = state_->contact ? state_->contact->summary : contact::CoulombSolver::Summary{};
+  if (!history_->ok()) {
+    e.message = "loading program: state solve failed: " + history_->message();
+    return;
+  }
+  e.value = history_->value();
+  for (int k = 0; k < history_->num_steps(); ++k) e.step_index_sets.push_back(history_->index_sets(k));
+  e.index_sets = e.step_index_sets[static_cast<std::size_t>(history_->cost_step())];
+  e.factorizations = 1;
+  e.ok = true;
+  if (!with_subgradient) return;
+  const auto start = std::chrono::steady_clock::now();
+  // The backward adjoint with every step's default piece (docs/theory/history-adjoint.md).
+  const HistorySubgradient result = history_->subgradient(history_->default_pieces());
+  e.adjoint = result.summary;
+  e.subgradient_seconds = seconds_since(start);
+  if (result.summary.status != Status::kConverged) {
+    e.ok = false;
+    e.message = "subgradient failed: " + result.summary.message;
+    return;
+  }
+  e.subgradient = result.subgradient;
+  e.friction_gradient = result.friction_gradient;
+}
+
 const BodyState& ShapeOracle::state(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
   for (const auto& s : recent_)
     if (s->alpha.size() == alpha.size() && s->alpha == alpha) return *s;
@@ -298,6 +353,10 @@ const Evaluation& ShapeOracle::evaluate_design(const Eigen::Ref<const Eigen::Vec
   e.state_seconds = seconds_since(start);
   if (cases_) {
     evaluate_cases(e, with_subgradient);
+    return cache_[key_of(alpha)] = e;
+  }
+  if (history_) {
+    evaluate_history(e, with_subgradient);
     return cache_[key_of(alpha)] = e;
   }
   e.state = state_->summary;
@@ -353,6 +412,21 @@ std::vector<sensitivity::AdjointSensitivity::Result> ShapeOracle::subgradients(c
                                                        const std::vector<sensitivity::Piece>& pieces) {
   solve_state(alpha);
   if (cases_) return case_subgradients(alpha, selected_, pieces);
+  if (history_) {
+    // The pieces are the cost step's; every other step keeps its default piece.
+    std::vector<sensitivity::AdjointSensitivity::Result> out;
+    std::vector<sensitivity::Piece> chosen = history_->default_pieces();
+    for (const sensitivity::Piece& piece : pieces) {
+      chosen[static_cast<std::size_t>(history_->cost_step())] = piece;
+      const HistorySubgradient h = history_->subgradient(chosen);
+      sensitivity::AdjointSensitivity::Result r;
+      r.subgradient = h.subgradient;
+      r.friction_gradient = h.friction_gradient;
+      r.summary = h.summary;
+      out.push_back(std::move(r));
+    }
+    return out;
+  }
   const sensitivity::CostPartials j = partials();
   const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
                                                 body_.definition().contact->law);
@@ -367,6 +441,9 @@ sensitivity::AdjointSensitivity::StateDerivative ShapeOracle::state_derivative(
     const Eigen::Ref<const Eigen::VectorXd>& alpha, const Eigen::Ref<const Eigen::VectorXd>& h,
     const sensitivity::Piece* piece) {
   solve_state(alpha);
+  if (history_)
+    throw InvalidInput("ShapeOracle::state_derivative: not available for a cost along a loading history (the state "
+                       "derivative of one step depends on the earlier steps')");
   const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
                                                 body_.definition().contact->law);
   const sensitivity::Piece chosen =
@@ -378,6 +455,13 @@ sensitivity::AdjointSensitivity::StateDerivative ShapeOracle::state_derivative(
 sensitivity::PieceEnumeration ShapeOracle::pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int cap) {
   solve_state(alpha);
   if (cases_) return case_pieces(alpha, selected_, cap);
+  if (history_) {
+    sensitivity::PieceEnumeration out = history_->pieces(history_->cost_step(), cap);
+    const double step_cardinality = out.cardinality;
+    out.cardinality = history_->cardinality();
+    out.sampled = out.sampled || out.cardinality > step_cardinality;
+    return out;
+  }
   const auto sets = sensitivity::classify(state_->contact->state, body_.definition().contact->law);
   return sensitivity::enumerate_pieces(sets, body_.definition().contact->law, cap);
 }

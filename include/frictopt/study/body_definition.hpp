@@ -28,6 +28,8 @@
 
 namespace frictopt::study {
 
+struct LoadingProgramDefinition;  // study/loading_program.hpp (which needs this header)
+
 /// Unilateral contact with Coulomb friction on Γ_c against the rigid foundation (default
 /// x_dim <= 0; `foundation` for any plane and law frame).
 struct ContactDefinition {
@@ -67,6 +69,12 @@ struct CostDefinition {
   /// [[load_case]] + [study] (issue 13): J on each of K load cases, combined into one Θ
   /// (study/load_cases.hpp); absent: J on the case file's own loads.
   std::optional<LoadCasesDefinition> load_cases;
+  /// [[program.step]] + [cost] (issue 13 item 2): J reads the state after step `step` of this
+  /// loading program, or (kDissipation) the whole history (study/history.hpp); null: the static
+  /// problem. Shared and const: copies of the definition read one program.
+  std::shared_ptr<const LoadingProgramDefinition> program;
+  /// [cost] step: the 1-based step whose state J reads; 0 = the last step.
+  int step = 0;
 };
 
 /// Which engine solves the state problem (issue 14; docs/petsc-engine.md).

@@ -119,6 +119,10 @@ struct Certificate {
   /// combinations up to `cap`, else the default pieces varied one case at a time: sampled).
   std::vector<LoadCaseCertificate> load_cases;
   std::string combine;  ///< "worst" or "weighted" (empty without load cases)
+  /// A cost along a loading history (issue 13 item 2; empty without): per step, its index sets
+  /// and |𝕃_k|; `index_sets` is the step the cost reads (the last for the dissipation), and
+  /// `subgradients` the default pieces varied one step at a time (docs/theory/history-adjoint.md §4).
+  std::vector<std::string> history_steps;
   double time_seconds = 0.0;
   /// A few lines for the CLI.
   [[nodiscard]] std::string report() const;

@@ -17,6 +17,7 @@
 #include "frictopt/sensitivity/index_sets.hpp"
 #include "frictopt/sensitivity/piece.hpp"
 #include "frictopt/study/elastic_body.hpp"
+#include "frictopt/study/history.hpp"
 #include "frictopt/study/load_cases.hpp"
 
 namespace frictopt::study {
@@ -48,6 +49,9 @@ struct Evaluation {
   /// the first case attaining the max, whose subgradient ξ is (LoadCases::combine); −1 without.
   int selected_case = -1;
   int factorizations = 0;  ///< numeric factorizations of A for this evaluation (1 with K cases)
+  /// A cost along a loading history (issue 13 item 2): every step's index sets (`index_sets` is
+  /// the cost step's); empty without a program.
+  std::vector<sensitivity::IndexSets> step_index_sets;
 };
 
 /// Θ(α) and ξ ∈ ∂Θ(α) (or of the pseudodifferential, spec 03 §8) for a body with contact and a
@@ -80,6 +84,12 @@ class ShapeOracle final : public optim::Oracle {
   /// The index sets and 𝕃 at α (with load cases: of the selected case).
   sensitivity::PieceEnumeration pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int cap = 256);
 
+  /// The history of a cost along a loading program (null: the static problem). With it, the
+  /// state, pieces() and subgradients() are those of the step the cost reads (the last for the
+  /// dissipation), the other steps keeping their default pieces; pieces()' cardinality is that of
+  /// the whole history (the product over the steps). state_derivative() is not available.
+  ProgramHistory* history() { return history_.get(); }
+  const ProgramHistory* history() const { return history_.get(); }
   /// The load cases of the cost definition (null: the case file's own loads).
   const LoadCases* load_cases() const { return cases_.get(); }
   /// Load cases: ξ_i of J_k (case k's own cost, unweighted) for the given pieces of case k at α.
@@ -97,7 +107,9 @@ class ShapeOracle final : public optim::Oracle {
 
   const ElasticBody& body() const { return body_; }
   /// The cost (with load cases: that of case 0; each case has its own when a target is initial_mean).
-  const cost::CostFunctional& cost() const { return cost_ ? *cost_ : *case_costs_.front(); }
+  const cost::CostFunctional& cost() const {
+    return cost_ ? *cost_ : history_ ? history_->cost() : *case_costs_.front();
+  }
   /// The state of the last solved design.
   const BodyState& last_state() const { return *state_; }
   /// The state at α for output (VTK, reports): one of the last kRecentStates solved states when
@@ -114,6 +126,7 @@ class ShapeOracle final : public optim::Oracle {
   sensitivity::AdjointSensitivity::Result case_subgradient(int k, const sensitivity::Piece& piece,
                                                            const sensitivity::CostPartials& j);
   void evaluate_cases(Evaluation& e, bool with_subgradient);
+  void evaluate_history(Evaluation& e, bool with_subgradient);
   const contact::DelassusMatrix& delassus();
 
   ElasticBody& body_;
@@ -134,6 +147,7 @@ class ShapeOracle final : public optim::Oracle {
   std::vector<std::optional<sensitivity::IndexSets>> case_sets_;
   int selected_ = 0;
   int last_factorizations_ = 0;
+  std::unique_ptr<ProgramHistory> history_;  // a cost along a loading program (issue 13 item 2)
 };
 
 }  // namespace frictopt::study

@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: MIT
+// Costs along a loading history (issue 13, item 2; docs/theory/history-adjoint.md): the steps of
+// a loading program at one design on one factorization, a cost that reads the state after one
+// step (any cost kind but the compliance) or the whole history (the friction dissipation), and
+// one element ξ of its pseudodifferential by an adjoint run backward over the steps, each step
+// with its own index-set piece.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frictopt/contact/friction_law.hpp"
+#include "frictopt/cost/cost_functional.hpp"
+#include "frictopt/sensitivity/adjoint.hpp"
+#include "frictopt/sensitivity/index_sets.hpp"
+#include "frictopt/sensitivity/piece.hpp"
+#include "frictopt/study/body_definition.hpp"
+#include "frictopt/study/elastic_body.hpp"
+#include "frictopt/study/load_cases.hpp"
+#include "frictopt/study/loading_program.hpp"
+
+namespace frictopt::study {
+
+/// The result of one backward adjoint run.
+struct HistorySubgradient {
+  Eigen::VectorXd subgradient;        ///< ξ (d)
+  Eigen::VectorXd friction_gradient;  ///< Σ_k over the friction steps of ∂Θ/∂p (friction_parameters(law))
+  /// The worst step's adjoint summary (the failed one, else the smallest reciprocal condition).
+  sensitivity::AdjointSensitivity::Summary summary;
+  /// ψ_z^k per step (for tests and reports).
+  std::vector<Eigen::VectorXd> psi_z;
+};
+
+/// A loading program with a cost on its history, at one design at a time. Lifetime: `body` must
+/// outlive this object; not thread-safe (the body's factorization is reused).
+class ProgramHistory {
+ public:
+  /// `definition.program` must be set. Throws InvalidInput for the compliance (it reads the case
+  /// file's own loads, not a step's), a step out of [0, K] (0 = last), a program that does not
+  /// fit the body, or a body without contact. An "initial_mean" target is that of the state the
+  /// cost reads (the chosen step) at the initial design, which is solved here.
+  ProgramHistory(ElasticBody& body, const CostDefinition& definition, Eigen::MatrixXd gap_matrix);
+
+  int num_steps() const { return static_cast<int>(program_.steps.size()); }
+  /// 0-based index of the step whose state the cost reads (the last for the dissipation).
+  int cost_step() const { return cost_step_; }
+  bool dissipation() const { return dissipation_; }
+  /// The cost's name ("dissipation" or the step cost's).
+  std::string name() const;
+  /// The step cost; for the dissipation a functional that only names it (its evaluate() throws:
+  /// the dissipation reads every step, value() and subgradient() compute it).
+  const cost::CostFunctional& cost() const { return *step_cost_; }
+
+  /// Solves every step at α from the unloaded body (u⁰ = 0), each warm-started from its own last
+  /// converged contact state; the first step factorizes A(α), the others reuse it. Stops at the
+  /// first step that does not converge. Throws InvalidInput for an inverting α.
+  void solve(const Eigen::Ref<const Eigen::VectorXd>& alpha);
+  const Eigen::VectorXd& alpha() const { return alpha_; }
+  /// True when every step of the last solve converged.
+  bool ok() const { return ok_; }
+  /// Why not ok ("step k: ...").
+  const std::string& message() const { return message_; }
+  /// Step k's state (0-based) of the last solve; null after a failed step.
+  const std::shared_ptr<BodyState>& state(int k) const { return states_[static_cast<std::size_t>(k)]; }
+  /// The law of step k: the case's, or W = {0} for a frictionless step.
+  const contact::FrictionLaw& law(int k) const;
+
+  /// J at the solved states (needs ok()).
+  double value() const;
+  /// The index sets of step k (classified with that step's law; cached per solve).
+  const sensitivity::IndexSets& index_sets(int k);
+  /// 𝕃 of step k.
+  sensitivity::PieceEnumeration pieces(int k, int cap);
+  /// Every step's default piece.
+  std::vector<sensitivity::Piece> default_pieces();
+  /// |𝕃| of the history: the product over the steps of |𝕃_k|.
+  double cardinality();
+
+  /// ξ for one piece per step (size K) by the backward adjoint. `coupled = false` drops the
+  /// steps' coupling through the slip reference (−S_{k+1} E_t G): a deliberately wrong ξ that the
+  /// tests use to show the coupling matters.
+  [[nodiscard]] HistorySubgradient subgradient(const std::vector<sensitivity::Piece>& pieces, bool coupled = true);
+
+ private:
+  std::vector<sensitivity::CostPartials> partials() const;
+
+  ElasticBody& body_;
+  LoadingProgramDefinition program_;
+  Eigen::MatrixXd gap_matrix_;
+  int cost_step_ = 0;
+  bool dissipation_ = false;
+  std::unique_ptr<cost::CostFunctional> step_cost_;
+  contact::FrictionLaw frictionless_;
+  // Step k's scales carried over (empty lists keep the previous step's), as one "load case" per
+  // step: LoadCases gives the shape derivative of a step's traction change.
+  std::unique_ptr<LoadCases> step_loads_;
+  Eigen::VectorXd alpha_;
+  bool ok_ = false;
+  std::string message_ = "solve() has not been called";
+  std::vector<std::shared_ptr<BodyState>> states_;
+  std::vector<Eigen::VectorXd> tangential_;  // u_t^k of the contact nodes, k = 0..K (u_t^0 = 0)
+  std::vector<std::optional<contact::ContactState>> warm_starts_;
+  std::vector<std::optional<sensitivity::IndexSets>> sets_;
+};
+
+}  // namespace frictopt::study

@@ -1,0 +1,279 @@
+// SPDX-License-Identifier: MIT
+#include "frictopt/study/history.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "frictopt/contact/coulomb_solver.hpp"
+#include "frictopt/core/error.hpp"
+#include "frictopt/sensitivity/friction_parameters.hpp"
+#include "frictopt/study/shape_oracle.hpp"
+
+namespace frictopt::study {
+namespace {
+
+// ψ (or any free-DOF vector) on every DOF, zero at the prescribed ones.
+Eigen::VectorXd on_all_dofs(const fem::DofMap& dofs, const Eigen::VectorXd& free) {
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(dofs.num_dofs());
+  for (int k = 0; k < dofs.num_free(); ++k) full(dofs.free_dofs()[static_cast<std::size_t>(k)]) = free(k);
+  return full;
+}
+
+// Every step's scales with empty lists carried over from the previous step (before step 1 all
+// scales are 1), as LoadingProgram::run applies them: one "load case" per step.
+LoadCasesDefinition steps_as_cases(const LoadingProgramDefinition& program, const BodyDefinition& def) {
+  LoadCasesDefinition cases;
+  std::vector<double> load(def.tractions.size(), 1.0), dirichlet(def.dirichlet.size(), 1.0),
+      force(def.forces.size(), 1.0);
+  for (std::size_t k = 0; k < program.steps.size(); ++k) {
+    const LoadStepDefinition& s = program.steps[k];
+    if (!s.load_scale.empty()) load = s.load_scale;
+    if (!s.dirichlet_scale.empty()) dirichlet = s.dirichlet_scale;
+    if (!s.force_scale.empty()) force = s.force_scale;
+    cases.cases.push_back(LoadCaseDefinition{fmt::format("step {}", k + 1), load, dirichlet, force, 1.0});
+  }
+  return cases;
+}
+
+// The dissipation's name for reports (ShapeOracle::cost()); its value and partials read the
+// whole history, which a one-state CostInput does not carry: ProgramHistory computes them.
+class DissipationName final : public cost::CostFunctional {
+ public:
+  std::string name() const override { return "dissipation"; }
+  sensitivity::CostPartials evaluate(const cost::CostInput&) const override {
+    throw InvalidInput("cost dissipation reads the whole loading program; it is evaluated by study::ProgramHistory, "
+                       "not on one state");
+  }
+};
+
+}  // namespace
+
+ProgramHistory::ProgramHistory(ElasticBody& body, const CostDefinition& definition, Eigen::MatrixXd gap_matrix)
+    : body_(body), gap_matrix_(std::move(gap_matrix)), frictionless_(contact::frictionless_law(body.mesh().dim())) {
+  if (!definition.program)
+    throw InvalidInput("ProgramHistory: the cost definition has no loading program; expected [[program.step]] tables");
+  if (!body_.contact_boundary() || !body_.definition().contact)
+    throw InvalidInput("a cost along a loading history needs a body in contact: add a [contact] table to the case");
+  program_ = *definition.program;
+  program_.validate(body_.definition());
+  const int k_steps = num_steps();
+  if (definition.kind == cost::CostKind::kCompliance)
+    throw InvalidInput("cost.kind = \"compliance\" with [[program.step]] tables: the compliance reads the case file's "
+                       "own loads, not a step's; expected a contact cost (target_pressure, normal_force_power, "
+                       "pressure_norm, total_slip, traction_uniformity) or dissipation");
+  if (definition.step < 0 || definition.step > k_steps)
+    throw InvalidInput(fmt::format("cost.step = {}; expected \"last\" or an integer in [1, {}] (the program has {} "
+                                   "[[program.step]] table{})",
+                                   definition.step, k_steps, k_steps, k_steps == 1 ? "" : "s"));
+  dissipation_ = definition.kind == cost::CostKind::kDissipation;
+  cost_step_ = definition.step == 0 ? k_steps - 1 : definition.step - 1;
+  step_loads_ = std::make_unique<LoadCases>(body_, steps_as_cases(program_, body_.definition()));
+  const auto n = static_cast<std::size_t>(k_steps);
+  states_.resize(n);
+  warm_starts_.resize(n);
+  sets_.resize(n);
+  if (dissipation_) {
+    step_cost_ = std::make_unique<DissipationName>();
+    return;
+  }
+  const bool needs_initial_state =
+      (definition.kind == cost::CostKind::kTargetPressure && std::isnan(definition.target_pressure)) ||
+      (definition.kind == cost::CostKind::kTractionUniformity && definition.target_traction_initial_mean);
+  // An "initial_mean" target is the mean of the state the cost reads — the chosen step's — at α⁰:
+  // "keep the pressure of the last step as even as it is on average at the start".
+  const BodyState* initial = nullptr;
+  if (needs_initial_state) {
+    solve(body_.definition().initial_design);
+    if (!ok_ && !states_[static_cast<std::size_t>(cost_step_)])
+      throw NumericalFailure("cost target = initial_mean: the program at the initial design did not solve: " + message_);
+    initial = states_[static_cast<std::size_t>(cost_step_)].get();
+  }
+  CostDefinition one_step = definition;
+  one_step.program.reset();
+  step_cost_ = make_cost(one_step, body_, initial);
+}
+
+std::string ProgramHistory::name() const {
+  return dissipation_ ? step_cost_->name() : fmt::format("{} at step {}", step_cost_->name(), cost_step_ + 1);
+}
+
+const contact::FrictionLaw& ProgramHistory::law(int k) const {
+  return program_.steps[static_cast<std::size_t>(k)].friction ? body_.definition().contact->law : frictionless_;
+}
+
+void ProgramHistory::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
+  const BodyDefinition& def = body_.definition();
+  const mesh::Mesh& mesh = body_.mesh();
+  if (alpha.size() != def.shape.num_controls())
+    throw InvalidInput(fmt::format("design: has {} control heights; expected {}", alpha.size(), def.shape.num_controls()));
+  alpha_ = alpha;
+  for (auto& s : states_)
+    if (s && s->contact) {
+      // Earlier states stay readable for output; their Delassus operator is released.
+      s->contact->delassus.reset();
+      s->contact->delassus_matrix.reset();
+    }
+  for (auto& s : sets_) s.reset();
+  const StepLoadBuilder builder(body_, mesh.positions(alpha));
+  const Eigen::Index p = body_.contact_boundary()->num_nodes();
+  tangential_.assign(1, Eigen::VectorXd::Zero((mesh.dim() - 1) * p));  // u_t^0 = 0
+  ok_ = true;
+  message_ = fmt::format("all {} steps solved", num_steps());
+  for (int k = 0; k < num_steps(); ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    const LoadCaseDefinition& scales = (*step_loads_)[k];
+    std::vector<fem::FaceDirichlet> dirichlet = def.dirichlet;
+    for (std::size_t j = 0; j < dirichlet.size(); ++j) dirichlet[j].displacement *= scales.dirichlet_scale[j];
+    const StepLoads step =
+        builder.build(scales.load_scale, scales.force_scale, dirichlet, tangential_.back(), program_.steps[i].friction);
+    body_.set_warm_start(warm_starts_[i]);
+    const std::string label = program_.steps[i].label.empty() ? fmt::format("step {}", k + 1) : program_.steps[i].label;
+    states_[i] = std::make_shared<BodyState>(body_.solve_step(alpha, step, label));
+    if (states_[i]->summary.status != Status::kConverged) {
+      ok_ = false;
+      message_ = fmt::format("{}: {}", label, states_[i]->summary.message);
+      for (std::size_t later = i + 1; later < states_.size(); ++later) states_[later].reset();
+      return;
+    }
+    warm_starts_[i] = states_[i]->contact->state;
+    tangential_.push_back(builder.tangential_displacement(states_[i]->displacement));
+  }
+}
+
+double ProgramHistory::value() const {
+  FRICTOPT_ASSERT(ok_, "ProgramHistory::value needs a solved program");
+  if (!dissipation_) return partials()[static_cast<std::size_t>(cost_step_)].value;
+  // D = Σ_k Σ_i ⟨q_i^k, u_t^{i,k} − u_t^{i,k−1}⟩ (docs/theory/loading-program.md §4).
+  const int dim = body_.mesh().dim(), nt = dim - 1;
+  double d = 0.0;
+  for (int k = 0; k < num_steps(); ++k) {
+    const Eigen::VectorXd& z = states_[static_cast<std::size_t>(k)]->contact->state.z;
+    const Eigen::VectorXd slip = tangential_[static_cast<std::size_t>(k) + 1] - tangential_[static_cast<std::size_t>(k)];
+    for (Eigen::Index i = 0; i < body_.contact_boundary()->num_nodes(); ++i)
+      for (int c = 0; c < nt; ++c) d += z(dim * i + c) * slip(nt * i + c);
+  }
+  return d;
+}
+
+std::vector<sensitivity::CostPartials> ProgramHistory::partials() const {
+  const contact::ContactBoundary& boundary = *body_.contact_boundary();
+  const int dim = body_.mesh().dim(), nt = dim - 1;
+  const auto n = static_cast<std::size_t>(num_steps());
+  std::vector<sensitivity::CostPartials> out(n);
+  for (std::size_t k = 0; k < n; ++k) out[k].d_displacement = Eigen::VectorXd::Zero(body_.mesh().num_dofs());
+  if (!dissipation_) {
+    const BodyState& s = *states_[static_cast<std::size_t>(cost_step_)];
+    const cost::CostInput input{body_.elasticity(), boundary, s.alpha, s.positions, s.displacement,
+                                s.contact->state, boundary.tributary_areas()};
+    out[static_cast<std::size_t>(cost_step_)] = step_cost_->evaluate(input);
+    return out;
+  }
+  // ∂D/∂q^k = Δu_t^k; ∂D/∂u_k = ∂u_t^kᵀ (q^k − q^{k+1}) with u_t^k = (t_c·u_node)_c (q^{K+1} = 0).
+  const Eigen::MatrixXd& tangents = boundary.foundation().frame.tangents;  // dim × (dim − 1)
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::VectorXd& z = states_[k]->contact->state.z;
+    const Eigen::VectorXd slip = tangential_[k + 1] - tangential_[k];
+    out[k].d_contact = Eigen::VectorXd::Zero(z.size());
+    for (Eigen::Index i = 0; i < boundary.num_nodes(); ++i) {
+      Eigen::VectorXd q_change(nt);
+      for (int c = 0; c < nt; ++c) {
+        out[k].d_contact(dim * i + c) = slip(nt * i + c);
+        q_change(c) = z(dim * i + c) - (k + 1 < n ? states_[k + 1]->contact->state.z(dim * i + c) : 0.0);
+      }
+      const int node = boundary.nodes()[static_cast<std::size_t>(i)];
+      out[k].d_displacement.segment(node * dim, dim) = tangents * q_change;
+    }
+  }
+  return out;
+}
+
+const sensitivity::IndexSets& ProgramHistory::index_sets(int k) {
+  FRICTOPT_ASSERT(ok_, "ProgramHistory::index_sets needs a solved program");
+  auto& sets = sets_[static_cast<std::size_t>(k)];
+  if (!sets) sets = sensitivity::classify(states_[static_cast<std::size_t>(k)]->contact->state, law(k));
+  return *sets;
+}
+
+sensitivity::PieceEnumeration ProgramHistory::pieces(int k, int cap) {
+  return sensitivity::enumerate_pieces(index_sets(k), law(k), cap);
+}
+
+std::vector<sensitivity::Piece> ProgramHistory::default_pieces() {
+  std::vector<sensitivity::Piece> out;
+  for (int k = 0; k < num_steps(); ++k) out.push_back(sensitivity::default_piece(index_sets(k)));
+  return out;
+}
+
+double ProgramHistory::cardinality() {
+  double product = 1.0;
+  for (int k = 0; k < num_steps(); ++k) product *= pieces(k, 1).cardinality;
+  return product;
+}
+
+HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Piece>& pieces, bool coupled) {
+  FRICTOPT_ASSERT(ok_, "ProgramHistory::subgradient needs a solved program");
+  FRICTOPT_ASSERT(static_cast<int>(pieces.size()) == num_steps(), "one piece per step");
+  const contact::ContactBoundary& boundary = *body_.contact_boundary();
+  const fem::DofMap& dofs = body_.elasticity().dofs();
+  const int dim = body_.mesh().dim();
+  const contact::FrictionLaw& case_law = body_.definition().contact->law;
+  const sensitivity::AdjointSensitivity with_friction(body_.elasticity(), boundary, gap_matrix_, case_law);
+  const sensitivity::AdjointSensitivity without_friction(body_.elasticity(), boundary, gap_matrix_, frictionless_);
+  // One A(α), one factorization and one M for every step (the stiffness does not depend on the
+  // load): the last step's solve left them in place.
+  const contact::DelassusMatrix* delassus = nullptr;
+  for (const auto& s : states_)
+    if (s->contact->delassus) delassus = s->contact->delassus.get();
+  FRICTOPT_ASSERT(delassus != nullptr, "the program's solve provides the Delassus matrix");
+
+  std::vector<sensitivity::CostPartials> j = partials();
+  HistorySubgradient out;
+  out.subgradient = Eigen::VectorXd::Zero(body_.definition().shape.num_controls());
+  out.friction_gradient =
+      Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sensitivity::friction_parameters(case_law).names.size()));
+  out.psi_z.resize(pieces.size());
+  out.summary.status = Status::kConverged;
+  out.summary.reciprocal_condition = std::numeric_limits<double>::infinity();
+  // Backward: step k's adjoint sees step k+1's rows through u_k — r_{k+1} = S_{k+1}(G u_{k+1} −
+  // E_t G u_k) + C_z z_{k+1} — so its u-partial gains −Gᵀ E_t S_{k+1}ᵀ ψ_z^{k+1}
+  // (docs/theory/history-adjoint.md §3).
+  Eigen::VectorXd coupling_z;  // E_t S_{k+1}ᵀ ψ_z^{k+1} (dim·p); empty for k = K
+  for (int k = num_steps() - 1; k >= 0; --k) {
+    const auto i = static_cast<std::size_t>(k);
+    const BodyState& s = *states_[i];
+    sensitivity::CostPartials partial = j[i];
+    if (coupled && coupling_z.size()) {
+      Eigen::VectorXd w = Eigen::VectorXd::Zero(dofs.num_free());
+      boundary.add_transpose_times(coupling_z, w);
+      partial.d_displacement -= on_all_dofs(dofs, w);
+    }
+    const bool friction = program_.steps[i].friction;
+    const sensitivity::AdjointSensitivity& adjoint = friction ? with_friction : without_friction;
+    const auto result =
+        adjoint.subgradient(pieces[i], *delassus, s.positions, s.displacement, s.contact->state, partial);
+    if (result.summary.status != Status::kConverged) {
+      out.summary = result.summary;
+      out.summary.message = fmt::format("step {}: {}", k + 1, result.summary.message);
+      return out;
+    }
+    out.summary.time_seconds += result.summary.time_seconds;
+    if (result.summary.reciprocal_condition < out.summary.reciprocal_condition) {
+      const double seconds = out.summary.time_seconds;
+      out.summary = result.summary;
+      out.summary.time_seconds = seconds;
+    }
+    // The step's residual is A(α)u_k − l_k(α): the adjoint differentiated A(α)u_k − l(α).
+    out.subgradient += result.subgradient +
+                       step_loads_->load_change_shape_derivative(k, s.positions, on_all_dofs(dofs, result.psi_u));
+    if (friction) out.friction_gradient += result.friction_gradient;
+    out.psi_z[i] = result.psi_z;
+    coupling_z = sensitivity::linearize_piece(pieces[i], law(k), s.contact->state).S.transpose() * result.psi_z;
+    for (Eigen::Index node = 0; node < boundary.num_nodes(); ++node) coupling_z(dim * node + dim - 1) = 0.0;  // E_t
+  }
+  out.summary.message = fmt::format("backward adjoint over {} steps; worst step: {}", num_steps(), out.summary.message);
+  return out;
+}
+
+}  // namespace frictopt::study
