@@ -3,9 +3,10 @@
 // variant solved by BundleTrust with DEFAULT options (only keep_history is switched off), and
 // the median evaluation count. Exit code 0 iff every problem is solved to the accuracy and no
 // run reports "converged" at an inaccurate value.
-//   optim_testset_table [--epsilon E] [--accuracy A] [--baseline] [--only NAME] > table.md
+//   optim_testset_table [--epsilon E] [--accuracy A] [--confirm] [--baseline] [--only NAME] > table.md
 // --epsilon sets BundleTrust::Options::epsilon (default: the default, 1e-4) and --accuracy the
-// relative accuracy checked (default: 1e-4). --baseline adds the projected subgradient method
+// relative accuracy checked (default: 1e-4). --confirm passes every "converged" through
+// confirm_in_point_units (point_units_check.hpp; evaluations include it). --baseline adds the projected subgradient method
 // with 10 000 evaluations. --only runs one problem and prints its brief report on stderr;
 // with --only, the final point is also checked by gradient sampling (Burke–Lewis–Overton): the
 // certificate of g(x) and 4n fresh subgradients at uniform points of the ball B(x, r), for
@@ -15,10 +16,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "frictopt/optim/bundle_trust.hpp"
 #include "frictopt/optim/luksan_vlcek.hpp"
+#include "frictopt/optim/point_units_check.hpp"
 #include "frictopt/optim/projected_subgradient.hpp"
 #include "frictopt/optim/stationarity.hpp"
 
@@ -30,6 +33,7 @@ namespace fo = frictopt::optim;
 int main(int argc, char** argv) {
   double accuracy = 1e-4;  // the report's |f − f*| <= 1e-4·max(1, |f*|)
   bool baseline = false;
+  bool confirm = false;
   std::string only;
   fo::BundleTrust::Options bt;
   bt.keep_history = false;
@@ -38,9 +42,10 @@ int main(int argc, char** argv) {
     if (a == "--epsilon" && i + 1 < argc) bt.epsilon = std::atof(argv[++i]);
     else if (a == "--accuracy" && i + 1 < argc) accuracy = std::atof(argv[++i]);
     else if (a == "--baseline") baseline = true;
+    else if (a == "--confirm") confirm = true;
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else {
-      std::fprintf(stderr, "usage: %s [--epsilon E] [--accuracy A] [--baseline] [--only NAME]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--epsilon E] [--accuracy A] [--confirm] [--baseline] [--only NAME]\n", argv[0]);
       return 2;
     }
   }
@@ -56,7 +61,8 @@ int main(int argc, char** argv) {
   for (const auto& p : problems) {
     if (!only.empty() && p.name != only) continue;
     fo::FunctionOracle oracle(p.evaluate);
-    const auto s = fo::BundleTrust(bt, p.constraints).minimize(oracle, p.x0);
+    auto s = fo::BundleTrust(bt, p.constraints).minimize(oracle, p.x0);
+    if (confirm) s = fo::confirm_in_point_units(bt, p.constraints, oracle, p.x0, std::move(s));
     const bool ok = p.solved(s.f, accuracy);
     solved += ok;
     false_converged += s.converged() && !ok;

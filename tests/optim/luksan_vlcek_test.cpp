@@ -175,7 +175,8 @@ INSTANTIATE_TEST_SUITE_P(SmallProblems, LuksanVlcekQuick,
 // Regression (issue 16, second round): BPfilter's steep log pieces give G = ‖g(x_k)‖ ≈ 2e3 at
 // f ≈ 7e-3, so a certificate δ = 4e-3 passed ε·G while f was 4.5e-3 off relative. The bound
 // ε·min(G, F/ρ) (ρ: radius of the local subgradients, docs/optim.md) refuses that point: the run
-// may end stalled, but never "converged" at an inaccurate value.
+// may end stalled or at the iteration limit (BPfilter is still open, docs/optim-testset.md), but
+// never "converged" at an inaccurate value.
 TEST(LuksanVlcekRegression, BPfilterDoesNotReportConvergedAtAnInaccurateValue) {
   const auto p = fo::luksan_vlcek_problem("BPfilter");
   fo::FunctionOracle oracle(p.evaluate);
@@ -183,26 +184,49 @@ TEST(LuksanVlcekRegression, BPfilterDoesNotReportConvergedAtAnInaccurateValue) {
   if (s.converged()) {
     EXPECT_LE(p.relative_error(s.f), kAccuracy) << s.brief_report();
   } else {
-    EXPECT_EQ(s.stop_reason, fo::StopReason::kStationarityNotCertified) << s.brief_report();
+    EXPECT_NE(s.status, frictopt::Status::kNumericalFailure) << s.brief_report();
+    EXPECT_TRUE(s.stop_reason == fo::StopReason::kStationarityNotCertified ||
+                s.stop_reason == fo::StopReason::kIterationLimit)
+        << s.brief_report();
   }
 }
 
-// Regression (issue 16, third round): on ShellDual the direction QP, scaled by the largest
-// subgradient S = 2.4e4 while the center's is G = 139, returned d = 0 and v = 0 — primal
-// aggregate error 0 — although its multipliers weighed the localities to σ = 1.0e-3 > ε·F =
-// 3.2e-4: the QP's tolerance (relative to t·S²) hid the model's error, the stopping test passed
-// and the run ended "converged" 2.8e-4 off f*. The final check now also asks the multipliers'
-// aggregate error σ + μᵀ(c − Cx) to pass the test (docs/optim.md).
-TEST(LuksanVlcekRegression, ShellDualDoesNotReportConvergedAtAnInaccurateValue) {
+// Regression (issue 16, fifth round): on ShellDual the direction QP, scaled by the largest
+// subgradient S = 2.4e4 while the center's is G = 100, resolved its cuts only to ~1e-10·t·S² ≈
+// 0.2 in f: it returned d ≈ 0 with the primal aggregate error 2e-9 while its multipliers weighed
+// localities to σ = 2.2e-3, so the stopping test passed at a point the final check had to refuse
+// and the run stalled 1.1e-4 off f* (third round: it said "converged" 2.8e-4 off). The direction
+// QP is now refined until its duality gap is small against its value (docs/optim.md, "Direction
+// QP to a small duality gap"): ShellDual is solved, and "converged" is accurate.
+TEST(LuksanVlcekRegression, ShellDualIsSolvedWithDefaultOptions) {
   const auto p = fo::luksan_vlcek_problem("ShellDual");
   fo::FunctionOracle oracle(p.evaluate);
   const auto s = fo::BundleTrust({}, p.constraints).minimize(oracle, p.x0);
-  if (s.converged()) {
-    EXPECT_LE(p.relative_error(s.f), kAccuracy) << s.brief_report();
-  } else {
-    EXPECT_NE(s.status, frictopt::Status::kNumericalFailure) << s.brief_report();
-  }
+  EXPECT_TRUE(p.solved(s.f, kAccuracy)) << s.brief_report();
+  EXPECT_TRUE(s.converged()) << s.brief_report();
 }
+
+// Regression (issue 16, fifth round): at ε = 1e-6, HS78 (1.2e-6), Dembo3 (1.2e-5) and Dembo7
+// (1.6e-5) ended "stalled" short of 1e-6: the stopping test passed on the primal reading of an
+// unresolved direction QP and the multipliers' aggregate error refused it. With the refined QP
+// the readings agree and the runs reach 1e-6.
+class LuksanVlcekTight : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(LuksanVlcekTight, EpsilonOneInAMillionReachesOneInAMillion) {
+  const auto p = fo::luksan_vlcek_problem(GetParam());
+  fo::BundleTrust::Options o;
+  o.epsilon = 1e-6;
+  o.keep_history = false;
+  fo::FunctionOracle oracle(p.evaluate);
+  const auto s = fo::BundleTrust(o, p.constraints).minimize(oracle, p.x0);
+  EXPECT_TRUE(p.solved(s.f, 1e-6)) << p.relative_error(s.f) << "; " << s.brief_report();
+  EXPECT_TRUE(s.converged()) << s.brief_report();
+}
+
+INSTANTIATE_TEST_SUITE_P(FormerlyStalled, LuksanVlcekTight, ::testing::Values("HS78", "Dembo3", "Dembo7"),
+                         [](const ::testing::TestParamInfo<std::string>& param_info) {
+                           return test_name(param_info.param);
+                         });
 
 // Regression (issue 16, fourth round): with ε = 1e-6 MAD8 (f(x_1) = 2.2e4, f* = 0.507) said
 // "converged" 1.0e-5 off f*: the value scale F of the stopping test is floored at √ε·|f(x_1)| =
