@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,7 +41,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   optim::BundleTrust::Options options = request.options.value_or(description.optimization);
   options.validate();
   study::ElasticBody body(definition);
-  study::require_admissible_design(body, definition.initial_design, 1e-9, case_name + ": design.initial");
+  study::require_admissible_design(body, body.initial_design(), 1e-9, case_name + ": design.initial");
   const CaseFingerprint fingerprint = fingerprint_of(description, body);
   std::optional<RunCheckpoint> checkpoint;
   if (request.resume) {
@@ -89,12 +90,12 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
                checkpoint->method.f, checkpoint->method.evaluations));
   } else {
     // Θ(α⁰) for the summary, now: the method's first evaluation then hits the cache.
-    initial_value = oracle.evaluate_design(definition.initial_design, true).value;
-    write_design_vtu(0, definition.initial_design);
+    initial_value = oracle.evaluate_design(body.initial_design(), true).value;
+    write_design_vtu(0, body.initial_design());
   }
 
   report(fmt::format("{}: {} design variables, {} contact nodes, cost {}, {} inequalities and {} equalities of Υ",
-             case_name, definition.shape.num_controls(), body.contact_boundary()->num_nodes(),
+             case_name, body.num_design_variables(), body.contact_boundary()->num_nodes(),
              oracle.cost().name(), body.admissible_set().A_in.rows(), body.admissible_set().A_eq.rows()));
   // The method minimizes Θ/|Θ(α⁰)| (study defaults): its stationarity measure ‖z + ω‖ and
   // aggregate error are relative to |Θ(α⁰)| per unit of α; summary.json also gives them in Θ's units.
@@ -157,6 +158,15 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   json["final_cost"] = final.value;
   json["alpha"] = summary.x;
   json["initial_alpha"] = definition.initial_design;
+  // friction_orientation (issue 13 item 3): "alpha" is x = (α, s), s = k φ; φ in degrees here.
+  const auto orientation_deg = [&](const Eigen::VectorXd& x) {
+    return body.orientation_design()->angle(x(x.size() - 1)) * 180.0 / std::numbers::pi;
+  };
+  if (body.orientation_design()) {
+    json["initial_friction_orientation_deg"] = orientation_deg(body.initial_design());
+    json["friction_orientation_deg"] = orientation_deg(summary.x);
+    json["friction_orientation_scale"] = body.orientation_design()->scale();  // k [m/rad]
+  }
   json["iterations"] = summary.iterations;
   json["serious_steps"] = summary.serious_steps;
   json["null_steps"] = summary.null_steps;
@@ -178,6 +188,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   if (run) {
     JsonValue design = JsonValue::object();
     design["alpha"] = summary.x;
+    if (body.orientation_design()) design["friction_orientation_deg"] = orientation_deg(summary.x);
     run->write_json_file(RunDirectory::kFinalDesign, design);
     run->write_json_file(RunDirectory::kSummary, json);
   }
