@@ -146,6 +146,31 @@ TEST(OrientationDesign, FixedAngleIsThePlainOracleAndTheCacheFollowsTheAngle) {
   EXPECT_LE((z - plain.last_state().contact->state.z).norm(), 1e-9 * z.norm());
 }
 
+// Load cases (docs/theory/load-cases.md): each case's ξ_k gets its own φ-component from its own
+// ψ_z and the weighted sum carries it; against central differences of the combined Θ.
+TEST(OrientationDesign, LoadCasesSumTheOrientationComponent) {
+  ElasticBody body(block_3d(contact::FrictionLaw::polygon({0.4, 0.2, 0.4, 0.2}).rotated(0.4), true));
+  CostDefinition cost = traction_cost();
+  LoadCaseDefinition press, deeper;
+  press.name = "press";
+  press.dirichlet_scale = {1.0};
+  deeper.name = "deeper";
+  deeper.dirichlet_scale = {1.3};
+  deeper.weight = 0.5;
+  cost.load_cases = LoadCasesDefinition{CaseCombination::kWeighted, {press, deeper}};
+  ShapeOracle oracle(body, cost);
+  const Eigen::VectorXd x = body.initial_design();
+  const GradientCheck check = check_gradient(oracle, x, 1e-6);
+  ASSERT_TRUE(check.evaluation.ok) << check.evaluation.message;
+  for (int k = 0; k < 2; ++k) ASSERT_EQ(oracle.case_index_sets(x, k).num_weak_nodes(), 0);
+  ASSERT_EQ(check.evaluation.case_values.size(), 2u);
+  std::printf("load cases: dTheta/ds adjoint %.10e, central difference %.10e; worst error %.2e of max|xi|\n",
+              check.components.back().adjoint, check.components.back().finite_difference, check.worst_relative_error);
+  EXPECT_LE(std::abs(check.components.back().adjoint - check.components.back().finite_difference),
+            1e-6 * std::abs(check.components.back().finite_difference));
+  EXPECT_LE(check.worst_relative_error, 1e-5);
+}
+
 // certify's generators have the φ row; the default piece's column is the oracle's ξ.
 TEST(OrientationDesign, CertifyGeneratorsCarryTheOrientationComponent) {
   ElasticBody body(block_3d(contact::FrictionLaw::regular_polygon(0.3, 4).rotated(0.4), true));
