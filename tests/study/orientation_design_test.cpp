@@ -282,6 +282,8 @@ TEST(OrientationDesign, CaseFileBadInputNamesTheField) {
   expect_invalid_case(replaced(base, "orientation_deg = 20", "orientation_deg = 70"),
                       {"orientation_deg", "outside the design bounds"});
   expect_invalid_case(replaced(base, "orientation_lower_deg = -60\n", ""), {"orientation_lower_deg", "missing"});
+  expect_invalid_case(replaced(base, "[cost]", "[solver]\nengine = \"petsc\"\n[cost]"),
+                      {"friction_orientation", "PETSc", "engine = \"direct\""});
   expect_invalid_case(replaced(base, "friction_orientation = true", "friction_orientation = false"),
                       {"orientation_lower_deg", "without friction_orientation"});
 }
