@@ -51,10 +51,17 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   study::ShapeOracle oracle(body, description.required_cost());
 
   OptimizationRunResult result;
+  // friction_orientation (issue 13 item 3): x = (α, s), s = k φ; φ of x in degrees.
+  const auto orientation_deg = [&](const Eigen::VectorXd& x) {
+    return body.orientation_design()->angle(x(x.size() - 1)) * 180.0 / std::numbers::pi;
+  };
   std::optional<CsvWriter> history;
   if (run) {
     const int start_iteration = checkpoint ? checkpoint->method.iteration : 0;
-    history.emplace(run->open_history(optimization_history_columns(), start_iteration, result.notes));
+    // friction_orientation (issue 13 item 3): one more column, φ of x_k in degrees.
+    std::vector<std::string> columns = optimization_history_columns();
+    if (body.orientation_design()) columns.push_back("friction_orientation_deg");
+    history.emplace(run->open_history(columns, start_iteration, result.notes));
     run->start_series(definition.name, start_iteration, result.notes);
   }
   for (const std::string& note : result.notes) report(fmt::format("note: {}", note));
@@ -112,12 +119,13 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     if (p.center.ok)  // else the centre is the checkpoint's, not evaluated by this process
       center = {p.center.contact.iterations, p.center.contact.qp_iterations, p.center.index_sets.num_weak_nodes(),
                 p.center.state_seconds, p.center.subgradient_seconds};
-    const std::vector<CsvValue> row = {
+    std::vector<CsvValue> row = {
         static_cast<std::int64_t>(m.iteration), static_cast<std::int64_t>(m.evaluations),
         std::string(optim::to_string(m.step)), m.f, m.t, m.stationarity, m.aggregate_error,
         static_cast<std::int64_t>(m.bundle.size()), static_cast<std::int64_t>(m.serious_steps),
         static_cast<std::int64_t>(m.null_steps), solves, center.coulomb_iterations, center.qp_iterations,
         center.weak_nodes, center.state_seconds, center.subgradient_seconds, elapsed};
+    if (body.orientation_design()) row.emplace_back(orientation_deg(m.x));  // after the fixed columns
     report(fmt::format("{:>5} {:>6} {:>14.6e} {:>14} {:>10.3e} {:>12.3e} {:>8} {:>8.1f}s", m.iteration, m.evaluations, m.f,
                optim::to_string(m.step), m.t, m.stationarity, center.qp_iterations, elapsed));
     if (run) {
@@ -158,10 +166,6 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   json["final_cost"] = final.value;
   json["alpha"] = summary.x;
   json["initial_alpha"] = definition.initial_design;
-  // friction_orientation (issue 13 item 3): "alpha" is x = (α, s), s = k φ; φ in degrees here.
-  const auto orientation_deg = [&](const Eigen::VectorXd& x) {
-    return body.orientation_design()->angle(x(x.size() - 1)) * 180.0 / std::numbers::pi;
-  };
   if (body.orientation_design()) {
     json["initial_friction_orientation_deg"] = orientation_deg(body.initial_design());
     json["friction_orientation_deg"] = orientation_deg(summary.x);

@@ -194,6 +194,8 @@ TEST(StudiesSmoke, OrientationDesignThroughTheCommandLine) {
   EXPECT_EQ(sa.at("friction_orientation_deg").as_number(), sb.at("friction_orientation_deg").as_number());
   EXPECT_EQ(sa.at("initial_friction_orientation_deg").as_number(), 10.0);
   EXPECT_LT(sa.at("final_cost").as_number(), sa.at("initial_cost").as_number());
+  const std::string history = read_text(dir / "a" / "history.csv");
+  EXPECT_NE(history.substr(0, history.find('\n')).find(",friction_orientation_deg"), std::string::npos) << history;
 
   const RunResult certified = run("certify " + (dir / "a").string());
   EXPECT_TRUE(certified.exit_code == 0 || certified.exit_code == 3) << certified.output;
