@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <numbers>
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
 #include "frictopt/io/design_file.hpp"
@@ -32,14 +33,21 @@ int run_certify(const std::filesystem::path& run_dir, int cap) {
   const study::BodyDefinition definition = description.body;
   if (!definition.contact) throw InvalidInput(case_path.string() + ": certify needs a [contact] table");
   study::ElasticBody body(definition);
-  const Eigen::VectorXd alpha = io::read_design_file(design_path, definition.shape.num_controls());
+  const Eigen::VectorXd alpha = io::read_design_file(design_path, body.num_design_variables());
   study::ShapeOracle oracle(body, description.required_cost());
   study::CertifyOptions options;
   options.cap = cap;
   const study::Certificate c = study::certify(oracle, alpha, options);
   fmt::print("{}: {} design variables, {} contact nodes, cost {}\n{}", run_dir.string(),
-             definition.shape.num_controls(), body.contact_boundary()->num_nodes(), oracle.cost().name(), c.report());
+             body.num_design_variables(), body.contact_boundary()->num_nodes(), oracle.cost().name(), c.report());
   io::JsonValue json = io::JsonValue::object();
+  if (const study::OrientationDesign* o = body.orientation_design()) {  // issue 13 item 3: x = (α, s)
+    const double phi_deg = o->angle(alpha(alpha.size() - 1)) * 180.0 / std::numbers::pi;
+    fmt::print("friction orientation φ = {:.6f} deg (the last of the {} variables, s = k φ, k = {:.6e} m/rad; the "
+               "generators' last row is dΘ/ds)\n",
+               phi_deg, alpha.size(), o->scale());
+    json["friction_orientation_deg"] = phi_deg;
+  }
   json["command"] = "certify";
   json["case"] = case_path.string();
   json["design"] = design_path.string();

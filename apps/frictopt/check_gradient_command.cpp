@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 #include <filesystem>
+#include <numbers>
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
 #include "frictopt/io/design_file.hpp"
@@ -30,8 +31,8 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
   // Finite differences need a state far more accurate than the step.
   study::tighten_for_derivatives(definition.contact->coulomb);
   study::ElasticBody body(definition);
-  const Eigen::VectorXd alpha = design_path.empty() ? definition.initial_design
-                                                    : io::read_design_file(design_path, definition.shape.num_controls());
+  const Eigen::VectorXd alpha = design_path.empty() ? body.initial_design()
+                                                    : io::read_design_file(design_path, body.num_design_variables());
   // The same admissibility check as certify: Θ and ξ are defined on Υ only.
   study::require_admissible_design(body, alpha, study::CertifyOptions{}.active_tolerance,
                                    design_path.empty() ? case_path.string() + ": design.initial" : design_path.string());
@@ -71,6 +72,11 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
     fmt::print("{:>4} {:>20.10e} {:>20.10e} {:>12.2e}\n", k, c.finite_difference, c.adjoint, c.relative_error);
   }
   fmt::print("largest error relative to max|ξ|: {:.2e}\n", check.worst_relative_error);
+  if (const study::OrientationDesign* o = body.orientation_design())  // issue 13 item 3: k = last
+    fmt::print("component {} is the friction orientation s = k φ (k = {:.6e} m/rad, φ = {:.6f} deg): dΘ/dφ = "
+               "{:.10e} (adjoint), {:.10e} (central difference)\n",
+               alpha.size() - 1, o->scale(), o->angle(alpha(alpha.size() - 1)) * 180.0 / std::numbers::pi,
+               check.components.back().adjoint * o->scale(), check.components.back().finite_difference * o->scale());
   if (e.friction_gradient.size()) {
     const auto params = sensitivity::friction_parameters(body.definition().contact->law);
     for (Eigen::Index k = 0; k < e.friction_gradient.size(); ++k)

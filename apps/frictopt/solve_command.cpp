@@ -27,7 +27,8 @@ int run_solve(const std::filesystem::path& case_path, const std::filesystem::pat
   fmt::print("{}: {}D body, {} nodes, {} elements, {} unknowns, {} design variables\n", case_path.string(),
              mesh.dim(), mesh.num_nodes(), mesh.num_elements(), body.elasticity().dofs().num_free(),
              body.definition().shape.num_controls());
-  const std::string violation = body.admissible_set().describe_violation(body.definition().initial_design, 1e-9);
+  // x⁰: α⁰, with friction_orientation (α⁰, k φ⁰) — Υ is over x.
+  const std::string violation = body.admissible_set().describe_violation(body.initial_design(), 1e-9);
   if (!violation.empty()) fmt::print("warning: the initial design is outside the admissible set: {}\n", violation);
   io::RunDirectory run(out_dir, io::RunOpening::kOutput, case_path);
 

@@ -391,6 +391,28 @@ void read_design(const TableReader& r, const Geometry& g, study::BodyDefinition&
     d.volume = c2;
   }
   if (auto s = read_enum(r, "slope_scaling", shape::kSlopeScalingNames)) d.slope_scaling = *s;
+
+  // friction_orientation (issue 13 item 3): the law's orientation φ is a design variable too,
+  // within [orientation_lower_deg, orientation_upper_deg]; the law itself is checked once the
+  // [contact] table is read (study::OrientationDesign).
+  const bool orientation = r.optional_bool("friction_orientation").value_or(false);
+  const std::optional<double> lower = r.optional_number("orientation_lower_deg");
+  const std::optional<double> upper = r.optional_number("orientation_upper_deg");
+  if (!orientation) {
+    if (lower) r.fail("orientation_lower_deg", "orientation_lower_deg without friction_orientation = true; expected "
+                                               "friction_orientation = true or no orientation bounds");
+    if (upper) r.fail("orientation_upper_deg", "orientation_upper_deg without friction_orientation = true; expected "
+                                               "friction_orientation = true or no orientation bounds");
+    return;
+  }
+  if (!lower) r.fail_missing("orientation_lower_deg", "the lower bound on the law's orientation φ, degrees");
+  if (!upper) r.fail_missing("orientation_upper_deg", "the upper bound on the law's orientation φ, degrees");
+  if (!(std::abs(*lower) <= 360.0)) r.fail_value("orientation_lower_deg", "an angle in degrees in [−360, 360]");
+  if (!(std::abs(*upper) <= 360.0)) r.fail_value("orientation_upper_deg", "an angle in degrees in [−360, 360]");
+  if (!(*lower < *upper))
+    r.fail_value("orientation_upper_deg", fmt::format("orientation_upper_deg > orientation_lower_deg = {}", *lower));
+  body.friction_orientation = study::OrientationDesignDefinition{*lower * std::numbers::pi / 180.0,
+                                                                 *upper * std::numbers::pi / 180.0};
 }
 
 // [contact.friction] as the case spells it, and the law it defines.
@@ -1023,7 +1045,8 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   check_loads_on_fixed_faces(c, dim, fixed_by);
   detail::read_program_sections(top, origin, dim, c);
 
-  read_design(table("design", {"control_points", "initial", "upper_bound", "slope_bound", "volume", "slope_scaling"}),
+  read_design(table("design", {"control_points", "initial", "upper_bound", "slope_bound", "volume", "slope_scaling",
+                               "friction_orientation", "orientation_lower_deg", "orientation_upper_deg"}),
               geometry, body);
 
   std::optional<Friction> friction;
@@ -1048,6 +1071,22 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                                    origin));
   }
   if (!imported) check_free_unknowns(c, dim, fixed_by);  // the structured grid's layers
+  if (body.friction_orientation) {
+    // The law must have an orientation that matters and φ⁰ must lie within the bounds.
+    if (!body.contact)
+      throw InvalidInput(fmt::format("{}: design.friction_orientation = true needs a [contact] table with an "
+                                     "anisotropic 3D friction law",
+                                     origin));
+    try {
+      (void)study::OrientationDesign(*body.friction_orientation, body.contact->law, body.admissible.upper_bound);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("{}: {}", origin, e.what()));
+    }
+    if (body.engine.kind == study::StateEngine::kPetsc)
+      throw InvalidInput(fmt::format("{}: design.friction_orientation = true: the PETSc engine keeps its law fixed; "
+                                     "expected solver.engine = \"direct\"",
+                                     origin));
+  }
 
   if (const toml::table* cost = top.optional_table("cost")) {
     if (!body.contact)

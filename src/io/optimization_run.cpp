@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,7 +41,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   optim::BundleTrust::Options options = request.options.value_or(description.optimization);
   options.validate();
   study::ElasticBody body(definition);
-  study::require_admissible_design(body, definition.initial_design, 1e-9, case_name + ": design.initial");
+  study::require_admissible_design(body, body.initial_design(), 1e-9, case_name + ": design.initial");
   const CaseFingerprint fingerprint = fingerprint_of(description, body);
   std::optional<RunCheckpoint> checkpoint;
   if (request.resume) {
@@ -50,10 +51,17 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   study::ShapeOracle oracle(body, description.required_cost());
 
   OptimizationRunResult result;
+  // friction_orientation (issue 13 item 3): x = (α, s), s = k φ; φ of x in degrees.
+  const auto orientation_deg = [&](const Eigen::VectorXd& x) {
+    return body.orientation_design()->angle(x(x.size() - 1)) * 180.0 / std::numbers::pi;
+  };
   std::optional<CsvWriter> history;
   if (run) {
     const int start_iteration = checkpoint ? checkpoint->method.iteration : 0;
-    history.emplace(run->open_history(optimization_history_columns(), start_iteration, result.notes));
+    // friction_orientation (issue 13 item 3): one more column, φ of x_k in degrees.
+    std::vector<std::string> columns = optimization_history_columns();
+    if (body.orientation_design()) columns.push_back("friction_orientation_deg");
+    history.emplace(run->open_history(columns, start_iteration, result.notes));
     run->start_series(definition.name, start_iteration, result.notes);
   }
   for (const std::string& note : result.notes) report(fmt::format("note: {}", note));
@@ -89,12 +97,12 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
                checkpoint->method.f, checkpoint->method.evaluations));
   } else {
     // Θ(α⁰) for the summary, now: the method's first evaluation then hits the cache.
-    initial_value = oracle.evaluate_design(definition.initial_design, true).value;
-    write_design_vtu(0, definition.initial_design);
+    initial_value = oracle.evaluate_design(body.initial_design(), true).value;
+    write_design_vtu(0, body.initial_design());
   }
 
   report(fmt::format("{}: {} design variables, {} contact nodes, cost {}, {} inequalities and {} equalities of Υ",
-             case_name, definition.shape.num_controls(), body.contact_boundary()->num_nodes(),
+             case_name, body.num_design_variables(), body.contact_boundary()->num_nodes(),
              oracle.cost().name(), body.admissible_set().A_in.rows(), body.admissible_set().A_eq.rows()));
   // The method minimizes Θ/|Θ(α⁰)| (study defaults): its stationarity measure ‖z + ω‖ and
   // aggregate error are relative to |Θ(α⁰)| per unit of α; summary.json also gives them in Θ's units.
@@ -111,12 +119,13 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     if (p.center.ok)  // else the centre is the checkpoint's, not evaluated by this process
       center = {p.center.contact.iterations, p.center.contact.qp_iterations, p.center.index_sets.num_weak_nodes(),
                 p.center.state_seconds, p.center.subgradient_seconds};
-    const std::vector<CsvValue> row = {
+    std::vector<CsvValue> row = {
         static_cast<std::int64_t>(m.iteration), static_cast<std::int64_t>(m.evaluations),
         std::string(optim::to_string(m.step)), m.f, m.t, m.stationarity, m.aggregate_error,
         static_cast<std::int64_t>(m.bundle.size()), static_cast<std::int64_t>(m.serious_steps),
         static_cast<std::int64_t>(m.null_steps), solves, center.coulomb_iterations, center.qp_iterations,
         center.weak_nodes, center.state_seconds, center.subgradient_seconds, elapsed};
+    if (body.orientation_design()) row.emplace_back(orientation_deg(m.x));  // after the fixed columns
     report(fmt::format("{:>5} {:>6} {:>14.6e} {:>14} {:>10.3e} {:>12.3e} {:>8} {:>8.1f}s", m.iteration, m.evaluations, m.f,
                optim::to_string(m.step), m.t, m.stationarity, center.qp_iterations, elapsed));
     if (run) {
@@ -157,6 +166,11 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   json["final_cost"] = final.value;
   json["alpha"] = summary.x;
   json["initial_alpha"] = definition.initial_design;
+  if (body.orientation_design()) {
+    json["initial_friction_orientation_deg"] = orientation_deg(body.initial_design());
+    json["friction_orientation_deg"] = orientation_deg(summary.x);
+    json["friction_orientation_scale"] = body.orientation_design()->scale();  // k [m/rad]
+  }
   json["iterations"] = summary.iterations;
   json["serious_steps"] = summary.serious_steps;
   json["null_steps"] = summary.null_steps;
@@ -178,6 +192,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   if (run) {
     JsonValue design = JsonValue::object();
     design["alpha"] = summary.x;
+    if (body.orientation_design()) design["friction_orientation_deg"] = orientation_deg(summary.x);
     run->write_json_file(RunDirectory::kFinalDesign, design);
     run->write_json_file(RunDirectory::kSummary, json);
   }

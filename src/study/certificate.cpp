@@ -541,7 +541,7 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   options.validate();
   const auto start = std::chrono::steady_clock::now();
   const ElasticBody& body = oracle.body();
-  const Eigen::Index d = body.definition().shape.num_controls();
+  const Eigen::Index d = body.num_design_variables();
   require_admissible_design(body, alpha, options.active_tolerance, "certify");
   const shape::LinearConstraints& upsilon = body.admissible_set();
   const LinearConstraints& constraints = upsilon;  // one type: shape builds it, optim uses it

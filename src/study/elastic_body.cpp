@@ -60,6 +60,17 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
   fem_ = std::make_unique<fem::LinearElasticity>(*mesh_, definition_.material, prescribed, definition_.tractions,
                                                  definition_.linear_solver);
   admissible_ = shape::make_admissible_set(definition_.shape, definition_.admissible);
+  if (definition_.friction_orientation) {
+    // issue 13 item 3: x = (α, s), Υ gets the bound on s (study/orientation_design.hpp).
+    if (!definition_.contact)
+      throw InvalidInput("design.friction_orientation = true needs a [contact] table with an anisotropic 3D law");
+    if (definition_.engine.kind == StateEngine::kPetsc)
+      throw InvalidInput("design.friction_orientation = true: the PETSc engine keeps its law fixed and has no friction "
+                         "gradient; expected solver.engine = \"direct\"");
+    orientation_design_.emplace(*definition_.friction_orientation, definition_.contact->law,
+                                definition_.admissible.upper_bound);
+    admissible_ = orientation_design_->extend(admissible_);
+  }
   if (definition_.engine.kind == StateEngine::kPetsc && !definition_.contact)
     throw InvalidInput("solver.engine = \"petsc\": the PETSc engine solves contact problems; expected a [contact] table");
   // The PETSc engine (issue 14) solves the static clamped problem; point forces and floating
@@ -114,7 +125,31 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
 
 BodyState ElasticBody::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha, const std::string& design_label) {
   step_alpha_.reset();  // a plain solve refactorizes; the next step solve must not trust the cache
-  return solve_impl(alpha, design_label, nullptr);
+  return solve_impl(shape_design(alpha), design_label, nullptr);
+}
+
+int ElasticBody::num_design_variables() const {
+  return definition_.shape.num_controls() + (orientation_design_ ? 1 : 0);
+}
+
+Eigen::VectorXd ElasticBody::initial_design() const {
+  return orientation_design_ ? orientation_design_->initial_design(definition_.initial_design)
+                             : definition_.initial_design;
+}
+
+void ElasticBody::set_friction_law(const contact::FrictionLaw& law) {
+  FRICTOPT_ASSERT(definition_.contact && !petsc_engine_ && law.dim() == definition_.contact->law.dim(),
+                  "set_friction_law: a body in contact, the direct engine, a law of the body's dimension");
+  definition_.contact->law = law;
+}
+
+Eigen::VectorXd ElasticBody::shape_design(const Eigen::Ref<const Eigen::VectorXd>& x) {
+  const Eigen::Index d = definition_.shape.num_controls();
+  if (!orientation_design_ || x.size() != d + 1) return x;  // solve_impl checks the size
+  // x = (α, s): the law turned to φ = s/k for this and every later use of the state (the
+  // sensitivity reads definition().contact->law), until the next design turns it again.
+  set_friction_law(orientation_design_->law_for_variable(x(d)));
+  return x.head(d);
 }
 
 BodyState ElasticBody::solve_step(const Eigen::Ref<const Eigen::VectorXd>& alpha, const StepLoads& step,
@@ -127,7 +162,7 @@ BodyState ElasticBody::solve_step(const Eigen::Ref<const Eigen::VectorXd>& alpha
                                    step.load_change.size(), step.prescribed_change.size(),
                                    step.previous_tangential.size(), n_free, mesh_->num_dofs(),
                                    boundary_ ? (mesh_->dim() - 1) * boundary_->num_nodes() : 0));
-  return solve_impl(alpha, design_label, &step);
+  return solve_impl(shape_design(alpha), design_label, &step);
 }
 
 BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha, const std::string& design_label,

@@ -9,6 +9,7 @@
 #include "frictopt/contact/coulomb_solver.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/sensitivity/friction_parameters.hpp"
+#include "frictopt/study/orientation_design.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 
 namespace frictopt::study {
@@ -85,7 +86,7 @@ ProgramHistory::ProgramHistory(ElasticBody& body, const CostDefinition& definiti
   // "keep the pressure of the last step as even as it is on average at the start".
   const BodyState* initial = nullptr;
   if (needs_initial_state) {
-    solve(body_.definition().initial_design);
+    solve(body_.initial_design());
     if (!ok_ && !states_[static_cast<std::size_t>(cost_step_)])
       throw NumericalFailure("cost target = initial_mean: the program at the initial design did not solve: " + message_);
     initial = states_[static_cast<std::size_t>(cost_step_)].get();
@@ -106,8 +107,11 @@ const contact::FrictionLaw& ProgramHistory::law(int k) const {
 void ProgramHistory::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
   const BodyDefinition& def = body_.definition();
   const mesh::Mesh& mesh = body_.mesh();
-  if (alpha.size() != def.shape.num_controls())
-    throw InvalidInput(fmt::format("design: has {} control heights; expected {}", alpha.size(), def.shape.num_controls()));
+  // x = α, or (α, s) with [design] friction_orientation: solve_step turns the law to φ = s/k.
+  if (alpha.size() != body_.num_design_variables())
+    throw InvalidInput(fmt::format("design: has {} entries; expected {} ({} control heights{})", alpha.size(),
+                                   body_.num_design_variables(), def.shape.num_controls(),
+                                   body_.orientation_design() ? " and the friction orientation" : ""));
   alpha_ = alpha;
   for (auto& s : states_)
     if (s && s->contact) {
@@ -116,7 +120,7 @@ void ProgramHistory::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
       s->contact->delassus_matrix.reset();
     }
   for (auto& s : sets_) s.reset();
-  const StepLoadBuilder builder(body_, mesh.positions(alpha));
+  const StepLoadBuilder builder(body_, mesh.positions(alpha.head(def.shape.num_controls())));
   const Eigen::Index p = body_.contact_boundary()->num_nodes();
   tangential_.assign(1, Eigen::VectorXd::Zero((mesh.dim() - 1) * p));  // u_t^0 = 0
   ok_ = true;
@@ -230,7 +234,8 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
 
   std::vector<sensitivity::CostPartials> j = partials();
   HistorySubgradient out;
-  out.subgradient = Eigen::VectorXd::Zero(body_.definition().shape.num_controls());
+  const Eigen::Index d = body_.definition().shape.num_controls();
+  out.subgradient = Eigen::VectorXd::Zero(body_.num_design_variables());
   out.friction_gradient =
       Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sensitivity::friction_parameters(case_law).names.size()));
   out.psi_z.resize(pieces.size());
@@ -251,8 +256,10 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
     }
     const bool friction = program_.steps[i].friction;
     const sensitivity::AdjointSensitivity& adjoint = friction ? with_friction : without_friction;
-    const auto result =
-        adjoint.subgradient(pieces[i], *delassus, s.positions, s.displacement, s.contact->state, partial);
+    auto result = adjoint.subgradient(pieces[i], *delassus, s.positions, s.displacement, s.contact->state, partial);
+    // x = (α, s): the law's orientation enters the friction rows of every friction step,
+    // ∂Θ/∂s = Σ_k (∂r_k/∂s)ᵀ ψ_z^k (docs/theory/friction-design.md; a frictionless step has none).
+    if (friction) append_orientation_derivative(body_.orientation_design(), case_law, pieces[i], s.contact->state, result);
     if (result.summary.status != Status::kConverged) {
       out.summary = result.summary;
       out.summary.message = fmt::format("step {}: {}", k + 1, result.summary.message);
@@ -265,8 +272,9 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
       out.summary.time_seconds = seconds;
     }
     // The step's residual is A(α)u_k − l_k(α): the adjoint differentiated A(α)u_k − l(α).
-    out.subgradient += result.subgradient +
-                       step_loads_->load_change_shape_derivative(k, s.positions, on_all_dofs(dofs, result.psi_u));
+    out.subgradient.head(d) += result.subgradient.head(d) +
+                               step_loads_->load_change_shape_derivative(k, s.positions, on_all_dofs(dofs, result.psi_u));
+    if (result.subgradient.size() > d) out.subgradient.tail(1) += result.subgradient.tail(1);
     if (friction) out.friction_gradient += result.friction_gradient;
     out.psi_z[i] = result.psi_z;
     coupling_z = sensitivity::linearize_piece(pieces[i], law(k), s.contact->state).S.transpose() * result.psi_z;

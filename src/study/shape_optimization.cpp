@@ -13,10 +13,10 @@ namespace frictopt::study {
 
 void require_admissible_design(const ElasticBody& body, const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                double tolerance, std::string_view who) {
-  const Eigen::Index d = body.definition().shape.num_controls();
+  const Eigen::Index d = body.num_design_variables();
   if (alpha.size() != d)
-    throw InvalidInput(fmt::format("{}: the design has {} entries; expected {} (the shape's control points)", who,
-                                   alpha.size(), d));
+    throw InvalidInput(fmt::format("{}: the design has {} entries; expected {} (the shape's control points{})", who,
+                                   alpha.size(), d, body.orientation_design() ? " and the friction orientation" : ""));
   // N_Υ(α) and the state exist on Υ only: refuse an outside design before any solve.
   const LinearConstraints& upsilon = body.admissible_set();
   const double violation = upsilon.max_violation(alpha);
@@ -76,7 +76,7 @@ optim::BundleTrust::Summary optimize(ShapeOracle& oracle, optim::BundleTrust::Op
   }
   const optim::BundleTrust method(options, oracle.body().admissible_set());
   optim::BundleTrust::Summary summary = checkpoint ? method.resume(oracle, *checkpoint)
-                                                   : method.minimize(oracle, oracle.body().definition().initial_design);
+                                                   : method.minimize(oracle, oracle.body().initial_design());
   if (summary.converged() && options.certify_stationarity && oracle.body().definition().contact)
     confirm_with_certificate(oracle, summary);
   return summary;

@@ -33,7 +33,7 @@ std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition
   // The state at α⁰ for "initial_mean" targets: the caller's, or solved here.
   std::optional<BodyState> solved;
   const auto initial = [&](const char* what) -> const BodyState& {
-    if (!initial_state) solved = body.solve(body.definition().initial_design, "initial design");
+    if (!initial_state) solved = body.solve(body.initial_design(), "initial design");
     const BodyState& s = initial_state ? *initial_state : *solved;
     if (s.summary.status != Status::kConverged)
       throw NumericalFailure(std::string("cost ") + what + " = initial_mean: the state at the initial design did not solve: " +
@@ -108,7 +108,7 @@ ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : 
     case_warm_starts_.resize(k_cases);
     case_sets_.resize(k_cases);
     // An initial_mean target is each case's own: the mean pressure (traction) of that load.
-    if (needs_initial_state) solve_state(body_.definition().initial_design);
+    if (needs_initial_state) solve_state(body_.initial_design());
     for (std::size_t k = 0; k < k_cases; ++k) {
       if (needs_initial_state && case_states_[k]->summary.status != Status::kConverged)
         throw NumericalFailure(fmt::format("load case \"{}\": the state at the initial design did not solve: {}",
@@ -117,7 +117,7 @@ ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : 
     }
     return;
   }
-  if (needs_initial_state) solve_state(body_.definition().initial_design);
+  if (needs_initial_state) solve_state(body_.initial_design());
   cost_ = make_cost(definition, body_, needs_initial_state ? state_.get() : nullptr);
 }
 
@@ -160,7 +160,8 @@ void ShapeOracle::solve_cases(const Eigen::VectorXd& alpha) {
     }
   // The K cases as steps at one α from the unloaded body: the first factorizes A(α) and builds
   // M, the others reuse both (ElasticBody::solve_step) — K contact solves, one factorization.
-  const std::vector<StepLoads> loads = cases_->step_loads(body_.mesh().positions(alpha));
+  const std::vector<StepLoads> loads =
+      cases_->step_loads(body_.mesh().positions(alpha.head(body_.definition().shape.num_controls())));
   last_factorizations_ = 0;
   for (int k = 0; k < cases_->size(); ++k) {
     const auto i = static_cast<std::size_t>(k);
@@ -219,6 +220,7 @@ sensitivity::AdjointSensitivity::Result ShapeOracle::case_subgradient(int k, con
   auto result = adjoint.subgradient(piece, delassus(), s.positions, s.displacement, s.contact->state, j);
   if (result.summary.status == Status::kConverged)
     result.subgradient += cases_->load_change_shape_derivative(k, s.positions, adjoint_on_all_dofs(body_.elasticity().dofs(), result.psi_u));
+  append_orientation_derivative(body_.orientation_design(), body_.definition().contact->law, piece, s.contact->state, result);
   return result;
 }
 
@@ -375,10 +377,13 @@ const Evaluation& ShapeOracle::evaluate_design(const Eigen::Ref<const Eigen::Vec
                                                   body_.definition().contact->law);
     // The PETSc engine (issue 14): one transposed Krylov solve on its Newton piece, which is
     // the default piece wherever the classification is strict (tests/petsc).
-    const auto result = body_.uses_petsc_engine()
-                            ? body_.petsc_subgradient(*state_, j, gap_matrix_)
-                            : adjoint.subgradient(sensitivity::default_piece(e.index_sets), delassus(), state_->positions,
-                                                  state_->displacement, state_->contact->state, j);
+    const sensitivity::Piece piece = sensitivity::default_piece(e.index_sets);
+    auto result = body_.uses_petsc_engine()
+                      ? body_.petsc_subgradient(*state_, j, gap_matrix_)
+                      : adjoint.subgradient(piece, delassus(), state_->positions, state_->displacement,
+                                            state_->contact->state, j);
+    append_orientation_derivative(body_.orientation_design(), body_.definition().contact->law, piece,
+                                  state_->contact->state, result);
     e.adjoint = result.summary;
     e.subgradient_seconds = seconds_since(start);
     if (result.summary.status != Status::kConverged) {
@@ -431,9 +436,12 @@ std::vector<sensitivity::AdjointSensitivity::Result> ShapeOracle::subgradients(c
   const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
                                                 body_.definition().contact->law);
   std::vector<sensitivity::AdjointSensitivity::Result> out;
-  for (const sensitivity::Piece& piece : pieces)
+  for (const sensitivity::Piece& piece : pieces) {
     out.push_back(
         adjoint.subgradient(piece, delassus(), state_->positions, state_->displacement, state_->contact->state, j));
+    append_orientation_derivative(body_.orientation_design(), body_.definition().contact->law, piece,
+                                  state_->contact->state, out.back());
+  }
   return out;
 }
 

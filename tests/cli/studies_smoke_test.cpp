@@ -169,3 +169,50 @@ TEST(StudiesSmoke, OptimizeNamesItsOutputsAfterTheCaseNotTheRunDirectory) {
 }
 
 }  // namespace
+
+namespace {
+
+// issue 13 item 3: the orientation case through the CLI on a coarsened copy — optimize writes φ,
+// a resumed run repeats the uninterrupted one bit for bit, certify and check-gradient report
+// the φ component, and a law without an orientation that matters is refused with exit code 2.
+TEST(StudiesSmoke, OrientationDesignThroughTheCommandLine) {
+  const fs::path dir = fresh_directory("orientation");
+  std::string text = read_text(fs::path(FRICTOPT_SOURCE_DIR) / "cases3d/punch-orientation/case.toml");
+  text = replace_key(replace_key(text, "cells", "[6, 6, 3]"), "max_iterations", "6");
+  const fs::path full = dir / "full.toml", part = dir / "part.toml";
+  write_text(full, text);
+  write_text(part, replace_key(text, "max_iterations", "3"));
+  const RunResult a = run("optimize " + full.string() + " -o " + (dir / "a").string());
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  ASSERT_EQ(run("optimize " + part.string() + " -o " + (dir / "b").string()).exit_code, 0);
+  write_text(dir / "b" / "case.toml", replace_key(read_text(dir / "b" / "case.toml"), "max_iterations", "6"));
+  const RunResult b = run("optimize " + part.string() + " -o " + (dir / "b").string() + " --resume");
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  const auto sa = frictopt::io::parse_json(read_text(dir / "a" / "summary.json"));
+  const auto sb = frictopt::io::parse_json(read_text(dir / "b" / "summary.json"));
+  EXPECT_EQ(sa.at("final_cost").as_number(), sb.at("final_cost").as_number());
+  EXPECT_EQ(sa.at("friction_orientation_deg").as_number(), sb.at("friction_orientation_deg").as_number());
+  EXPECT_EQ(sa.at("initial_friction_orientation_deg").as_number(), 10.0);
+  EXPECT_LT(sa.at("final_cost").as_number(), sa.at("initial_cost").as_number());
+  const std::string history = read_text(dir / "a" / "history.csv");
+  EXPECT_NE(history.substr(0, history.find('\n')).find(",friction_orientation_deg"), std::string::npos) << history;
+
+  const RunResult certified = run("certify " + (dir / "a").string());
+  EXPECT_TRUE(certified.exit_code == 0 || certified.exit_code == 3) << certified.output;
+  EXPECT_NE(certified.output.find("17 design variables"), std::string::npos) << certified.output;
+  EXPECT_NE(certified.output.find("friction orientation"), std::string::npos) << certified.output;
+  const RunResult checked = run("check-gradient " + full.string() + " --step 1e-6");
+  EXPECT_EQ(checked.exit_code, 0) << checked.output;
+  EXPECT_NE(checked.output.find("component 16 is the friction orientation"), std::string::npos) << checked.output;
+
+  // The [contact.friction] kind (the first "kind =" line) as an exact disc: Θ does not depend on φ.
+  const fs::path disc = dir / "disc.toml";
+  write_text(disc, replace_key(replace_key(text, "kind", "\"disc_exact\""), "mu_vertices", "[]"));
+  write_text(disc, std::regex_replace(read_text(disc), std::regex(R"(mu_vertices = \[\])"), "mu = 0.3"));
+  const RunResult refused = run("check-gradient " + disc.string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("friction_orientation"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("isotropic"), std::string::npos) << refused.output;
+}
+
+}  // namespace

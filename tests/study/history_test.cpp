@@ -17,6 +17,7 @@
 #include "common/test_bodies.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/study/certificate.hpp"
+#include "frictopt/study/orientation_design.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 
 namespace frictopt::study {
@@ -212,6 +213,29 @@ TEST(HistoryAdjoint, FrictionGradientMatchesCentralDifferences) {
   const Eigen::VectorXd fd = frictopt::testing::central_gradient(theta, Eigen::VectorXd::Constant(1, 0.3), 1e-5);
   std::printf("dissipation: dΘ/dμ adjoint %.10e, FD %.10e\n", e.friction_gradient(0), fd(0));
   EXPECT_LE(std::abs(e.friction_gradient(0) - fd(0)), 1e-5 * std::abs(fd(0)));
+}
+
+TEST(HistoryAdjoint, FrictionOrientationAsADesignVariableMatchesCentralDifferences) {
+  // x = (α, s) with [design] friction_orientation (docs/theory/friction-design.md): the law turns
+  // in every friction step, so ∂Θ/∂s = Σ_k (∂r_k/∂s)ᵀ ψ_z^k over the backward adjoint's steps.
+  // The 8-gon turned by 0.1 rad (anisotropic enough to depend on φ, strict in both steps).
+  BodyDefinition definition = pressed_block_3d(contact::FrictionLaw::regular_polygon(0.3, 8).rotated(0.1));
+  definition.friction_orientation = OrientationDesignDefinition{-1.5, 1.5};
+  ElasticBody body(definition);
+  ShapeOracle oracle(body, history_cost(cost::CostKind::kDissipation, press_then_drag_3d()));
+  const Eigen::VectorXd x = body.initial_design();
+  ASSERT_EQ(x.size(), 10);
+  expect_strict(oracle, x);
+  const Evaluation e = oracle.evaluate_design(x);
+  ASSERT_TRUE(e.ok) << e.message;
+  ASSERT_EQ(e.subgradient.size(), 10);
+  const Eigen::VectorXd fd = fd_gradient(oracle, x);
+  const double error = (e.subgradient - fd).norm() / fd.norm();
+  std::printf("dissipation with the orientation: dΘ/ds adjoint %.10e, FD %.10e; |ξ − FD|/|FD| = %.2e\n",
+              e.subgradient(9), fd(9), error);
+  EXPECT_GT(std::abs(fd(9)), 1e-6 * fd.norm());  // φ matters for this law and program
+  EXPECT_LE(std::abs(e.subgradient(9) - fd(9)), 1e-6 * fd.norm());
+  EXPECT_LE(error, 1e-6);
 }
 
 TEST(HistoryAdjoint, AtAKinkEachOneSidedDerivativeIsAnEnumeratedSelections) {

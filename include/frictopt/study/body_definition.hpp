@@ -25,6 +25,7 @@
 #include "frictopt/shape/admissible_set.hpp"
 #include "frictopt/shape/bezier_shape.hpp"
 #include "frictopt/study/load_case_definition.hpp"
+#include "frictopt/study/orientation_design.hpp"
 
 namespace frictopt::study {
 
@@ -117,6 +118,9 @@ struct BodyDefinition {
   std::vector<fem::NodalConstraint> constraints;  ///< point / node-set displacements (constant in programs)
   shape::AdmissibleSetParameters admissible;  ///< Υ
   Eigen::VectorXd initial_design;             ///< α⁰
+  /// [design] friction_orientation (issue 13 item 3): the orientation φ of the contact's law is
+  /// a design variable too, x = (α, s) (study/orientation_design.hpp); absent: x = α.
+  std::optional<OrientationDesignDefinition> friction_orientation;
   std::optional<ContactDefinition> contact;   ///< absent: no foundation (pure elasticity)
   linalg::SpdSolver::Options linear_solver;   ///< the backend that factorizes the stiffness
   EngineDefinition engine;                    ///< [solver] engine (direct or PETSc)

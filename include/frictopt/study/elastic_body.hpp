@@ -21,6 +21,7 @@
 #include "frictopt/sensitivity/adjoint.hpp"
 #include "frictopt/shape/admissible_set.hpp"
 #include "frictopt/study/body_definition.hpp"
+#include "frictopt/study/orientation_design.hpp"
 
 namespace frictopt::petsc {
 class ContactNewtonSolver;  // the PETSc engine (built with FRICTOPT_WITH_PETSC)
@@ -103,7 +104,20 @@ class ElasticBody {
   /// The name of the mesh's boundary set that is the contact surface Γ_c.
   const std::string& contact_surface() const { return definition_.contact_surface; }
   const fem::LinearElasticity& elasticity() const { return *fem_; }
+  /// Υ over the optimizer's variable x: α, and with [design] friction_orientation x = (α, s)
+  /// with the bound on s (study/orientation_design.hpp).
   const shape::LinearConstraints& admissible_set() const { return admissible_; }
+  /// The size of x: the shape's control points, + 1 with friction_orientation.
+  int num_design_variables() const;
+  /// x⁰: α⁰, or (α⁰, k φ⁰) with friction_orientation.
+  Eigen::VectorXd initial_design() const;
+  /// The orientation as a design variable (null without friction_orientation).
+  const OrientationDesign* orientation_design() const {
+    return orientation_design_ ? &*orientation_design_ : nullptr;
+  }
+  /// Replaces the contact's friction law for the following solves and sensitivities (direct
+  /// engine only; a law of the body's dimension).
+  void set_friction_law(const contact::FrictionLaw& law);
   /// The number r of rigid-body modes the Dirichlet conditions leave free (0: a held body). A
   /// floating body (r > 0, only with contact) is solved with the kernel-aware dual of spec 07 §2.
   int num_floating_modes() const { return static_cast<int>(fixing_dofs_.size()); }
@@ -112,7 +126,8 @@ class ElasticBody {
   /// The contact nodes (null without a foundation).
   const contact::ContactBoundary* contact_boundary() const { return boundary_.get(); }
 
-  /// Solves the state problem at design α: elasticity, and with a foundation the Coulomb
+  /// Solves the state problem at design α — or at x = (α, s) with friction_orientation, which
+  /// first turns the law to φ = s/k (the state's `alpha` is then α): elasticity, and with a foundation the Coulomb
   /// contact problem (dual QP fixed point, spec 02 §9.3) warm-started from the last solve.
   /// Throws InvalidInput when α has the wrong size or inverts an element (naming
   /// `design_label`); a failed factorization or contact solve is a status.
@@ -146,6 +161,9 @@ class ElasticBody {
   std::unique_ptr<const mesh::Mesh> mesh_;  // heap: fem_ and boundary_ keep references to it
   std::unique_ptr<fem::LinearElasticity> fem_;
   shape::LinearConstraints admissible_;
+  std::optional<OrientationDesign> orientation_design_;
+  // α of a design x: x itself, or its first d entries after turning the law to x's φ.
+  Eigen::VectorXd shape_design(const Eigen::Ref<const Eigen::VectorXd>& x);
   std::unique_ptr<contact::ContactBoundary> boundary_;
   std::optional<contact::ContactState> warm_start_;  // last converged contact state
   // engine = "petsc" (issue 14): the engine and its last converged displacement (warm start).

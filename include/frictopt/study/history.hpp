@@ -26,7 +26,7 @@ namespace frictopt::study {
 
 /// The result of one backward adjoint run.
 struct HistorySubgradient {
-  Eigen::VectorXd subgradient;        ///< ξ (d)
+  Eigen::VectorXd subgradient;        ///< ξ (d; d + 1 with the friction orientation: ∂Θ/∂s last)
   Eigen::VectorXd friction_gradient;  ///< Σ_k over the friction steps of ∂Θ/∂p (friction_parameters(law))
   /// The worst step's adjoint summary (the failed one, else the smallest reciprocal condition).
   sensitivity::AdjointSensitivity::Summary summary;

@@ -55,7 +55,10 @@ struct Evaluation {
 };
 
 /// Θ(α) and ξ ∈ ∂Θ(α) (or of the pseudodifferential, spec 03 §8) for a body with contact and a
-/// cost. Lifetime: `body` must outlive the oracle; the oracle owns the cost. Not thread-safe.
+/// cost. With [design] friction_orientation every "α" below is the optimizer's x = (α, s): the
+/// body turns its law to φ = s/k per solve, states and the cache are keyed by x, and ξ gets
+/// ∂Θ/∂s as its last entry (study/orientation_design.hpp; state_derivative takes α only).
+/// Lifetime: `body` must outlive the oracle; the oracle owns the cost. Not thread-safe.
 class ShapeOracle final : public optim::Oracle {
  public:
   /// Throws InvalidInput when the body has no contact definition.
