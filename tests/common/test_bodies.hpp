@@ -39,4 +39,25 @@ inline study::BodyDefinition thesis_body_2d(const contact::FrictionLaw& law = co
   return b;
 }
 
+/// The 3D block of the sensitivity and study tests: 1 × 1 × 0.5 on an 8 × 8 × 4 mesh, E = 70 GPa,
+/// ν = 0.33, a 3 × 3 Bézier net (C0 = 5e-3) whose initial heights make a dish-shaped bottom, and a
+/// rigid plate on its top moved by `top_displacement` (default: pressed by 1.2e-3 and dragged by
+/// (2e-4, 1e-4), so stick, slip and separated nodes all occur), with the solver tolerances finite
+/// differences need. Tests that split the plate's motion or coarsen the mesh overwrite those fields.
+inline study::BodyDefinition dish_block_3d(
+    const contact::FrictionLaw& law, const Eigen::Vector3d& top_displacement = Eigen::Vector3d(2e-4, 1e-4, -1.2e-3)) {
+  study::BodyDefinition b;
+  b.shape = shape::BezierShape::surface(1.0, 1.0, 3, 3);
+  b.height = 0.5;
+  b.resolution = {{8, 8, 4}, 1.0};
+  b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
+  b.dirichlet = {{"top", {}, top_displacement}};
+  b.admissible.upper_bound = 5e-3;
+  b.admissible.height = 0.5;
+  b.initial_design.resize(9);
+  b.initial_design << 1.4e-3, 1.0e-3, 1.5e-3, 0.9e-3, 0.4e-3, 1.1e-3, 1.6e-3, 1.2e-3, 1.7e-3;
+  b.contact = tight_contact(law);
+  return b;
+}
+
 }  // namespace frictopt::testing

@@ -28,18 +28,7 @@ study::BodyDefinition thesis_body_2d(const contact::FrictionLaw& law, int n1 = 2
 
 // A 3D block pressed by a rigid plate on its top (prescribed displacement), dish-shaped bottom.
 study::BodyDefinition block_3d(const contact::FrictionLaw& law, Eigen::Vector2d shift = Eigen::Vector2d(2e-4, 1e-4)) {
-  study::BodyDefinition b;
-  b.shape = shape::BezierShape::surface(1.0, 1.0, 3, 3);
-  b.height = 0.5;
-  b.resolution = {{8, 8, 4}, 1.0};
-  b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{"top", {}, Eigen::Vector3d(shift(0), shift(1), -1.2e-3)}};
-  b.admissible.upper_bound = 5e-3;
-  b.admissible.height = 0.5;
-  b.initial_design.resize(9);
-  b.initial_design << 1.4e-3, 1.0e-3, 1.5e-3, 0.9e-3, 0.4e-3, 1.1e-3, 1.6e-3, 1.2e-3, 1.7e-3;
-  b.contact = frictopt::testing::tight_contact(law);
-  return b;
+  return frictopt::testing::dish_block_3d(law, Eigen::Vector3d(shift(0), shift(1), -1.2e-3));
 }
 
 enum class CostKind { kTargetForce, kCompliance, kForcePower, kPressureNorm, kTotalSlip, kTractionUniformity };

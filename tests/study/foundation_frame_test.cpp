@@ -28,17 +28,8 @@ namespace {
 
 // A 3D block dragged and pressed by its top (prescribed displacement), dish-shaped bottom.
 BodyDefinition block_3d(const contact::FrictionLaw& law) {
-  BodyDefinition b;
-  b.shape = shape::BezierShape::surface(1.0, 1.0, 3, 3);
-  b.height = 0.5;
+  BodyDefinition b = frictopt::testing::dish_block_3d(law, Eigen::Vector3d(2e-5, 1e-5, -1.2e-3));  // stick and slip
   b.resolution = {{6, 6, 3}, 1.0};
-  b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{"top", {}, Eigen::Vector3d(2e-5, 1e-5, -1.2e-3)}};  // stick and slip
-  b.admissible.upper_bound = 5e-3;
-  b.admissible.height = 0.5;
-  b.initial_design.resize(9);
-  b.initial_design << 1.4e-3, 1.0e-3, 1.5e-3, 0.9e-3, 0.4e-3, 1.1e-3, 1.6e-3, 1.2e-3, 1.7e-3;
-  b.contact = frictopt::testing::tight_contact(law);
   return b;
 }
 

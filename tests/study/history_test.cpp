@@ -26,17 +26,8 @@ namespace {
 // The 3D block of the adjoint tests (dish-shaped bottom, rigid plate on top) with the plate's
 // motion split into a press (component z) and a drag (x, y): programs scale the two.
 BodyDefinition pressed_block_3d(const contact::FrictionLaw& law) {
-  BodyDefinition b;
-  b.shape = shape::BezierShape::surface(1.0, 1.0, 3, 3);
-  b.height = 0.5;
-  b.resolution = {{8, 8, 4}, 1.0};
-  b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
+  BodyDefinition b = frictopt::testing::dish_block_3d(law);
   b.dirichlet = {{"top", {2}, Eigen::Vector3d(0.0, 0.0, -1.2e-3)}, {"top", {0, 1}, Eigen::Vector3d(2e-4, 1e-4, 0.0)}};
-  b.admissible.upper_bound = 5e-3;
-  b.admissible.height = 0.5;
-  b.initial_design.resize(9);
-  b.initial_design << 1.4e-3, 1.0e-3, 1.5e-3, 0.9e-3, 0.4e-3, 1.1e-3, 1.6e-3, 1.2e-3, 1.7e-3;
-  b.contact = frictopt::testing::tight_contact(law);
   return b;
 }
 

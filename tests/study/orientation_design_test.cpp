@@ -31,17 +31,7 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 // sensitivity tests' block): stick and slip nodes occur, the tangential drag makes the traction
 // depend on how the law is turned.
 BodyDefinition block_3d(const contact::FrictionLaw& law, bool orientation_design) {
-  BodyDefinition b;
-  b.shape = shape::BezierShape::surface(1.0, 1.0, 3, 3);
-  b.height = 0.5;
-  b.resolution = {{8, 8, 4}, 1.0};
-  b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
-  b.dirichlet = {{"top", {}, Eigen::Vector3d(2e-4, 1e-4, -1.2e-3)}};
-  b.admissible.upper_bound = 5e-3;
-  b.admissible.height = 0.5;
-  b.initial_design.resize(9);
-  b.initial_design << 1.4e-3, 1.0e-3, 1.5e-3, 0.9e-3, 0.4e-3, 1.1e-3, 1.6e-3, 1.2e-3, 1.7e-3;
-  b.contact = frictopt::testing::tight_contact(law);
+  BodyDefinition b = frictopt::testing::dish_block_3d(law, Eigen::Vector3d(2e-4, 1e-4, -1.2e-3));
   if (orientation_design) b.friction_orientation = OrientationDesignDefinition{-90 * kDegree, 90 * kDegree};
   return b;
 }
