@@ -12,6 +12,7 @@
 #include <string>
 
 #include "common/cli_runner.hpp"
+#include "common/case_text.hpp"
 #include "frictopt/io/json.hpp"
 
 namespace {
@@ -22,35 +23,10 @@ using frictopt::testing::read_text;
 using frictopt::testing::RunResult;
 RunResult run(const std::string& arguments) { return frictopt::testing::run_frictopt(arguments); }
 
-// A small flat block pressed and dragged by its top (two [[dirichlet]] tables), with a program.
+// The small flat block pressed and dragged by its top (two [[dirichlet]] tables; common/case_text.hpp),
+// with a tribometer and a program.
 std::string block_case(const std::string& program) {
-  return R"(
-[geometry]
-dim = 3
-a = 0.1
-b = 0.1
-height = 0.05
-[mesh]
-cells = [4, 4, 2]
-[material]
-young = 7.0e10
-poisson = 0.33
-[[dirichlet]]
-face = "top"
-components = [2]
-displacement = [0.0, 0.0, -1.0e-6]
-[[dirichlet]]
-face = "top"
-components = [0, 1]
-displacement = [2.0e-7, 0.0, 0.0]
-[design]
-control_points = [2, 2]
-initial = [0.0, 0.0, 0.0, 0.0]
-upper_bound = 1.0e-3
-[contact.friction]
-kind = "disc_exact"
-mu = 0.3
-[experiment]
+  return frictopt::testing::pressed_dragged_block_3d() + R"([experiment]
 normal_force = 1.0e4
 pull_displacement = 1.0e-5
 angles_degrees = [0, 90]

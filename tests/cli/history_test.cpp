@@ -10,6 +10,7 @@
 #include <string>
 
 #include "common/cli_runner.hpp"
+#include "common/case_text.hpp"
 
 namespace {
 
@@ -20,35 +21,9 @@ RunResult run(const std::string& arguments) { return frictopt::testing::run_fric
 
 const std::string kCase = std::string(FRICTOPT_SOURCE_DIR) + "/cases3d/punch-press-drag/case.toml";
 
-// A small block pressed and dragged by its top; `program` and `cost` are appended.
+// The small block pressed and dragged by its top (common/case_text.hpp); `program` and `cost` are appended.
 std::string block_case(const std::string& program, const std::string& cost) {
-  return R"(
-[geometry]
-dim = 3
-a = 0.1
-b = 0.1
-height = 0.05
-[mesh]
-cells = [4, 4, 2]
-[material]
-young = 7.0e10
-poisson = 0.33
-[[dirichlet]]
-face = "top"
-components = [2]
-displacement = [0.0, 0.0, -1.0e-6]
-[[dirichlet]]
-face = "top"
-components = [0, 1]
-displacement = [2.0e-7, 0.0, 0.0]
-[design]
-control_points = [2, 2]
-initial = [0.0, 0.0, 0.0, 0.0]
-upper_bound = 1.0e-3
-[contact.friction]
-kind = "disc_exact"
-mu = 0.3
-)" + program + cost;
+  return frictopt::testing::pressed_dragged_block_3d() + program + cost;
 }
 
 const std::string kProgram = R"(

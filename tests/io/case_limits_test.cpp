@@ -11,8 +11,9 @@
 #include <initializer_list>
 #include <string>
 
-#include "common/temporary_directory.hpp"
+#include "common/case_text.hpp"
 #include "common/invalid_case.hpp"
+#include "common/temporary_directory.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
 #include "frictopt/io/measurements.hpp"
@@ -20,8 +21,11 @@
 namespace frictopt::io {
 namespace {
 
+using testing::block_header_3d;
+using testing::design_table;
 using testing::expect_invalid_case;
 using testing::replaced;
+using testing::top_dirichlet;
 
 constexpr std::string_view kCase2d = R"(
 [geometry]
@@ -54,29 +58,8 @@ kind = "isotropic"
 mu = 0.3
 )";
 
-constexpr std::string_view kCase3d = R"(
-[geometry]
-dim = 3
-a = 1
-b = 1
-height = 0.5
-
-[mesh]
-cells = [4, 4, 2]
-
-[material]
-young = 7.0e10
-poisson = 0.33
-
-[[dirichlet]]
-face = "top"
-displacement = [1.0e-4, 0.0, -1.2e-3]
-
-[design]
-control_points = [4, 4]
-initial = 0.0
-upper_bound = 0.1
-
+const std::string kCase3d = block_header_3d("1", "0.5") + top_dirichlet("[1.0e-4, 0.0, -1.2e-3]") +
+                            design_table("[4, 4]", "0.0", "0.1") + R"(
 [contact]
 [contact.friction]
 kind = "isotropic"

@@ -15,6 +15,7 @@
 #include <random>
 #include <unistd.h>
 
+#include "common/case_text.hpp"
 #include "common/finite_difference.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
@@ -636,25 +637,9 @@ TEST(Identification, RejectsUnknownNodesLocationsBoundsAndSigmaNamingTheItem) {
   EXPECT_EQ(id.measurements()[0].node, 24);  // centre of the 7 × 7 contact grid
 }
 
-constexpr const char* kCase3d = R"(
-[geometry]
-dim = 3
-a = 1.0
-b = 1.0
-height = 0.5
-[mesh]
-cells = [4, 4, 2]
-[material]
-young = 7.0e10
-poisson = 0.33
-[[dirichlet]]
-face = "top"
-displacement = [0.0, 0.0, -1.0e-3]
-[design]
-control_points = [2, 2]
-initial = 0.0
-upper_bound = 1.0e-3
-[contact.friction]
+const std::string kCase3d = frictopt::testing::block_header_3d("1.0", "0.5") +
+                            frictopt::testing::top_dirichlet("[0.0, 0.0, -1.0e-3]") +
+                            frictopt::testing::design_table("[2, 2]", "0.0", "1.0e-3") + R"([contact.friction]
 kind = "polygon"
 mu_vertices = [0.3, 0.3, 0.3, 0.3]
 )";

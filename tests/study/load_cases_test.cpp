@@ -14,6 +14,7 @@
 
 #include "common/finite_difference.hpp"
 #include "common/invalid_case.hpp"
+#include "common/case_text.hpp"
 #include "common/test_bodies.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
@@ -231,28 +232,12 @@ TEST(LoadCases, WeightedCertificateSumsOnePiecePerCase) {
 // Bad input (item 6): each an InvalidInput naming the field.
 
 std::string block_case(const std::string& extra) {
-  return R"(
-[geometry]
-dim = 3
-a = 1.0
-b = 1.0
-height = 0.5
-[mesh]
-cells = [4, 4, 2]
-[material]
-young = 7.0e10
-poisson = 0.33
-[[load]]
+  using frictopt::testing::block_header_3d, frictopt::testing::design_table, frictopt::testing::top_dirichlet;
+  return block_header_3d("1.0", "0.5") + R"([[load]]
 face = "left"
 traction = [1.0e5, 0.0, 0.0]
-[[dirichlet]]
-face = "top"
-displacement = [0.0, 0.0, -1.0e-4]
-[design]
-control_points = [2, 2]
-initial = [0.0, 0.0, 0.0, 0.0]
-upper_bound = 1.0e-3
-[contact.friction]
+)" + top_dirichlet("[0.0, 0.0, -1.0e-4]") +
+         design_table("[2, 2]", "[0.0, 0.0, 0.0, 0.0]", "1.0e-3") + R"([contact.friction]
 kind = "isotropic"
 mu = 0.3
 [cost]

@@ -13,6 +13,7 @@
 #include <numbers>
 #include <string>
 
+#include "common/case_text.hpp"
 #include "common/invalid_case.hpp"
 #include "common/test_bodies.hpp"
 #include "frictopt/core/error.hpp"
@@ -218,25 +219,9 @@ TEST(OrientationDesign, BodyRefusesLawsWithoutAnOrientationThatMatters) {
 }
 
 // The case file's keys: each bad input names its field (the CLI exits 2 on InvalidInput).
-constexpr const char* kCase3d = R"(
-[geometry]
-dim = 3
-a = 1.0
-b = 1.0
-height = 0.5
-[mesh]
-cells = [4, 4, 2]
-[material]
-young = 7.0e10
-poisson = 0.33
-[[dirichlet]]
-face = "top"
-displacement = [1.0e-4, 0.0, -1.2e-3]
-[design]
-control_points = [3, 3]
-initial = 1.0e-3
-upper_bound = 5.0e-3
-friction_orientation = true
+const std::string kCase3d = frictopt::testing::block_header_3d("1.0", "0.5") +
+                            frictopt::testing::top_dirichlet("[1.0e-4, 0.0, -1.2e-3]") +
+                            frictopt::testing::design_table("[3, 3]", "1.0e-3", "5.0e-3") + R"(friction_orientation = true
 orientation_lower_deg = -60
 orientation_upper_deg = 60
 [contact.friction]
