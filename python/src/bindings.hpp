@@ -69,6 +69,11 @@ py::object to_python(const io::JsonValue& value);
 /// size is not `expected` (naming `what`).
 Eigen::VectorXd design_from_python(const py::object& alpha, const Eigen::VectorXd& fallback, const char* what);
 
+/// The optimizer's x⁰ of a case: α⁰, or (α⁰, s⁰ = kφ⁰) with [design] friction_orientation (as
+/// study::ElasticBody::initial_design, without building the body; its size is the number of
+/// design variables).
+Eigen::VectorXd case_initial_design(const io::CaseDescription& description);
+
 /// The summary.json of `frictopt solve` for `state` (the same keys and values as the CLI).
 io::JsonValue solve_summary_json(const Case& source, const study::ElasticBody& body, const study::BodyState& state);
 

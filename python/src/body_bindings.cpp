@@ -241,7 +241,7 @@ Example::
           "solve",
           [](std::shared_ptr<Body> self, const py::object& alpha) {
             const Eigen::VectorXd a =
-                design_from_python(alpha, self->body->definition().initial_design, "alpha");
+                design_from_python(alpha, self->body->initial_design(), "alpha");
             const std::string label = alpha.is_none() ? "initial design" : "design";
             auto state = std::make_shared<State>();
             state->body = self;
@@ -261,12 +261,12 @@ Example::
       .def_property_readonly("num_unknowns", [](const Body& b) { return b.body->elasticity().dofs().num_free(); },
                              "Free displacement unknowns of the finite-element problem.")
       .def_property_readonly("num_design_variables",
-                             [](const Body& b) { return b.body->definition().shape.num_controls(); },
+                             [](const Body& b) { return b.body->num_design_variables(); },
                              "Number of control heights α.")
       .def_property_readonly("num_contact_nodes",
                              [](const Body& b) { return b.body->contact_boundary() ? b.body->contact_boundary()->num_nodes() : 0; },
                              "Number p of contact nodes on Γ_c (0 without contact).")
-      .def_property_readonly("initial_design", [](const Body& b) { return to_numpy(b.body->definition().initial_design); },
+      .def_property_readonly("initial_design", [](const Body& b) { return to_numpy(b.body->initial_design()); },
                              "α⁰ [m].")
       .def_property_readonly(
           "friction_law",
@@ -298,7 +298,7 @@ Example::
       .def(
           "design_violation",
           [](const Body& b, const py::object& alpha, double tolerance) {
-            const Eigen::VectorXd a = design_from_python(alpha, b.body->definition().initial_design, "alpha");
+            const Eigen::VectorXd a = design_from_python(alpha, b.body->initial_design(), "alpha");
             return b.body->admissible_set().describe_violation(a, tolerance);
           },
           py::arg("alpha") = py::none(), py::arg("tolerance") = 1e-9,
@@ -343,7 +343,7 @@ Example::
         return fmt::format("<frictopt.Body '{}': {}D, {} unknowns, {} contact nodes, {} design variables>", d.name,
                            d.shape.dim(), b.body->elasticity().dofs().num_free(),
                            b.body->contact_boundary() ? b.body->contact_boundary()->num_nodes() : 0,
-                           d.shape.num_controls());
+                           b.body->num_design_variables());
       });
 }
 

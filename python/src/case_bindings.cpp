@@ -59,10 +59,10 @@ All quantities are SI: lengths in m, Young's modulus in Pa, displacements in m.
                              "Base name of output files ([output].name, default the file stem).")
       .def_property_readonly("dim", [](const Case& c) { return c.description.dim(); }, "2 or 3.")
       .def_property_readonly("num_design_variables",
-                             [](const Case& c) { return c.description.body.shape.num_controls(); },
-                             "Number of Bézier control heights α (design variables).")
-      .def_property_readonly("initial_design", [](const Case& c) { return to_numpy(c.description.body.initial_design); },
-                             "α⁰, the initial control heights [m].")
+                             [](const Case& c) { return case_initial_design(c.description).size(); },
+                             "Number of design variables: the Bézier control heights α (+ 1 with [design] friction_orientation).")
+      .def_property_readonly("initial_design", [](const Case& c) { return to_numpy(case_initial_design(c.description)); },
+                             "x⁰: α⁰, the initial control heights [m] (and s⁰ = kφ⁰ last with friction_orientation).")
       .def_property_readonly("young", [](const Case& c) { return c.description.body.material.young; },
                              "Young's modulus E [Pa].")
       .def_property_readonly("poisson", [](const Case& c) { return c.description.body.material.poisson; },
@@ -93,7 +93,7 @@ All quantities are SI: lengths in m, Young's modulus in Pa, displacements in m.
       .def("__repr__", [](const Case& c) {
         const auto& b = c.description.body;
         return fmt::format("<frictopt.Case '{}' from {}: {}D, {} design variables, friction {}, cost {}>", b.name,
-                           c.description.origin, c.description.dim(), b.shape.num_controls(),
+                           c.description.origin, c.description.dim(), case_initial_design(c.description).size(),
                            b.contact ? b.contact->law.describe() : std::string("none"),
                            c.description.cost ? std::string(cost::to_string(c.description.cost->kind)) : "none");
       });

@@ -6,6 +6,7 @@
 
 #include "bindings.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/study/orientation_design.hpp"
 
 namespace frictopt::python {
 
@@ -66,6 +67,13 @@ Eigen::VectorXd design_from_python(const py::object& alpha, const Eigen::VectorX
     throw InvalidInput(fmt::format("{} has {} entries; expected {} (one per design variable)", what, array.shape(0),
                                    fallback.size()));
   return Eigen::Map<const Eigen::VectorXd>(array.data(), array.shape(0));
+}
+
+Eigen::VectorXd case_initial_design(const io::CaseDescription& description) {
+  const study::BodyDefinition& b = description.body;
+  if (!b.friction_orientation || !b.contact) return b.initial_design;
+  return study::OrientationDesign(*b.friction_orientation, b.contact->law, b.admissible.upper_bound)
+      .initial_design(b.initial_design);
 }
 
 }  // namespace frictopt::python

@@ -36,7 +36,8 @@ std::shared_ptr<Oracle> make_oracle(std::shared_ptr<const Case> source, const st
   return o;
 }
 
-const Eigen::VectorXd& initial_design(const Oracle& o) { return o.body->definition().initial_design; }
+// x⁰: α⁰, or (α⁰, s⁰) with friction_orientation (the body turns its law per design).
+Eigen::VectorXd initial_design(const Oracle& o) { return o.body->initial_design(); }
 
 }  // namespace
 
@@ -112,7 +113,7 @@ Example::
       .def_property_readonly("cost", [](const Oracle& o) { return o.oracle->cost().name(); }, "The cost's name.")
       .def_property_readonly("num_design_variables", [](const Oracle& o) { return initial_design(o).size(); },
                              "d, the number of design variables.")
-      .def_property_readonly("initial_design", [](const Oracle& o) { return to_numpy(initial_design(o)); }, "α⁰ [m].")
+      .def_property_readonly("initial_design", [](const Oracle& o) { return to_numpy(initial_design(o)); }, "x⁰: α⁰ [m] (and s⁰ = kφ⁰ last with [design] friction_orientation).")
       .def_property_readonly("num_state_solves", [](const Oracle& o) { return o.oracle->num_state_solves(); },
                              "State problems solved so far (cache hits do not count).")
       .def_property_readonly(
@@ -134,7 +135,7 @@ Example::
         study::tighten_for_derivatives(definition.contact->coulomb);
         if (!(relative_step > 0.0)) throw InvalidInput(fmt::format("relative_step = {}; expected > 0", relative_step));
         auto o = make_oracle(source, definition);
-        const Eigen::VectorXd alpha = design_from_python(design, definition.initial_design, "design");
+        const Eigen::VectorXd alpha = design_from_python(design, o->body->initial_design(), "design");
         // The same admissibility check as certify: Θ and ξ are defined on Υ only.
         study::require_admissible_design(*o->body, alpha, study::CertifyOptions{}.active_tolerance,
                                          source->description.origin + (design.is_none() ? ": design.initial" : ": design"));
@@ -201,12 +202,12 @@ cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the
           run.emplace(run_directory.cast<fs::path>(), io::RunOpening::kExisting);
           source = py::module_::import("frictopt").attr("load_case")(run->store_case()).cast<std::shared_ptr<Case>>();
           const fs::path design_path = run->file(io::RunDirectory::kFinalDesign);
-          alpha = io::read_design_file(design_path, source->description.body.shape.num_controls());
+          alpha = io::read_design_file(design_path, case_initial_design(source->description).size());
           design_name = design_path.string();
         } else {
           if (case_object.is_none()) throw InvalidInput("certify: pass a case or a run_directory");
           source = case_object.cast<std::shared_ptr<Case>>();
-          alpha = design_from_python(alpha_object, source->description.body.initial_design, "alpha");
+          alpha = design_from_python(alpha_object, case_initial_design(source->description), "alpha");
         }
         auto o = make_oracle(source, source->description.body);
         study::CertifyOptions options;

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import pathlib
 
 import numpy as np
 import pytest
@@ -85,3 +86,22 @@ def test_export_fclib_rejects_anisotropic_laws(coarse_case: frictopt.Case, tmp_p
     with pytest.raises(ValueError, match="isotropic"):
         body.export_fclib(tmp_path / "x.hdf5", state)
     assert not (tmp_path / "x.hdf5").exists()
+
+
+def test_friction_orientation_case_uses_x_with_the_orientation_last(root: pathlib.Path) -> None:
+    # [design] friction_orientation: the optimizer's x = (α, s); Case, Body and Oracle agree on
+    # its size, ξ has the ∂Θ/∂s entry last, and check_gradient checks all of x (it refused the
+    # 16-entry α before).
+    case = frictopt.load_case(str(root / "cases3d" / "punch-orientation" / "case.toml"))
+    assert case.num_design_variables == 17 and case.initial_design.shape == (17,)
+    oracle = frictopt.Oracle(case)
+    assert oracle.num_design_variables == 17
+    np.testing.assert_array_equal(oracle.initial_design, case.initial_design)
+    e = oracle.evaluate()
+    assert e.ok, e.message
+    assert e.subgradient.shape == (17,) and e.subgradient[16] != 0.0
+    with pytest.raises(ValueError, match="expected 17"):
+        oracle.evaluate(case.initial_design[:16])
+    summary = frictopt.check_gradient(case)
+    assert summary["value"] == pytest.approx(e.value, rel=1e-6)
+    assert len(summary["subgradient"]) == 17
