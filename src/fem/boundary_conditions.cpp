@@ -58,6 +58,13 @@ Eigen::VectorXd DofMap::expand(const Eigen::Ref<const Eigen::VectorXd>& free_val
   return full;
 }
 
+Eigen::VectorXd DofMap::expand_homogeneous(const Eigen::Ref<const Eigen::VectorXd>& free_values) const {
+  FRICTOPT_ASSERT(free_values.size() == num_free(), "free vector size");
+  Eigen::VectorXd full = Eigen::VectorXd::Zero(num_dofs());
+  for (int i = 0; i < num_free(); ++i) full(free_dofs_[i]) = free_values(i);
+  return full;
+}
+
 Eigen::VectorXd DofMap::restrict(const Eigen::Ref<const Eigen::VectorXd>& full) const {
   FRICTOPT_ASSERT(full.size() == num_dofs(), "full vector size");
   Eigen::VectorXd out(num_free());

@@ -231,8 +231,7 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   result.psi_u = -cholesky.solve(w);
 
   // ξ = ∇_α J + ∇_α[ψ_uᵀ(A u − l)] + Σ_gap ψ_z,r B̃_node.
-  Eigen::VectorXd psi_full = Eigen::VectorXd::Zero(dofs.num_dofs());
-  for (int k = 0; k < dofs.num_free(); ++k) psi_full(dofs.free_dofs()[static_cast<std::size_t>(k)]) = result.psi_u(k);
+  const Eigen::VectorXd psi_full = dofs.expand_homogeneous(result.psi_u);
   result.subgradient = fem_.shape_derivative(X, u, psi_full);
   if (partials.d_alpha.size()) result.subgradient += partials.d_alpha;
   const int dim = boundary_.dim();
@@ -287,8 +286,7 @@ AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
   Eigen::VectorXd w = -ra;
   boundary_.add_transpose_times(out.contact, w);
   const Eigen::VectorXd du = cholesky.solve(w);
-  out.displacement = Eigen::VectorXd::Zero(dofs.num_dofs());
-  for (int k = 0; k < dofs.num_free(); ++k) out.displacement(dofs.free_dofs()[static_cast<std::size_t>(k)]) = du(k);
+  out.displacement = dofs.expand_homogeneous(du);
   return out;
 }
 

@@ -15,26 +15,13 @@
 namespace frictopt::study {
 namespace {
 
-// ψ (or any free-DOF vector) on every DOF, zero at the prescribed ones.
-Eigen::VectorXd on_all_dofs(const fem::DofMap& dofs, const Eigen::VectorXd& free) {
-  Eigen::VectorXd full = Eigen::VectorXd::Zero(dofs.num_dofs());
-  for (int k = 0; k < dofs.num_free(); ++k) full(dofs.free_dofs()[static_cast<std::size_t>(k)]) = free(k);
-  return full;
-}
-
-// Every step's scales with empty lists carried over from the previous step (before step 1 all
-// scales are 1), as LoadingProgram::run applies them: one "load case" per step.
+// One "load case" per step, with the scales in force at that step (LoadingProgram::run's).
 LoadCasesDefinition steps_as_cases(const LoadingProgramDefinition& program, const BodyDefinition& def) {
   LoadCasesDefinition cases;
-  std::vector<double> load(def.tractions.size(), 1.0), dirichlet(def.dirichlet.size(), 1.0),
-      force(def.forces.size(), 1.0);
-  for (std::size_t k = 0; k < program.steps.size(); ++k) {
-    const LoadStepDefinition& s = program.steps[k];
-    if (!s.load_scale.empty()) load = s.load_scale;
-    if (!s.dirichlet_scale.empty()) dirichlet = s.dirichlet_scale;
-    if (!s.force_scale.empty()) force = s.force_scale;
-    cases.cases.push_back(LoadCaseDefinition{fmt::format("step {}", k + 1), load, dirichlet, force, 1.0});
-  }
+  const std::vector<LoadStepDefinition> steps = program.scales_in_force(def);
+  for (std::size_t k = 0; k < steps.size(); ++k)
+    cases.cases.push_back(LoadCaseDefinition{fmt::format("step {}", k + 1), steps[k].load_scale,
+                                             steps[k].dirichlet_scale, steps[k].force_scale, 1.0});
   return cases;
 }
 
@@ -252,7 +239,7 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
     if (coupled && coupling_z.size()) {
       Eigen::VectorXd w = Eigen::VectorXd::Zero(dofs.num_free());
       boundary.add_transpose_times(coupling_z, w);
-      partial.d_displacement -= on_all_dofs(dofs, w);
+      partial.d_displacement -= dofs.expand_homogeneous(w);
     }
     const bool friction = program_.steps[i].friction;
     const sensitivity::AdjointSensitivity& adjoint = friction ? with_friction : without_friction;
@@ -273,7 +260,7 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
     }
     // The step's residual is A(α)u_k − l_k(α): the adjoint differentiated A(α)u_k − l(α).
     out.subgradient.head(d) += result.subgradient.head(d) +
-                               step_loads_->load_change_shape_derivative(k, s.positions, on_all_dofs(dofs, result.psi_u));
+                               step_loads_->load_change_shape_derivative(k, s.positions, dofs.expand_homogeneous(result.psi_u));
     if (result.subgradient.size() > d) out.subgradient.tail(1) += result.subgradient.tail(1);
     if (friction) out.friction_gradient += result.friction_gradient;
     out.psi_z[i] = result.psi_z;

@@ -26,12 +26,6 @@ void check_scales(const std::vector<double>& scales, std::size_t expected, std::
                                      field, j, scales[j]));
 }
 
-// The scales in force at each step: empty lists carry the previous step's over.
-std::vector<double> carried(const std::vector<double>& given, std::vector<double>& current) {
-  if (!given.empty()) current = given;
-  return current;
-}
-
 }  // namespace
 
 StepLoadBuilder::StepLoadBuilder(const ElasticBody& body,
@@ -110,6 +104,21 @@ void LoadingProgramDefinition::validate(const BodyDefinition& body) const {
   }
 }
 
+std::vector<LoadStepDefinition> LoadingProgramDefinition::scales_in_force(const BodyDefinition& body) const {
+  std::vector<double> load(body.tractions.size(), 1.0), dirichlet(body.dirichlet.size(), 1.0),
+      force(body.forces.size(), 1.0);
+  std::vector<LoadStepDefinition> out = steps;
+  for (LoadStepDefinition& s : out) {
+    if (!s.load_scale.empty()) load = s.load_scale;
+    if (!s.dirichlet_scale.empty()) dirichlet = s.dirichlet_scale;
+    if (!s.force_scale.empty()) force = s.force_scale;
+    s.load_scale = load;
+    s.dirichlet_scale = dirichlet;
+    s.force_scale = force;
+  }
+  return out;
+}
+
 std::string LoadingProgram::Summary::brief_report() const {
   return fmt::format(
       "loading program: {} ({}); {} steps solved, {} factorization{} ({:.3f} s), contact {:.3f} s, "
@@ -138,15 +147,14 @@ LoadingProgram::Summary LoadingProgram::run(const Eigen::Ref<const Eigen::Vector
   body_.set_warm_start(std::nullopt);  // u⁰ = 0: the program starts from the unloaded body
   Eigen::VectorXd previous_tangential = Eigen::VectorXd::Zero((dim - 1) * p);
 
-  std::vector<double> load_scale(def.tractions.size(), 1.0),
-      dirichlet_scale(def.dirichlet.size(), 1.0), force_scale(def.forces.size(), 1.0);
+  const std::vector<LoadStepDefinition> in_force = program_.scales_in_force(def);
   Summary summary;
   summary.status = Status::kConverged;
   for (std::size_t k = 0; k < program_.steps.size(); ++k) {
     const LoadStepDefinition& sd = program_.steps[k];
-    const std::vector<double> ls = carried(sd.load_scale, load_scale);
-    const std::vector<double> ds = carried(sd.dirichlet_scale, dirichlet_scale);
-    const std::vector<double> fs = carried(sd.force_scale, force_scale);
+    const std::vector<double>& ls = in_force[k].load_scale;
+    const std::vector<double>& ds = in_force[k].dirichlet_scale;
+    const std::vector<double>& fs = in_force[k].force_scale;
     std::vector<fem::FaceDirichlet> scaled = def.dirichlet;
     for (std::size_t j = 0; j < scaled.size(); ++j) scaled[j].displacement *= ds[j];
     const StepLoads step = builder.build(ls, fs, scaled, previous_tangential, sd.friction);

@@ -17,12 +17,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 std::vector<double> key_of(const Eigen::Ref<const Eigen::VectorXd>& alpha) { return {alpha.data(), alpha.data() + alpha.size()}; }
-// ψ on every DOF, zero at the prescribed ones (DofMap::expand would insert prescribed values).
-Eigen::VectorXd adjoint_on_all_dofs(const fem::DofMap& dofs, const Eigen::VectorXd& psi_u) {
-  Eigen::VectorXd full = Eigen::VectorXd::Zero(dofs.num_dofs());
-  for (int k = 0; k < dofs.num_free(); ++k) full(dofs.free_dofs()[static_cast<std::size_t>(k)]) = psi_u(k);
-  return full;
-}
 // Bounded memory: the bundle method revisits only the last few designs.
 constexpr std::size_t kCacheSize = 512;
 }  // namespace
@@ -219,7 +213,7 @@ sensitivity::AdjointSensitivity::Result ShapeOracle::case_subgradient(int k, con
                                                 body_.definition().contact->law);
   auto result = adjoint.subgradient(piece, delassus(), s.positions, s.displacement, s.contact->state, j);
   if (result.summary.status == Status::kConverged)
-    result.subgradient += cases_->load_change_shape_derivative(k, s.positions, adjoint_on_all_dofs(body_.elasticity().dofs(), result.psi_u));
+    result.subgradient += cases_->load_change_shape_derivative(k, s.positions, body_.elasticity().dofs().expand_homogeneous(result.psi_u));
   append_orientation_derivative(body_.orientation_design(), body_.definition().contact->law, piece, s.contact->state, result);
   return result;
 }

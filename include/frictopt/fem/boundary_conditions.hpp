@@ -48,6 +48,9 @@ class DofMap {
   const Eigen::VectorXd& prescribed_values() const { return prescribed_values_; }
   /// Full vector from free values (prescribed values inserted).
   Eigen::VectorXd expand(const Eigen::Ref<const Eigen::VectorXd>& free_values) const;
+  /// Full vector from free values with zero at the prescribed DOFs: for adjoints and state
+  /// variations, which vanish where the displacement is prescribed.
+  Eigen::VectorXd expand_homogeneous(const Eigen::Ref<const Eigen::VectorXd>& free_values) const;
   /// Free part of a full vector.
   Eigen::VectorXd restrict(const Eigen::Ref<const Eigen::VectorXd>& full) const;
 

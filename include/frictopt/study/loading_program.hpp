@@ -34,6 +34,9 @@ struct LoadingProgramDefinition {
   /// list has the wrong length for `body` (a step referring to a load the case does not have),
   /// or a scale is not finite.
   void validate(const BodyDefinition& body) const;
+  /// The steps with the scales in force at each: every scale list full (an empty list carries
+  /// the previous step's over; before step 1 every scale is 1, the case as written).
+  [[nodiscard]] std::vector<LoadStepDefinition> scales_in_force(const BodyDefinition& body) const;
 };
 
 /// The result of one step.
