@@ -605,18 +605,39 @@ contact::CoulombSolver::Options read_solver(const TableReader& r, std::string_vi
   return s;
 }
 
-// [cost] step and the loading program a history cost reads (issue 13 item 2; study/history.hpp):
-// `step` is "last" (the default) or a 1-based step of the [[program.step]] tables; a step or the
-// dissipation on a case without a program is a history cost on a one-step case.
+// [cost] step and the loading programs a history cost reads (issue 13 items 1 and 2;
+// study/history.hpp): `step` is "last" (the default) or a 1-based step of the [[program.step]]
+// tables — or, with load cases given as programs ([[load_case.step]]), of every case's program (a
+// static case is one step). A step or the dissipation on a case without a program is a history
+// cost on a one-step case.
 void read_cost_history(const TableReader& r, const std::optional<study::LoadingProgramDefinition>& program,
                        study::CostDefinition& c) {
-  const std::size_t steps = program ? program->steps.size() : 0;
+  const bool case_programs = c.load_cases && c.load_cases->has_programs();
+  if (program && c.load_cases)
+    r.fail("step", "[[program.step]] tables with [[load_case]] tables: the program would apply to no case in "
+                   "particular; expected each load case's own [[load_case.step]] tables");
+  // The fewest steps a case has: a step beyond it would read a state that case does not have.
+  std::size_t steps = program ? program->steps.size() : 0;
+  std::string fewest = fmt::format("the case has {} [[program.step]] table{}", steps, steps == 1 ? "" : "s");
+  if (case_programs) {
+    steps = std::numeric_limits<std::size_t>::max();
+    for (std::size_t k = 0; k < c.load_cases->cases.size(); ++k) {
+      const study::LoadCaseDefinition& lc = c.load_cases->cases[k];
+      if (lc.num_steps() < steps) {
+        steps = lc.num_steps();
+        fewest = lc.program ? fmt::format("load_case[{}] \"{}\" has {} [[load_case.step]] table{}", k, lc.name, steps,
+                                          steps == 1 ? "" : "s")
+                            : fmt::format("load_case[{}] \"{}\" is a static load: one step", k, lc.name);
+      }
+    }
+  }
+  const bool history = program.has_value() || case_programs;
   const std::string expectation =
-      program ? fmt::format("\"last\" or an integer step in [1, {}] (the case has {} [[program.step]] table{})", steps,
-                            steps, steps == 1 ? "" : "s")
-              : std::string("no step: the case has no [[program.step]] tables (a history cost on a one-step case)");
+      history ? fmt::format("\"last\" or an integer step in [1, {}] ({})", steps, fewest)
+              : std::string("no step: the case has no [[program.step]] or [[load_case.step]] tables (a history cost on "
+                            "a one-step case)");
   if (const toml::node* step = r.node("step")) {
-    if (!program) r.fail_value("step", expectation);
+    if (!history) r.fail_value("step", expectation);
     if (step->is_string()) {
       if (step->value<std::string>().value_or("") != "last") r.fail_value("step", expectation);
       c.step = 0;
@@ -628,17 +649,17 @@ void read_cost_history(const TableReader& r, const std::optional<study::LoadingP
       r.fail_value("step", expectation);
     }
   }
-  if (c.kind == cost::CostKind::kDissipation && !program)
-    r.fail_value("kind", "a cost of one state (the case has no [[program.step]] tables: \"dissipation\" is a history "
-                         "cost on a one-step case)");
-  if (program) {
+  if (c.kind == cost::CostKind::kDissipation && !history)
+    r.fail_value("kind", "a cost of one state (the case has no [[program.step]] or [[load_case.step]] tables: "
+                         "\"dissipation\" is a history cost on a one-step case)");
+  if (history) {
     if (c.kind == cost::CostKind::kCompliance)
-      r.fail_value("kind", "a contact cost or \"dissipation\" with [[program.step]] tables (the compliance reads the "
-                           "case file's own loads, not a step's)");
+      r.fail_value("kind", "a contact cost or \"dissipation\" with a loading program (the compliance reads the case "
+                           "file's own loads, not a step's)");
     if (c.kind == cost::CostKind::kDissipation && r.has("step"))
       r.fail_value("step", "no step for \"dissipation\" (it reads every step of the program)");
-    c.program = std::make_shared<const study::LoadingProgramDefinition>(*program);
   }
+  if (program) c.program = std::make_shared<const study::LoadingProgramDefinition>(*program);
 }
 
 // [cost] into the study's cost definition (spec 05 §2.4). `dim` checks the traction target.
@@ -1088,14 +1109,15 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                                      origin));
   }
 
+  std::optional<TableReader> cost_reader;
   if (const toml::table* cost = top.optional_table("cost")) {
     if (!body.contact)
       throw InvalidInput(fmt::format("{}: [cost] needs a [contact] table: every cost reads the contact state", origin));
-    const TableReader r(*cost, "cost", origin, {"kind", "target", "exponent", "smoothing", "step"});
-    c.cost = read_cost(r, dim);
-    read_cost_history(r, c.program, *c.cost);
+    cost_reader.emplace(*cost, "cost", origin, std::initializer_list<std::string_view>{"kind", "target", "exponent", "smoothing", "step"});
+    c.cost = read_cost(*cost_reader, dim);
   }
   detail::read_load_case_sections(top, origin, c);
+  if (cost_reader) read_cost_history(*cost_reader, c.program, *c.cost);
   c.optimization = study::default_study_options(body);
   if (const toml::table* optimization = top.optional_table("optimization"))
     read_optimization(TableReader(*optimization, "optimization", origin,

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "case_program_section.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::io::detail {
@@ -20,7 +21,8 @@ std::vector<double> scales(const TableReader& r, std::string_view key) {
   return v;
 }
 
-study::LoadCaseDefinition read_load_case(const TableReader& r) {
+study::LoadCaseDefinition read_load_case(const TableReader& r, std::string_view origin, const study::BodyDefinition& body,
+                                         std::size_t k) {
   study::LoadCaseDefinition c;
   c.name = r.required_string("name", "the case's name (unique among the [[load_case]] tables)");
   if (c.name.empty()) r.fail_value("name", "a non-empty name");
@@ -30,6 +32,16 @@ study::LoadCaseDefinition read_load_case(const TableReader& r) {
   if (const auto w = r.optional_number("weight")) {
     if (!(std::isfinite(*w) && *w >= 0.0)) r.fail_value("weight", "a finite weight >= 0");
     c.weight = *w;
+  }
+  if (r.has("step")) {
+    // A load case given as a loading program (issue 13 item 1): its own steps, which give the
+    // scales; the case's cost reads its history ([cost] step or the dissipation).
+    for (const char* key : {"load_scale", "dirichlet_scale", "force_scale"})
+      if (r.has(key))
+        r.fail(key, fmt::format("load_case[{}].{} with [[load_case.step]] tables; expected either the scales of a static "
+                                "load or steps (each step gives its own scales)",
+                                k, key));
+    c.program = read_program(r, origin, body, fmt::format("load_case[{}]", k));
   }
   return c;
 }
@@ -49,8 +61,8 @@ void read_load_case_sections(const TableReader& top, std::string_view origin, Ca
   for (std::size_t k = 0; k < tables->size(); ++k) {
     const toml::table* t = tables->get(k)->as_table();
     const TableReader r(*t, fmt::format("load_case[{}]", k), origin,
-                        {"name", "load_scale", "dirichlet_scale", "force_scale", "weight"});
-    cases.cases.push_back(read_load_case(r));
+                        {"name", "load_scale", "dirichlet_scale", "force_scale", "weight", "step"});
+    cases.cases.push_back(read_load_case(r, origin, c.body, k));
     for (std::size_t j = 0; j < k; ++j)
       if (cases.cases[j].name == cases.cases[k].name)
         r.fail("name", fmt::format("load_case[{}].name = \"{}\" is the name of load_case[{}]; expected unique names", k,

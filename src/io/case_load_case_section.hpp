@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The case-file sections of load cases (issue 13): [[load_case]] (a name, scales of the case's
-// [[load]] / [[dirichlet]] / [[force]] tables, a weight) and [study] (combine = "worst" |
-// "weighted", and optionally the subset `cases` to combine). Called once from parse_case after
-// [cost] is read. Schema: docs/case-format.md.
+// [[load]] / [[dirichlet]] / [[force]] tables or a loading program of its own in
+// [[load_case.step]] tables, a weight) and [study] (combine = "worst" | "weighted", and optionally
+// the subset `cases` to combine). Called once from parse_case after [cost] is read, before
+// [cost] step is checked against the cases' programs. Schema: docs/case-format.md.
 #pragma once
 
 #include <string_view>
@@ -15,7 +16,8 @@ namespace frictopt::io::detail {
 /// Reads [[load_case]] and [study] into c.cost->load_cases. Throws InvalidInput "origin:line:
 /// field = value; expected ..." (or "origin: load_case[k].field ...") for bad input: [study]
 /// without [[load_case]], load cases without [cost], an unknown combination or case name,
-/// duplicate names, scale lists of the wrong length, negative or all-zero weights.
+/// duplicate names, scale lists of the wrong length, negative or all-zero weights, scales and
+/// steps in one case, a step's scale list of the wrong length.
 void read_load_case_sections(const TableReader& top, std::string_view origin, CaseDescription& c);
 
 }  // namespace frictopt::io::detail

@@ -91,33 +91,6 @@ std::vector<double> scales(const TableReader& r, std::string_view key) {
   return v;
 }
 
-study::LoadingProgramDefinition read_program(const TableReader& r, std::string_view origin,
-                                             const study::BodyDefinition& body) {
-  study::LoadingProgramDefinition program;
-  const toml::array* steps = r.optional_table_array("step");
-  if (steps == nullptr || steps->empty())
-    r.fail_missing("step",
-                   "at least one [[program.step]] table (a program with no steps solves nothing)");
-  for (std::size_t k = 0; k < steps->size(); ++k) {
-    const toml::table* t = steps->get(k)->as_table();
-    const TableReader s(*t, fmt::format("program.step[{}]", k), origin,
-                        {"label", "load_scale", "dirichlet_scale", "force_scale", "friction"});
-    study::LoadStepDefinition step;
-    step.label = s.optional_string("label").value_or("");
-    step.load_scale = scales(s, "load_scale");
-    step.dirichlet_scale = scales(s, "dirichlet_scale");
-    step.force_scale = scales(s, "force_scale");
-    step.friction = s.optional_bool("friction").value_or(true);
-    program.steps.push_back(std::move(step));
-  }
-  try {
-    program.validate(body);
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(fmt::format("{}: {}", origin, e.what()));
-  }
-  return program;
-}
-
 study::TribometerDefinition read_experiment(const TableReader& r) {
   study::TribometerDefinition e;
   if (const auto drive = r.optional_string("drive")) {
@@ -153,6 +126,34 @@ study::TribometerDefinition read_experiment(const TableReader& r) {
 
 }  // namespace
 
+study::LoadingProgramDefinition read_program(const TableReader& r, std::string_view origin,
+                                             const study::BodyDefinition& body, std::string_view where) {
+  const std::string tables = where == "program" ? "[[program.step]]" : "[[load_case.step]]";
+  study::LoadingProgramDefinition program;
+  const toml::array* steps = r.optional_table_array("step");
+  if (steps == nullptr || steps->empty())
+    r.fail_missing("step", "at least one " + tables + " table (a program with no steps solves nothing)");
+  for (std::size_t k = 0; k < steps->size(); ++k) {
+    const toml::table* t = steps->get(k)->as_table();
+    if (t == nullptr) r.fail("step", fmt::format("{}.step[{}] is not a table; expected {} tables", where, k, tables));
+    const TableReader s(*t, fmt::format("{}.step[{}]", where, k), origin,
+                        {"label", "load_scale", "dirichlet_scale", "force_scale", "friction"});
+    study::LoadStepDefinition step;
+    step.label = s.optional_string("label").value_or("");
+    step.load_scale = scales(s, "load_scale");
+    step.dirichlet_scale = scales(s, "dirichlet_scale");
+    step.force_scale = scales(s, "force_scale");
+    step.friction = s.optional_bool("friction").value_or(true);
+    program.steps.push_back(std::move(step));
+  }
+  try {
+    program.validate(body, where);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("{}: {}", origin, e.what()));
+  }
+  return program;
+}
+
 void read_program_sections(const TableReader& top, std::string_view origin, int dim,
                            CaseDescription& c) {
   if (const toml::array* forces = top.optional_table_array("force"))
@@ -169,7 +170,7 @@ void read_program_sections(const TableReader& top, std::string_view origin, int 
               {"at", "tolerance", "box_min", "box_max", "boundary", "components", "displacement"}),
           dim));
   if (const toml::table* program = top.optional_table("program"))
-    c.program = read_program(TableReader(*program, "program", origin, {"step"}), origin, c.body);
+    c.program = read_program(TableReader(*program, "program", origin, {"step"}), origin, c.body, "program");
   if (const toml::table* experiment = top.optional_table("experiment"))
     c.experiment = read_experiment(
         TableReader(*experiment, "experiment", origin,

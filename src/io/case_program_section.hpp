@@ -18,4 +18,10 @@ namespace frictopt::io::detail {
 void read_program_sections(const TableReader& top, std::string_view origin, int dim,
                            CaseDescription& c);
 
+/// The "step" table array of `r` as a loading program, checked against `body`'s [[load]],
+/// [[dirichlet]] and [[force]] tables: `where` = "program" for [program] ([[program.step]]),
+/// "load_case[k]" for a load case's own program ([[load_case.step]], issue 13 item 1).
+study::LoadingProgramDefinition read_program(const TableReader& r, std::string_view origin,
+                                             const study::BodyDefinition& body, std::string_view where);
+
 }  // namespace frictopt::io::detail

@@ -310,11 +310,61 @@ MordukhovichReport mordukhovich_report(const Certificate& c, const Eigen::Vector
   return out;
 }
 
+// The generators of one loading history's pseudodifferential (issue 13 item 2; docs/theory/
+// history-adjoint.md §4): the default ξ (every step's default piece) first, then each step's
+// pieces varied one step at a time with the others at their defaults. That is all of
+// 𝕃 = Π_k 𝕃_k when at most one step has more than one piece (always for one step: a static load
+// case); otherwise (or when a step's 𝕃_k is sampled) the generators are a sample.
+struct HistoryGenerators {
+  std::vector<Eigen::VectorXd> columns;  // column 0: the default pieces
+  std::vector<std::string> summaries;
+  double cardinality = 1.0;
+  bool sampled = false;
+  std::vector<std::string> step_lines;  // per step (programs of more than one step)
+  std::string failure;                  // why a piece's adjoint failed (then the rest is partial)
+};
+
+HistoryGenerators history_generators(ProgramHistory& history, const CertifyOptions& options) {
+  HistoryGenerators out;
+  const std::vector<sensitivity::Piece> defaults = history.default_pieces();
+  const bool one_step = history.num_steps() == 1;
+  const auto add = [&](const std::vector<sensitivity::Piece>& pieces, std::string summary) {
+    const HistorySubgradient r = history.subgradient(pieces);
+    if (r.summary.status != Status::kConverged || !r.subgradient.allFinite()) {
+      out.failure = fmt::format("{}: {}", summary, r.summary.brief_report());
+      return false;
+    }
+    out.columns.push_back(r.subgradient);
+    out.summaries.push_back(std::move(summary));
+    return true;
+  };
+  if (!add(defaults, one_step ? defaults.front().summary() : "every step's default piece")) return out;
+  int steps_with_choices = 0;
+  for (int k = 0; k < history.num_steps(); ++k) {
+    const sensitivity::PieceEnumeration enumeration = history.pieces(k, options.cap);
+    out.cardinality *= enumeration.cardinality;
+    out.sampled |= enumeration.sampled;
+    if (!one_step)
+      out.step_lines.push_back(fmt::format("step {}: {}; |L_k| = {:.0f}{}", k + 1, history.index_sets(k).summary(),
+                                           enumeration.cardinality, enumeration.sampled ? " (sampled)" : ""));
+    steps_with_choices += enumeration.cardinality > 1.0;
+    for (const sensitivity::Piece& piece : enumeration.pieces) {
+      if (piece.nodes == defaults[static_cast<std::size_t>(k)].nodes) continue;
+      std::vector<sensitivity::Piece> chosen = defaults;
+      chosen[static_cast<std::size_t>(k)] = piece;
+      if (!add(chosen, one_step ? piece.summary() : fmt::format("step {}: {}", k + 1, piece.summary()))) return out;
+    }
+  }
+  out.sampled |= steps_with_choices > 1;
+  return out;
+}
+
 // Load cases (issue 13; docs/theory/load-cases.md): the generators of the composite's Clarke
 // subdifferential. "worst": Θ = max_k w_k J_k, ∂Θ(α) ⊂ conv ∪_{k active} w_k ∂J_k(α), so the
 // columns are the union of the active cases' w_k ξ_{k,i}. "weighted": ∂Θ ⊂ Σ_k w_k ∂J_k, and
-// Σ_k conv G_k = conv{Σ_k g_k : g_k ∈ G_k}, so the columns are the sums over one piece per case.
-// Returns false (with c.status set) when a piece's adjoint fails.
+// Σ_k conv G_k = conv{Σ_k g_k : g_k ∈ G_k}, so the columns are the sums over one generator per
+// case. A case's generators are those of its loading program (history_generators; one step for
+// a static load). Returns false (with c.status set) when a piece's adjoint fails.
 bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const std::vector<double>& values,
                           double theta, int selected, const CertifyOptions& options, Certificate& c) {
   const LoadCases& cases = *oracle.load_cases();
@@ -323,7 +373,6 @@ bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, con
   const auto n_cases = static_cast<std::size_t>(cases.size());
   std::vector<std::vector<Eigen::VectorXd>> generators(n_cases);
   std::vector<std::vector<std::string>> summaries(n_cases);
-  std::vector<std::size_t> default_index(n_cases, 0);
   for (std::size_t k = 0; k < n_cases; ++k) {
     const int kk = static_cast<int>(k);
     LoadCaseCertificate lc;
@@ -334,23 +383,18 @@ bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, con
     lc.active = w > 0.0 && (!worst || lc.weighted_value >= theta - options.case_active_tolerance * std::abs(theta));
     lc.index_sets = oracle.case_index_sets(alpha, kk);
     if (lc.active) {
-      const sensitivity::PieceEnumeration enumeration = oracle.case_pieces(alpha, kk, options.cap);
-      lc.cardinality = enumeration.cardinality;
-      lc.sampled = enumeration.sampled;
-      const auto results = oracle.case_subgradients(alpha, kk, enumeration.pieces);
-      const sensitivity::Piece default_piece = sensitivity::default_piece(lc.index_sets);
-      for (std::size_t i = 0; i < results.size(); ++i) {
-        if (results[i].summary.status != Status::kConverged || !results[i].subgradient.allFinite()) {
-          c.status = Status::kNumericalFailure;
-          c.message = fmt::format("load case \"{}\", piece {} ({}): {}", lc.name, i, enumeration.pieces[i].summary(),
-                                  results[i].summary.brief_report());
-          return false;
-        }
-        generators[k].push_back(w * results[i].subgradient);
-        summaries[k].push_back(enumeration.pieces[i].summary());
-        if (enumeration.pieces[i].nodes == default_piece.nodes) default_index[k] = i;
+      HistoryGenerators g = history_generators(oracle.case_history(alpha, kk), options);
+      if (!g.failure.empty()) {
+        c.status = Status::kNumericalFailure;
+        c.message = fmt::format("load case \"{}\", {}", lc.name, g.failure);
+        return false;
       }
-      lc.num_pieces = static_cast<int>(results.size());
+      lc.cardinality = g.cardinality;
+      lc.sampled = g.sampled;
+      lc.num_pieces = static_cast<int>(g.columns.size());
+      for (Eigen::VectorXd& column : g.columns) generators[k].push_back(w * column);
+      summaries[k] = std::move(g.summaries);
+      for (const std::string& line : g.step_lines) c.history_steps.push_back(lc.name + ", " + line);
     }
     c.load_cases.push_back(std::move(lc));
   }
@@ -361,7 +405,7 @@ bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, con
     c.cardinality = 0.0;
     for (std::size_t k = 0; k < n_cases; ++k) {
       if (!c.load_cases[k].active) continue;
-      if (static_cast<int>(k) == selected) c.default_piece_column = static_cast<int>(columns.size() + default_index[k]);
+      if (static_cast<int>(k) == selected) c.default_piece_column = static_cast<int>(columns.size());
       c.cardinality += c.load_cases[k].cardinality;
       c.sampled |= c.load_cases[k].sampled;
       for (std::size_t i = 0; i < generators[k].size(); ++i) {
@@ -390,10 +434,10 @@ bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, con
       columns.push_back(std::move(sum));
       c.piece_summaries.push_back(std::move(text));
     };
-    std::vector<std::size_t> defaults;
-    for (std::size_t k : active) defaults.push_back(default_index[k]);
+    // Each case's generator 0 is its default pieces: column 0 is the ξ the optimizer saw.
+    const std::vector<std::size_t> defaults(active.size(), 0);
     c.default_piece_column = 0;
-    add(defaults);  // column 0: the default piece of every case, the ξ the optimizer saw
+    add(defaults);
     if (combinations <= static_cast<double>(options.cap)) {
       // Every combination (mixed radix over the active cases), the all-default one already in.
       std::vector<std::size_t> choice(active.size(), 0);
@@ -407,8 +451,7 @@ bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, con
       // Too many: the default combination varied in one case at a time (a sample of the sums).
       c.sampled = true;
       for (std::size_t a = 0; a < active.size(); ++a)
-        for (std::size_t i = 0; i < generators[active[a]].size(); ++i) {
-          if (i == defaults[a]) continue;
+        for (std::size_t i = 1; i < generators[active[a]].size(); ++i) {
           std::vector<std::size_t> choice = defaults;
           choice[a] = i;
           add(choice);
@@ -421,51 +464,27 @@ bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, con
   return true;
 }
 
-// A cost along a loading history (issue 13 item 2; docs/theory/history-adjoint.md §4): the
-// default ξ (every step's default piece), then each step's pieces varied one step at a time with
-// the others at their defaults. That is all of 𝕃 = Π_k 𝕃_k when at most one step has more than one
-// piece; otherwise (or when a step's 𝕃_k is sampled) the certificate is sampled.
-bool history_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const CertifyOptions& options,
-                        Certificate& c) {
+// A cost along one loading history (issue 13 item 2): its generators (history_generators).
+bool single_history_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const CertifyOptions& options,
+                               Certificate& c) {
   // pieces() re-solves the program if the oracle's cache answered without touching the state:
   // from here on the history's states are those at α.
   (void)oracle.pieces(alpha, 1);
   ProgramHistory& history = *oracle.history();
-  const std::vector<sensitivity::Piece> defaults = history.default_pieces();
-  std::vector<Eigen::VectorXd> columns;
-  const auto add = [&](const std::vector<sensitivity::Piece>& pieces, std::string summary) {
-    const HistorySubgradient r = history.subgradient(pieces);
-    if (r.summary.status != Status::kConverged || !r.subgradient.allFinite()) {
-      c.status = Status::kNumericalFailure;
-      c.message = fmt::format("{}: {}", summary, r.summary.brief_report());
-      return false;
-    }
-    columns.push_back(r.subgradient);
-    c.piece_summaries.push_back(std::move(summary));
-    return true;
-  };
-  if (!add(defaults, "every step's default piece")) return false;
-  c.default_piece_column = 0;
-  c.cardinality = 1.0;
-  int steps_with_choices = 0;
-  for (int k = 0; k < history.num_steps(); ++k) {
-    const sensitivity::PieceEnumeration enumeration = history.pieces(k, options.cap);
-    c.cardinality *= enumeration.cardinality;
-    c.sampled |= enumeration.sampled;
-    c.history_steps.push_back(fmt::format("step {}: {}; |L_k| = {:.0f}{}", k + 1, history.index_sets(k).summary(),
-                                          enumeration.cardinality, enumeration.sampled ? " (sampled)" : ""));
-    steps_with_choices += enumeration.cardinality > 1.0;
-    for (const sensitivity::Piece& piece : enumeration.pieces) {
-      if (piece.nodes == defaults[static_cast<std::size_t>(k)].nodes) continue;
-      std::vector<sensitivity::Piece> chosen = defaults;
-      chosen[static_cast<std::size_t>(k)] = piece;
-      if (!add(chosen, fmt::format("step {}: {}", k + 1, piece.summary()))) return false;
-    }
+  HistoryGenerators g = history_generators(history, options);
+  if (!g.failure.empty()) {
+    c.status = Status::kNumericalFailure;
+    c.message = g.failure;
+    return false;
   }
-  c.sampled |= steps_with_choices > 1;
+  c.default_piece_column = 0;
+  c.cardinality = g.cardinality;
+  c.sampled = g.sampled;
+  c.history_steps = std::move(g.step_lines);
+  c.piece_summaries = std::move(g.summaries);
   c.index_sets = history.index_sets(history.cost_step());
-  c.subgradients.resize(alpha.size(), static_cast<Eigen::Index>(columns.size()));
-  for (std::size_t j = 0; j < columns.size(); ++j) c.subgradients.col(static_cast<Eigen::Index>(j)) = columns[j];
+  c.subgradients.resize(alpha.size(), static_cast<Eigen::Index>(g.columns.size()));
+  for (std::size_t j = 0; j < g.columns.size(); ++j) c.subgradients.col(static_cast<Eigen::Index>(j)) = g.columns[j];
   c.scale = c.subgradients.colwise().norm().maxCoeff();
   return true;
 }
@@ -501,8 +520,11 @@ std::string Certificate::report() const {
                        lc.active ? fmt::format("|L_k| = {:.0f}{}", lc.cardinality, lc.sampled ? " (sampled)" : "") : "-");
   }
   if (!history_steps.empty()) {
-    s += fmt::format("loading history: {} steps, generators = the default pieces varied one step at a time\n",
-                     history_steps.size());
+    s += load_cases.empty()
+             ? fmt::format("loading history: {} steps, generators = the default pieces varied one step at a time\n",
+                           history_steps.size())
+             : std::string("loading histories of the active cases given as programs: generators = each case's default "
+                           "pieces varied one step at a time\n");
     for (const std::string& line : history_steps) s += "  " + line + "\n";
   }
   s += fmt::format("index sets: {} ({} weak nodes)\n", index_sets.summary(), index_sets.num_weak_nodes());
@@ -559,7 +581,7 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   if (oracle.load_cases()) {
     if (!load_case_generators(oracle, alpha, case_values, c.value, selected_case, options, c)) return c;
   } else if (oracle.history()) {
-    if (!history_generators(oracle, alpha, options, c)) return c;
+    if (!single_history_generators(oracle, alpha, options, c)) return c;
   } else {
   // pieces() re-solves if the cache answered without touching the state: from here on the
   // oracle's last state (and the body's factorization) is the one at α.
@@ -610,9 +632,16 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
         "docs/theory/history-adjoint.md §4)";
     c.mordukhovich.message = "not computed for a cost along a loading history";
   } else if (oracle.load_cases()) {
-    // (MF1′) per active case: each case's tight system at its own state (same A(α) and M).
+    // (MF1′) per active case: each case's tight system at its own state (same A(α) and M); a
+    // case given as a program of several steps is a history (above).
     for (std::size_t k = 0; k < c.load_cases.size(); ++k) {
       if (!c.load_cases[k].active) continue;
+      if (oracle.case_history(alpha, static_cast<int>(k)).num_steps() > 1) {
+        c.load_cases[k].mf1.not_computed_reason =
+            "not computed for a load case given as a loading program (the tight system couples the steps; "
+            "docs/theory/history-adjoint.md §4)";
+        continue;
+      }
       oracle.select_case(alpha, static_cast<int>(k));
       c.load_cases[k].mf1 = mf1_report(oracle, c.load_cases[k].index_sets, options);
     }

@@ -21,7 +21,7 @@ LoadCasesDefinition steps_as_cases(const LoadingProgramDefinition& program, cons
   const std::vector<LoadStepDefinition> steps = program.scales_in_force(def);
   for (std::size_t k = 0; k < steps.size(); ++k)
     cases.cases.push_back(LoadCaseDefinition{fmt::format("step {}", k + 1), steps[k].load_scale,
-                                             steps[k].dirichlet_scale, steps[k].force_scale, 1.0});
+                                             steps[k].dirichlet_scale, steps[k].force_scale, 1.0, std::nullopt});
   return cases;
 }
 
@@ -38,23 +38,25 @@ class DissipationName final : public cost::CostFunctional {
 
 }  // namespace
 
-ProgramHistory::ProgramHistory(ElasticBody& body, const CostDefinition& definition, Eigen::MatrixXd gap_matrix)
+ProgramHistory::ProgramHistory(ElasticBody& body, const CostDefinition& definition, Eigen::MatrixXd gap_matrix,
+                               std::string_view where)
     : body_(body), gap_matrix_(std::move(gap_matrix)), frictionless_(contact::frictionless_law(body.mesh().dim())) {
   if (!definition.program)
     throw InvalidInput("ProgramHistory: the cost definition has no loading program; expected [[program.step]] tables");
   if (!body_.contact_boundary() || !body_.definition().contact)
     throw InvalidInput("a cost along a loading history needs a body in contact: add a [contact] table to the case");
   program_ = *definition.program;
-  program_.validate(body_.definition());
+  program_.validate(body_.definition(), where);
   const int k_steps = num_steps();
+  const std::string tables = where == "program" ? "[[program.step]]" : "[[load_case.step]]";
   if (definition.kind == cost::CostKind::kCompliance)
     throw InvalidInput("cost.kind = \"compliance\" with [[program.step]] tables: the compliance reads the case file's "
                        "own loads, not a step's; expected a contact cost (target_pressure, normal_force_power, "
                        "pressure_norm, total_slip, traction_uniformity) or dissipation");
   if (definition.step < 0 || definition.step > k_steps)
-    throw InvalidInput(fmt::format("cost.step = {}; expected \"last\" or an integer in [1, {}] (the program has {} "
-                                   "[[program.step]] table{})",
-                                   definition.step, k_steps, k_steps, k_steps == 1 ? "" : "s"));
+    throw InvalidInput(fmt::format("cost.step = {}; expected \"last\" or an integer in [1, {}] ({} has {} step{} ({} "
+                                   "tables))",
+                                   definition.step, k_steps, where, k_steps, k_steps == 1 ? "" : "s", tables));
   dissipation_ = definition.kind == cost::CostKind::kDissipation;
   cost_step_ = definition.step == 0 ? k_steps - 1 : definition.step - 1;
   step_loads_ = std::make_unique<LoadCases>(body_, steps_as_cases(program_, body_.definition()));
@@ -111,6 +113,7 @@ void ProgramHistory::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
   const Eigen::Index p = body_.contact_boundary()->num_nodes();
   tangential_.assign(1, Eigen::VectorXd::Zero((mesh.dim() - 1) * p));  // u_t^0 = 0
   ok_ = true;
+  factorizations_ = 0;
   message_ = fmt::format("all {} steps solved", num_steps());
   for (int k = 0; k < num_steps(); ++k) {
     const auto i = static_cast<std::size_t>(k);
@@ -122,6 +125,7 @@ void ProgramHistory::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
     body_.set_warm_start(warm_starts_[i]);
     const std::string label = program_.steps[i].label.empty() ? fmt::format("step {}", k + 1) : program_.steps[i].label;
     states_[i] = std::make_shared<BodyState>(body_.solve_step(alpha, step, label));
+    if (states_[i]->summary.factorization_seconds > 0.0) ++factorizations_;
     if (states_[i]->summary.status != Status::kConverged) {
       ok_ = false;
       message_ = fmt::format("{}: {}", label, states_[i]->summary.message);
@@ -131,6 +135,12 @@ void ProgramHistory::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
     warm_starts_[i] = states_[i]->contact->state;
     tangential_.push_back(builder.tangential_displacement(states_[i]->displacement));
   }
+}
+
+std::shared_ptr<BodyState> ProgramHistory::cost_state() const {
+  for (int k = cost_step_; k >= 0; --k)
+    if (states_[static_cast<std::size_t>(k)]) return states_[static_cast<std::size_t>(k)];
+  return nullptr;
 }
 
 double ProgramHistory::value() const {
@@ -203,6 +213,34 @@ double ProgramHistory::cardinality() {
   return product;
 }
 
+sensitivity::PieceEnumeration ProgramHistory::cost_step_pieces(int cap) {
+  sensitivity::PieceEnumeration out = pieces(cost_step_, cap);
+  const double step_cardinality = out.cardinality;
+  out.cardinality = cardinality();
+  out.sampled = out.sampled || out.cardinality > step_cardinality;
+  return out;
+}
+
+std::vector<sensitivity::AdjointSensitivity::Result> ProgramHistory::cost_step_subgradients(
+    const std::vector<sensitivity::Piece>& pieces) {
+  std::vector<sensitivity::AdjointSensitivity::Result> out;
+  std::vector<sensitivity::Piece> chosen = default_pieces();
+  for (const sensitivity::Piece& piece : pieces) {
+    chosen[static_cast<std::size_t>(cost_step_)] = piece;
+    HistorySubgradient h = subgradient(chosen);
+    sensitivity::AdjointSensitivity::Result r;
+    r.subgradient = std::move(h.subgradient);
+    r.friction_gradient = std::move(h.friction_gradient);
+    r.summary = h.summary;
+    if (h.summary.status == Status::kConverged) {
+      r.psi_u = std::move(h.psi_u[static_cast<std::size_t>(cost_step_)]);
+      r.psi_z = std::move(h.psi_z[static_cast<std::size_t>(cost_step_)]);
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
 HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Piece>& pieces, bool coupled) {
   FRICTOPT_ASSERT(ok_, "ProgramHistory::subgradient needs a solved program");
   FRICTOPT_ASSERT(static_cast<int>(pieces.size()) == num_steps(), "one piece per step");
@@ -226,6 +264,7 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
   out.friction_gradient =
       Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sensitivity::friction_parameters(case_law).names.size()));
   out.psi_z.resize(pieces.size());
+  out.psi_u.resize(pieces.size());
   out.summary.status = Status::kConverged;
   out.summary.reciprocal_condition = std::numeric_limits<double>::infinity();
   // Backward: step k's adjoint sees step k+1's rows through u_k — r_{k+1} = S_{k+1}(G u_{k+1} −
@@ -264,6 +303,7 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
     if (result.subgradient.size() > d) out.subgradient.tail(1) += result.subgradient.tail(1);
     if (friction) out.friction_gradient += result.friction_gradient;
     out.psi_z[i] = result.psi_z;
+    out.psi_u[i] = result.psi_u;
     coupling_z = sensitivity::linearize_piece(pieces[i], law(k), s.contact->state).S.transpose() * result.psi_z;
     for (Eigen::Index node = 0; node < boundary.num_nodes(); ++node) coupling_z(dim * node + dim - 1) = 0.0;  // E_t
   }

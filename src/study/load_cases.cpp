@@ -25,11 +25,6 @@ void check_scales(const std::vector<double>& scales, std::size_t expected, std::
       throw InvalidInput(fmt::format("load_case[{}].{}[{}] = {}; expected a finite number", k, field, j, scales[j]));
 }
 
-// An empty list is the case file as written: every scale 1.
-std::vector<double> scales_or_ones(const std::vector<double>& given, std::size_t n) {
-  return given.empty() ? std::vector<double>(n, 1.0) : given;
-}
-
 }  // namespace
 
 void LoadCasesDefinition::validate(std::size_t num_tractions, std::size_t num_dirichlet, std::size_t num_forces) const {
@@ -43,6 +38,14 @@ void LoadCasesDefinition::validate(std::size_t num_tractions, std::size_t num_di
     if (!names.insert(c.name).second)
       throw InvalidInput(fmt::format("load_case[{}].name = \"{}\" is used by an earlier case; expected unique names", k,
                                      c.name));
+    if (c.program && !(c.load_scale.empty() && c.dirichlet_scale.empty() && c.force_scale.empty()))
+      throw InvalidInput(fmt::format("load_case[{}] (\"{}\") has both scale lists and [[load_case.step]] tables; expected "
+                                     "one of them: the scales of a static load, or steps that each give their own",
+                                     k, c.name));
+    if (c.program && c.program->steps.empty())
+      throw InvalidInput(fmt::format("load_case[{}].step: the program has no steps; expected at least one "
+                                     "[[load_case.step]] table",
+                                     k));
     check_scales(c.load_scale, num_tractions, k, "load_scale", "load");
     check_scales(c.dirichlet_scale, num_dirichlet, k, "dirichlet_scale", "dirichlet");
     check_scales(c.force_scale, num_forces, k, "force_scale", "force");
@@ -56,38 +59,26 @@ void LoadCasesDefinition::validate(std::size_t num_tractions, std::size_t num_di
                                    cases.size()));
 }
 
+LoadingProgramDefinition LoadCaseDefinition::as_program() const {
+  if (program) return *program;
+  return LoadingProgramDefinition{{LoadStepDefinition{name, load_scale, dirichlet_scale, force_scale, true}}};
+}
+
+bool LoadCasesDefinition::has_programs() const {
+  for (const LoadCaseDefinition& c : cases)
+    if (c.program) return true;
+  return false;
+}
+
 LoadCases::LoadCases(const ElasticBody& body, LoadCasesDefinition definition)
     : body_(body), definition_(std::move(definition)) {
   const BodyDefinition& def = body_.definition();
   definition_.validate(def.tractions.size(), def.dirichlet.size(), def.forces.size());
+  for (std::size_t k = 0; k < definition_.cases.size(); ++k)
+    if (definition_.cases[k].program) definition_.cases[k].program->validate(def, fmt::format("load_case[{}]", k));
   if (!body_.contact_boundary())
     throw InvalidInput("load_case: load cases combine a contact cost; expected a [contact] table");
   traction_kernels_.resize(def.tractions.size());
-  for (std::size_t j = 0; j < def.tractions.size(); ++j) {
-    bool scaled = false;
-    for (const LoadCaseDefinition& c : definition_.cases) scaled |= !c.load_scale.empty() && c.load_scale[j] != 1.0;
-    if (!scaled) continue;
-    // Only its traction_load and shape_derivative are used: no Dirichlet data, never factorized.
-    traction_kernels_[j] = std::make_unique<fem::LinearElasticity>(body_.mesh(), def.material, fem::PrescribedDofs{},
-                                                                   std::vector<fem::FaceTraction>{def.tractions[j]},
-                                                                   def.linear_solver);
-  }
-}
-
-std::vector<StepLoads> LoadCases::step_loads(const Eigen::Ref<const Eigen::MatrixXd>& X) const {
-  const BodyDefinition& def = body_.definition();
-  const StepLoadBuilder builder(body_, X);
-  const Eigen::VectorXd no_slip = Eigen::VectorXd::Zero((body_.mesh().dim() - 1) * body_.contact_boundary()->num_nodes());
-  std::vector<StepLoads> out;
-  out.reserve(definition_.cases.size());
-  for (const LoadCaseDefinition& c : definition_.cases) {
-    const std::vector<double> ds = scales_or_ones(c.dirichlet_scale, def.dirichlet.size());
-    std::vector<fem::FaceDirichlet> dirichlet = def.dirichlet;
-    for (std::size_t j = 0; j < dirichlet.size(); ++j) dirichlet[j].displacement *= ds[j];
-    out.push_back(builder.build(scales_or_ones(c.load_scale, def.tractions.size()),
-                                scales_or_ones(c.force_scale, def.forces.size()), dirichlet, no_slip, true));
-  }
-  return out;
 }
 
 Eigen::VectorXd LoadCases::load_change_shape_derivative(int k, const Eigen::Ref<const Eigen::MatrixXd>& X,
@@ -96,10 +87,18 @@ Eigen::VectorXd LoadCases::load_change_shape_derivative(int k, const Eigen::Ref<
   Eigen::VectorXd out = Eigen::VectorXd::Zero(body_.definition().shape.num_controls());
   if (c.load_scale.empty()) return out;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(body_.mesh().num_dofs());
+  const BodyDefinition& def = body_.definition();
   for (std::size_t j = 0; j < traction_kernels_.size(); ++j) {
     const double change = c.load_scale[j] - 1.0;
+    if (change == 0.0) continue;
+    // Built on first use (a kernel holds the mesh's element pattern): only its traction_load and
+    // shape_derivative are used — no Dirichlet data, never factorized.
+    if (!traction_kernels_[j])
+      traction_kernels_[j] = std::make_unique<fem::LinearElasticity>(
+          body_.mesh(), def.material, fem::PrescribedDofs{}, std::vector<fem::FaceTraction>{def.tractions[j]},
+          def.linear_solver);
     // shape_derivative(X, 0, ψ) = ∇_α[ψᵀ(A·0 − l_j(α))] = −∇_α[ψᵀ l_j(α)].
-    if (change != 0.0) out += change * traction_kernels_[j]->shape_derivative(X, zero, psi);
+    out += change * traction_kernels_[j]->shape_derivative(X, zero, psi);
   }
   return out;
 }

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <string_view>
 
 #include "frictopt/core/error.hpp"
 #include "frictopt/fem/node_selection.hpp"
@@ -12,17 +13,17 @@
 namespace frictopt::study {
 namespace {
 
-void check_scales(const std::vector<double>& scales, std::size_t expected, std::size_t step,
+void check_scales(const std::vector<double>& scales, std::size_t expected, std::string_view where, std::size_t step,
                   const char* field, const char* table) {
   if (scales.empty()) return;
   if (scales.size() != expected)
     throw InvalidInput(
-        fmt::format("program.step[{}].{} has {} entries, but the case has {} [[{}]] table{}; "
+        fmt::format("{}.step[{}].{} has {} entries, but the case has {} [[{}]] table{}; "
                     "expected one scale per [[{}]] (or none, to keep the previous step's)",
-                    step, field, scales.size(), expected, table, expected == 1 ? "" : "s", table));
+                    where, step, field, scales.size(), expected, table, expected == 1 ? "" : "s", table));
   for (std::size_t j = 0; j < scales.size(); ++j)
     if (!std::isfinite(scales[j]))
-      throw InvalidInput(fmt::format("program.step[{}].{}[{}] = {}; expected a finite number", step,
+      throw InvalidInput(fmt::format("{}.step[{}].{}[{}] = {}; expected a finite number", where, step,
                                      field, j, scales[j]));
 }
 
@@ -92,15 +93,14 @@ Eigen::VectorXd StepLoadBuilder::tangential_displacement(
   return boundary ? boundary->tangential_displacements(displacement) : Eigen::VectorXd();  // in the foundation's frame
 }
 
-void LoadingProgramDefinition::validate(const BodyDefinition& body) const {
+void LoadingProgramDefinition::validate(const BodyDefinition& body, std::string_view where) const {
   if (steps.empty())
-    throw InvalidInput(
-        "program.step: the program has no steps; expected at least one [[program.step]] table");
+    throw InvalidInput(fmt::format("{}.step: the program has no steps; expected at least one [[{}.step]] table", where,
+                                   where.starts_with("load_case") ? "load_case" : "program"));
   for (std::size_t k = 0; k < steps.size(); ++k) {
-    check_scales(steps[k].load_scale, body.tractions.size(), k, "load_scale", "load");
-    check_scales(steps[k].dirichlet_scale, body.dirichlet.size(), k, "dirichlet_scale",
-                 "dirichlet");
-    check_scales(steps[k].force_scale, body.forces.size(), k, "force_scale", "force");
+    check_scales(steps[k].load_scale, body.tractions.size(), where, k, "load_scale", "load");
+    check_scales(steps[k].dirichlet_scale, body.dirichlet.size(), where, k, "dirichlet_scale", "dirichlet");
+    check_scales(steps[k].force_scale, body.forces.size(), where, k, "force_scale", "force");
   }
 }
 

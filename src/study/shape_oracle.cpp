@@ -74,22 +74,11 @@ ShapeOracle::ShapeOracle(ElasticBody& body, std::unique_ptr<cost::CostFunctional
 }
 
 ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : ShapeOracle(body, nullptr) {
-  const bool needs_initial_state =
-      (definition.kind == cost::CostKind::kTargetPressure && std::isnan(definition.target_pressure)) ||
-      (definition.kind == cost::CostKind::kTractionUniformity && definition.target_traction_initial_mean);
-  if (definition.program) {
-    // A cost along a loading history (issue 13 item 2; study/history.hpp).
-    if (definition.load_cases)
-      throw InvalidInput("[[load_case]] tables with [[program.step]] tables: load cases given as programs are not "
-                         "supported; expected either load cases or a loading program");
-    history_ = std::make_unique<ProgramHistory>(body_, definition, gap_matrix_);
-    return;
-  }
-  if (definition.step != 0)
-    throw InvalidInput(fmt::format("cost.step = {} on a case without [[program.step]] tables: a history cost on a "
-                                   "one-step case; expected [[program.step]] tables or no cost.step",
-                                   definition.step));
   if (definition.load_cases) {
+    if (definition.program)
+      throw InvalidInput("[[load_case]] tables with [[program.step]] tables: the program would apply to no case in "
+                         "particular; expected each load case's own [[load_case.step]] tables (a load case given as a "
+                         "loading program)");
     // The compliance reads the work of the case file's tractions (cost::CostInput::fem), not a
     // case's: with other loads per case its value would be wrong.
     if (definition.kind == cost::CostKind::kCompliance)
@@ -97,22 +86,49 @@ ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : 
                          "loads; expected a contact cost (target_pressure, normal_force_power, pressure_norm, total_slip, "
                          "traction_uniformity)");
     cases_ = std::make_unique<LoadCases>(body_, *definition.load_cases);
-    const auto k_cases = static_cast<std::size_t>(cases_->size());
-    case_states_.resize(k_cases);
-    case_warm_starts_.resize(k_cases);
-    case_sets_.resize(k_cases);
-    // An initial_mean target is each case's own: the mean pressure (traction) of that load.
-    if (needs_initial_state) solve_state(body_.initial_design());
-    for (std::size_t k = 0; k < k_cases; ++k) {
-      if (needs_initial_state && case_states_[k]->summary.status != Status::kConverged)
-        throw NumericalFailure(fmt::format("load case \"{}\": the state at the initial design did not solve: {}",
-                                           (*cases_)[static_cast<int>(k)].name, case_states_[k]->summary.message));
-      case_costs_.push_back(make_cost(definition, body_, needs_initial_state ? case_states_[k].get() : nullptr));
+    const bool programs = cases_->definition().has_programs();
+    if (!programs && definition.step != 0)
+      throw InvalidInput(fmt::format("cost.step = {} with load cases that are static loads: a history cost on one-step "
+                                     "cases; expected [[load_case.step]] tables or no cost.step",
+                                     definition.step));
+    if (!programs && definition.kind == cost::CostKind::kDissipation)
+      throw InvalidInput("cost.kind = \"dissipation\" with load cases that are static loads: a history cost on one-step "
+                         "cases; expected [[load_case.step]] tables");
+    // Every case as a loading program (a static load is a one-step program, which solves and
+    // differentiates exactly the static problem): one mechanism for states, costs along a
+    // history, initial_mean targets (each case's own) and subgradients.
+    for (int k = 0; k < cases_->size(); ++k) {
+      CostDefinition one = definition;
+      one.load_cases.reset();
+      one.program = std::make_shared<const LoadingProgramDefinition>((*cases_)[k].as_program());
+      case_histories_.push_back(
+          std::make_unique<ProgramHistory>(body_, one, gap_matrix_, fmt::format("load_case[{}]", k)));
     }
     return;
   }
+  if (definition.program) {
+    // A cost along a loading history (issue 13 item 2; study/history.hpp).
+    history_ = std::make_unique<ProgramHistory>(body_, definition, gap_matrix_);
+    return;
+  }
+  if (definition.step != 0)
+    throw InvalidInput(fmt::format("cost.step = {} on a case without [[program.step]] tables: a history cost on a "
+                                   "one-step case; expected [[program.step]] tables or no cost.step",
+                                   definition.step));
+  const bool needs_initial_state =
+      (definition.kind == cost::CostKind::kTargetPressure && std::isnan(definition.target_pressure)) ||
+      (definition.kind == cost::CostKind::kTractionUniformity && definition.target_traction_initial_mean);
   if (needs_initial_state) solve_state(body_.initial_design());
   cost_ = make_cost(definition, body_, needs_initial_state ? state_.get() : nullptr);
+}
+
+void ShapeOracle::remember(std::shared_ptr<BodyState> state, const Eigen::VectorXd& alpha) {
+  state_ = std::move(state);
+  state_alpha_ = alpha;
+  delassus_ = state_->contact ? state_->contact->delassus : nullptr;
+  recent_.push_front(state_);
+  if (recent_.size() > kRecentStates) recent_.pop_back();
+  ++state_solves_;
 }
 
 void ShapeOracle::solve_state(const Eigen::VectorXd& alpha) {
@@ -121,15 +137,7 @@ void ShapeOracle::solve_state(const Eigen::VectorXd& alpha) {
   if (history_) {
     // Every step at α on one factorization; the oracle's state is the one the cost reads.
     history_->solve(alpha);
-    const int k = history_->ok() ? history_->cost_step() : history_->num_steps() - 1;
-    state_ = history_->state(k);
-    for (int j = k; !state_; --j) state_ = history_->state(j - 1);  // the failed step: the last solved
-    state_alpha_ = alpha;
-    delassus_ = state_->contact ? state_->contact->delassus : nullptr;
-    recent_.push_front(state_);
-    if (recent_.size() > kRecentStates) recent_.pop_back();
-    ++state_solves_;
-    return;
+    return remember(history_->cost_state(), alpha);
   }
   if (state_ && state_->contact) {
     // The previous state stays readable for output; its Delassus operator (up to m² doubles)
@@ -137,129 +145,84 @@ void ShapeOracle::solve_state(const Eigen::VectorXd& alpha) {
     state_->contact->delassus.reset();
     state_->contact->delassus_matrix.reset();
   }
-  state_ = std::make_shared<BodyState>(body_.solve(alpha, "design"));
-  state_alpha_ = alpha;
-  delassus_ = state_->contact ? state_->contact->delassus : nullptr;
-  recent_.push_front(state_);
-  if (recent_.size() > kRecentStates) recent_.pop_back();
-  ++state_solves_;
+  remember(std::make_shared<BodyState>(body_.solve(alpha, "design")), alpha);
 }
 
 void ShapeOracle::solve_cases(const Eigen::VectorXd& alpha) {
-  for (const auto& s : case_states_)
-    if (s && s->contact) {
-      // As solve_state: earlier states stay readable, their Delassus operator is released.
-      s->contact->delassus.reset();
-      s->contact->delassus_matrix.reset();
-    }
-  // The K cases as steps at one α from the unloaded body: the first factorizes A(α) and builds
-  // M, the others reuse both (ElasticBody::solve_step) — K contact solves, one factorization.
-  const std::vector<StepLoads> loads =
-      cases_->step_loads(body_.mesh().positions(alpha.head(body_.definition().shape.num_controls())));
+  // The K cases' programs at one α from the unloaded body: the first step of the first case
+  // factorizes A(α) and builds M, every other step of every case reuses both
+  // (ElasticBody::solve_step) — one factorization, Σ_k K_k contact solves. Each case's steps
+  // start from their own last converged contact states (a neighbour case's is a poor start).
   last_factorizations_ = 0;
-  for (int k = 0; k < cases_->size(); ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    // Each case from its own last converged contact state (a case's neighbour's is a poor start).
-    body_.set_warm_start(case_warm_starts_[i]);
-    auto s = std::make_shared<BodyState>(body_.solve_step(alpha, loads[i], fmt::format("load case \"{}\"", (*cases_)[k].name)));
-    if (s->summary.factorization_seconds > 0.0) ++last_factorizations_;
-    if (s->summary.status == Status::kConverged && s->contact) case_warm_starts_[i] = s->contact->state;
-    case_states_[i] = std::move(s);
-    case_sets_[i].reset();
+  for (const auto& history : case_histories_) {
+    history->solve(alpha);
+    last_factorizations_ += history->factorizations();
   }
-  state_alpha_ = alpha;
   selected_ = 0;
-  state_ = case_states_.front();
-  delassus_ = state_->contact ? state_->contact->delassus : nullptr;  // the same M for every case
-  recent_.push_front(state_);
-  if (recent_.size() > kRecentStates) recent_.pop_back();
-  ++state_solves_;
+  remember(case_histories_.front()->cost_state(), alpha);
+}
+
+ProgramHistory& ShapeOracle::case_history(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k) {
+  FRICTOPT_ASSERT(cases_ && k >= 0 && k < cases_->size(), "case_history: a load case of this oracle");
+  solve_state(alpha);
+  return *case_histories_[static_cast<std::size_t>(k)];
 }
 
 void ShapeOracle::select_case(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k) {
-  FRICTOPT_ASSERT(cases_ && k >= 0 && k < cases_->size(), "select_case: a load case of this oracle");
-  solve_state(alpha);
+  state_ = case_history(alpha, k).cost_state();
   selected_ = k;
-  state_ = case_states_[static_cast<std::size_t>(k)];
   // Output at α (state(α)) shows the selected case.
   if (!recent_.empty() && recent_.front()->alpha == state_->alpha) recent_.front() = state_;
 }
 
 const sensitivity::IndexSets& ShapeOracle::case_index_sets(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k) {
-  solve_state(alpha);
-  auto& sets = case_sets_[static_cast<std::size_t>(k)];
-  if (!sets) sets = sensitivity::classify(case_states_[static_cast<std::size_t>(k)]->contact->state,
-                                          body_.definition().contact->law);
-  return *sets;
+  ProgramHistory& history = case_history(alpha, k);
+  return history.index_sets(history.cost_step());
 }
 
 const BodyState& ShapeOracle::case_state(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k) {
-  FRICTOPT_ASSERT(cases_ && k >= 0 && k < cases_->size(), "case_state: a load case of this oracle");
-  solve_state(alpha);
-  return *case_states_[static_cast<std::size_t>(k)];
-}
-
-sensitivity::CostPartials ShapeOracle::case_partials(int k) const {
-  const BodyState& s = *case_states_[static_cast<std::size_t>(k)];
-  const cost::CostInput input{body_.elasticity(), *body_.contact_boundary(), s.alpha, s.positions, s.displacement,
-                              s.contact->state, body_.contact_boundary()->tributary_areas()};
-  return case_costs_[static_cast<std::size_t>(k)]->evaluate(input);
-}
-
-sensitivity::AdjointSensitivity::Result ShapeOracle::case_subgradient(int k, const sensitivity::Piece& piece,
-                                                                      const sensitivity::CostPartials& j) {
-  const BodyState& s = *case_states_[static_cast<std::size_t>(k)];
-  const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
-                                                body_.definition().contact->law);
-  auto result = adjoint.subgradient(piece, delassus(), s.positions, s.displacement, s.contact->state, j);
-  if (result.summary.status == Status::kConverged)
-    result.subgradient += cases_->load_change_shape_derivative(k, s.positions, body_.elasticity().dofs().expand_homogeneous(result.psi_u));
-  append_orientation_derivative(body_.orientation_design(), body_.definition().contact->law, piece, s.contact->state, result);
-  return result;
+  return *case_history(alpha, k).cost_state();
 }
 
 std::vector<sensitivity::AdjointSensitivity::Result> ShapeOracle::case_subgradients(
     const Eigen::Ref<const Eigen::VectorXd>& alpha, int k, const std::vector<sensitivity::Piece>& pieces) {
-  solve_state(alpha);
-  const sensitivity::CostPartials j = case_partials(k);
-  std::vector<sensitivity::AdjointSensitivity::Result> out;
-  for (const sensitivity::Piece& piece : pieces) out.push_back(case_subgradient(k, piece, j));
-  return out;
+  return case_history(alpha, k).cost_step_subgradients(pieces);
 }
 
 sensitivity::PieceEnumeration ShapeOracle::case_pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k, int cap) {
-  return sensitivity::enumerate_pieces(case_index_sets(alpha, k), body_.definition().contact->law, cap);
+  return case_history(alpha, k).cost_step_pieces(cap);
 }
 
 void ShapeOracle::evaluate_cases(Evaluation& e, bool with_subgradient) {
   const int n_cases = cases_->size();
   e.factorizations = last_factorizations_;
   for (int k = 0; k < n_cases; ++k) {
-    const BodyState& s = *case_states_[static_cast<std::size_t>(k)];
-    if (s.summary.status != Status::kConverged) {
+    const ProgramHistory& history = *case_histories_[static_cast<std::size_t>(k)];
+    if (!history.ok()) {
+      const BodyState& s = *history.cost_state();
       e.state = s.summary;
       e.contact = s.contact ? s.contact->summary : contact::CoulombSolver::Summary{};
-      e.message = fmt::format("load case \"{}\": state solve failed: {}", (*cases_)[k].name, s.summary.message);
+      e.message = fmt::format("load case \"{}\": state solve failed: {}", (*cases_)[k].name, history.message());
       return;
     }
   }
-  std::vector<sensitivity::CostPartials> j;
-  for (int k = 0; k < n_cases; ++k) {
-    j.push_back(case_partials(k));
-    e.case_values.push_back(j.back().value);
-  }
+  for (const auto& history : case_histories_) e.case_values.push_back(history->value());
   const CombinedValue combined = cases_->combine(e.case_values);
   e.value = combined.value;
   e.selected_case = combined.selected;
   select_case(state_alpha_, combined.selected);
+  ProgramHistory& selected = *case_histories_[static_cast<std::size_t>(combined.selected)];
   e.state = state_->summary;
   e.contact = state_->contact->summary;
-  e.index_sets = case_index_sets(state_alpha_, combined.selected);
+  e.index_sets = selected.index_sets(selected.cost_step());
+  if (selected.num_steps() > 1)
+    for (int k = 0; k < selected.num_steps(); ++k) e.step_index_sets.push_back(selected.index_sets(k));
   e.ok = true;
   if (!with_subgradient) return;
   const auto start = std::chrono::steady_clock::now();
   // "worst": ξ = w_s ξ_s of the selected case s (a Clarke subgradient of the max, docs/theory/
-  // load-cases.md); "weighted": ξ = Σ_k w_k ξ_k. Each ξ_k of its case's default piece.
+  // load-cases.md); "weighted": ξ = Σ_k w_k ξ_k. Each ξ_k of its case's default pieces (every
+  // step's, by the backward adjoint over its program).
   std::vector<int> used;
   if (cases_->definition().combine == CaseCombination::kWorst) {
     used.push_back(combined.selected);
@@ -268,8 +231,8 @@ void ShapeOracle::evaluate_cases(Evaluation& e, bool with_subgradient) {
       if ((*cases_)[k].weight > 0.0) used.push_back(k);
   }
   for (int k : used) {
-    const auto result = case_subgradient(k, sensitivity::default_piece(case_index_sets(state_alpha_, k)),
-                                         j[static_cast<std::size_t>(k)]);
+    ProgramHistory& history = *case_histories_[static_cast<std::size_t>(k)];
+    const HistorySubgradient result = history.subgradient(history.default_pieces());
     e.adjoint = result.summary;
     if (result.summary.status != Status::kConverged) {
       e.ok = false;
@@ -411,21 +374,8 @@ std::vector<sensitivity::AdjointSensitivity::Result> ShapeOracle::subgradients(c
                                                        const std::vector<sensitivity::Piece>& pieces) {
   solve_state(alpha);
   if (cases_) return case_subgradients(alpha, selected_, pieces);
-  if (history_) {
-    // The pieces are the cost step's; every other step keeps its default piece.
-    std::vector<sensitivity::AdjointSensitivity::Result> out;
-    std::vector<sensitivity::Piece> chosen = history_->default_pieces();
-    for (const sensitivity::Piece& piece : pieces) {
-      chosen[static_cast<std::size_t>(history_->cost_step())] = piece;
-      const HistorySubgradient h = history_->subgradient(chosen);
-      sensitivity::AdjointSensitivity::Result r;
-      r.subgradient = h.subgradient;
-      r.friction_gradient = h.friction_gradient;
-      r.summary = h.summary;
-      out.push_back(std::move(r));
-    }
-    return out;
-  }
+  // The pieces are the cost step's; every other step keeps its default piece.
+  if (history_) return history_->cost_step_subgradients(pieces);
   const sensitivity::CostPartials j = partials();
   const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
                                                 body_.definition().contact->law);
@@ -443,9 +393,10 @@ sensitivity::AdjointSensitivity::StateDerivative ShapeOracle::state_derivative(
     const Eigen::Ref<const Eigen::VectorXd>& alpha, const Eigen::Ref<const Eigen::VectorXd>& h,
     const sensitivity::Piece* piece) {
   solve_state(alpha);
-  if (history_)
-    throw InvalidInput("ShapeOracle::state_derivative: not available for a cost along a loading history (the state "
-                       "derivative of one step depends on the earlier steps')");
+  if (history_ || cases_)
+    throw InvalidInput("ShapeOracle::state_derivative: not available for a cost along a loading history or for load "
+                       "cases (the state derivative of one step depends on the earlier steps', and a case's on its "
+                       "own load change)");
   const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
                                                 body_.definition().contact->law);
   const sensitivity::Piece chosen =
@@ -457,13 +408,7 @@ sensitivity::AdjointSensitivity::StateDerivative ShapeOracle::state_derivative(
 sensitivity::PieceEnumeration ShapeOracle::pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int cap) {
   solve_state(alpha);
   if (cases_) return case_pieces(alpha, selected_, cap);
-  if (history_) {
-    sensitivity::PieceEnumeration out = history_->pieces(history_->cost_step(), cap);
-    const double step_cardinality = out.cardinality;
-    out.cardinality = history_->cardinality();
-    out.sampled = out.sampled || out.cardinality > step_cardinality;
-    return out;
-  }
+  if (history_) return history_->cost_step_pieces(cap);
   const auto sets = sensitivity::classify(state_->contact->state, body_.definition().contact->law);
   return sensitivity::enumerate_pieces(sets, body_.definition().contact->law, cap);
 }

@@ -122,6 +122,8 @@ struct Certificate {
   /// A cost along a loading history (issue 13 item 2; empty without): per step, its index sets
   /// and |𝕃_k|; `index_sets` is the step the cost reads (the last for the dissipation), and
   /// `subgradients` the default pieces varied one step at a time (docs/theory/history-adjoint.md §4).
+  /// With load cases given as programs: the lines of each active case of more than one step,
+  /// prefixed by its name (its generators are its default pieces varied one step at a time).
   std::vector<std::string> history_steps;
   double time_seconds = 0.0;
   /// A few lines for the CLI.

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "frictopt/contact/friction_law.hpp"
@@ -30,8 +31,8 @@ struct HistorySubgradient {
   Eigen::VectorXd friction_gradient;  ///< Σ_k over the friction steps of ∂Θ/∂p (friction_parameters(law))
   /// The worst step's adjoint summary (the failed one, else the smallest reciprocal condition).
   sensitivity::AdjointSensitivity::Summary summary;
-  /// ψ_z^k per step (for tests and reports).
-  std::vector<Eigen::VectorXd> psi_z;
+  /// ψ_z^k and ψ_u^k (free DOFs) per step (for tests and reports).
+  std::vector<Eigen::VectorXd> psi_z, psi_u;
 };
 
 /// A loading program with a cost on its history, at one design at a time. Lifetime: `body` must
@@ -41,8 +42,11 @@ class ProgramHistory {
   /// `definition.program` must be set. Throws InvalidInput for the compliance (it reads the case
   /// file's own loads, not a step's), a step out of [0, K] (0 = last), a program that does not
   /// fit the body, or a body without contact. An "initial_mean" target is that of the state the
-  /// cost reads (the chosen step) at the initial design, which is solved here.
-  ProgramHistory(ElasticBody& body, const CostDefinition& definition, Eigen::MatrixXd gap_matrix);
+  /// cost reads (the chosen step) at the initial design, which is solved here. `where` names the
+  /// program's tables in messages: "program" ([[program.step]]) or "load_case[k]" (a load
+  /// case's own program; ShapeOracle holds one history per load case).
+  ProgramHistory(ElasticBody& body, const CostDefinition& definition, Eigen::MatrixXd gap_matrix,
+                 std::string_view where = "program");
 
   int num_steps() const { return static_cast<int>(program_.steps.size()); }
   /// 0-based index of the step whose state the cost reads (the last for the dissipation).
@@ -65,6 +69,12 @@ class ProgramHistory {
   const std::string& message() const { return message_; }
   /// Step k's state (0-based) of the last solve; null after a failed step.
   const std::shared_ptr<BodyState>& state(int k) const { return states_[static_cast<std::size_t>(k)]; }
+  /// The state the cost reads (cost_step()'s); after a failed step before it, that failed step's
+  /// state (whose summary says why). Needs solve().
+  std::shared_ptr<BodyState> cost_state() const;
+  /// Numeric factorizations of A in the last solve (0 when the body's factorization at α was
+  /// already there, e.g. from another load case's program at the same design).
+  int factorizations() const { return factorizations_; }
   /// The law of step k: the case's, or W = {0} for a frictionless step.
   const contact::FrictionLaw& law(int k) const;
 
@@ -78,6 +88,12 @@ class ProgramHistory {
   std::vector<sensitivity::Piece> default_pieces();
   /// |𝕃| of the history: the product over the steps of |𝕃_k|.
   double cardinality();
+  /// 𝕃 of the cost step, with the cardinality of the whole history (sampled when another step has
+  /// a choice too): the pieces a caller varies when it sees one state (ShapeOracle::pieces).
+  sensitivity::PieceEnumeration cost_step_pieces(int cap);
+  /// ξ for each given piece of the cost step, every other step at its default piece.
+  std::vector<sensitivity::AdjointSensitivity::Result> cost_step_subgradients(
+      const std::vector<sensitivity::Piece>& pieces);
 
   /// ξ for one piece per step (size K) by the backward adjoint. `coupled = false` drops the
   /// steps' coupling through the slip reference (−S_{k+1} E_t G): a deliberately wrong ξ that the
@@ -100,6 +116,7 @@ class ProgramHistory {
   Eigen::VectorXd alpha_;
   bool ok_ = false;
   std::string message_ = "solve() has not been called";
+  int factorizations_ = 0;
   std::vector<std::shared_ptr<BodyState>> states_;
   std::vector<Eigen::VectorXd> tangential_;  // u_t^k of the contact nodes, k = 0..K (u_t^0 = 0)
   std::vector<std::optional<contact::ContactState>> warm_starts_;

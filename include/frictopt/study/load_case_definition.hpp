@@ -6,11 +6,13 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "frictopt/core/enum_table.hpp"
+#include "frictopt/study/loading_program_definition.hpp"
 
 namespace frictopt::study {
 
@@ -32,13 +34,22 @@ inline constexpr auto kCaseCombinationNames = frictopt::detail::make_enum_table<
 
 /// One load case: the body's own [[load]], [[dirichlet]] and [[force]] tables scaled, as one step
 /// of a loading program is (study/loading_program.hpp): the case's load is Σ_j scale_j · load_j.
-/// An empty scale list means every scale 1 (the case file as written).
+/// An empty scale list means every scale 1 (the case file as written). Or a loading program of its
+/// own ([[load_case.step]] tables): the case's cost then reads that history ([cost] step or the
+/// dissipation; study/history.hpp), and its scale lists stay empty.
 struct LoadCaseDefinition {
   std::string name;                     ///< unique among the cases; reports and [study] cases
   std::vector<double> load_scale;       ///< per BodyDefinition::tractions
   std::vector<double> dirichlet_scale;  ///< per BodyDefinition::dirichlet (its displacement)
   std::vector<double> force_scale;      ///< per BodyDefinition::forces
   double weight = 1.0;                  ///< w_k >= 0
+  std::optional<LoadingProgramDefinition> program;  ///< [[load_case.step]]; none: one static load
+
+  /// The case as a loading program: its own, or one step with its scales (the static load; a
+  /// one-step program solves exactly the static problem, study/history.hpp).
+  [[nodiscard]] LoadingProgramDefinition as_program() const;
+  /// The number of states its cost may read: its program's steps, 1 for a static load.
+  [[nodiscard]] std::size_t num_steps() const { return program ? program->steps.size() : 1; }
 };
 
 /// [[load_case]] tables with [study] combine.
@@ -47,8 +58,11 @@ struct LoadCasesDefinition {
   std::vector<LoadCaseDefinition> cases;
   /// Throws InvalidInput naming "load_case[k].field": no case, an empty or duplicate name, a
   /// scale list whose length is not the number of the body's tables of its kind (given here),
-  /// a scale that is not finite, a weight that is negative or not finite, or all weights zero.
+  /// a scale that is not finite, a weight that is negative or not finite, all weights zero, or
+  /// a case with both scale lists and [[load_case.step]] tables (or a program with no steps).
   void validate(std::size_t num_tractions, std::size_t num_dirichlet, std::size_t num_forces) const;
+  /// True when some case has its own loading program.
+  [[nodiscard]] bool has_programs() const;
 };
 
 }  // namespace frictopt::study

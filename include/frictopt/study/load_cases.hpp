@@ -35,10 +35,6 @@ class LoadCases {
   int size() const { return static_cast<int>(definition_.cases.size()); }
   const LoadCaseDefinition& operator[](int k) const { return definition_.cases[static_cast<std::size_t>(k)]; }
 
-  /// The loads of every case at node positions X = X(α), as steps from the unloaded body (slip
-  /// reference 0, friction on): ElasticBody::solve_step at one α then factorizes once.
-  [[nodiscard]] std::vector<StepLoads> step_loads(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
-
   /// −∇_α[ψᵀ(l_k(α) − l(α))] for a full adjoint ψ (zero at prescribed DOFs): the shape derivative
   /// of case k's traction change. The adjoint of the body (sensitivity::AdjointSensitivity)
   /// differentiates the residual A(α)u − l(α) with the case file's tractions l; case k's residual
@@ -54,8 +50,8 @@ class LoadCases {
   const ElasticBody& body_;
   LoadCasesDefinition definition_;
   // Per [[load]] j that some case scales by s_kj ≠ 1: a kernel whose only traction is load j, for
-  // its shape derivative (fem's kernel is per traction set); null where every case keeps s = 1.
-  std::vector<std::unique_ptr<fem::LinearElasticity>> traction_kernels_;
+  // its shape derivative (fem's kernel is per traction set); null until first needed.
+  mutable std::vector<std::unique_ptr<fem::LinearElasticity>> traction_kernels_;
 };
 
 }  // namespace frictopt::study

@@ -13,31 +13,9 @@
 
 #include "frictopt/core/status.hpp"
 #include "frictopt/study/elastic_body.hpp"
+#include "frictopt/study/loading_program_definition.hpp"
 
 namespace frictopt::study {
-
-/// One step of a program. A scale list is empty (keep the previous step's scales; before step 1
-/// every scale is 1, the case as written) or has one entry per [[load]] / [[dirichlet]] /
-/// [[force]] of the body, in their order; the step's load is Σ_j scale_j · load_j.
-struct LoadStepDefinition {
-  std::string label;                    ///< for reports; default "step k"
-  std::vector<double> load_scale;       ///< per BodyDefinition::tractions
-  std::vector<double> dirichlet_scale;  ///< per BodyDefinition::dirichlet (its displacement)
-  std::vector<double> force_scale;      ///< per BodyDefinition::forces
-  bool friction = true;                 ///< false: a frictionless step (W = {0})
-};
-
-/// [[program.step]] tables; at least one step.
-struct LoadingProgramDefinition {
-  std::vector<LoadStepDefinition> steps;
-  /// Throws InvalidInput naming "program.step[k].field" when there are no steps or a scale
-  /// list has the wrong length for `body` (a step referring to a load the case does not have),
-  /// or a scale is not finite.
-  void validate(const BodyDefinition& body) const;
-  /// The steps with the scales in force at each: every scale list full (an empty list carries
-  /// the previous step's over; before step 1 every scale is 1, the case as written).
-  [[nodiscard]] std::vector<LoadStepDefinition> scales_in_force(const BodyDefinition& body) const;
-};
 
 /// The result of one step.
 struct LoadStepResult {

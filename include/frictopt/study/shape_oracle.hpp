@@ -47,10 +47,11 @@ struct Evaluation {
   std::vector<double> case_values;
   /// Load cases: the case whose state `index_sets`, `state` and `contact` describe — for "worst"
   /// the first case attaining the max, whose subgradient ξ is (LoadCases::combine); −1 without.
+  /// (Each case's state is the one its cost reads: the cost step of its loading program.)
   int selected_case = -1;
   int factorizations = 0;  ///< numeric factorizations of A for this evaluation (1 with K cases)
   /// A cost along a loading history (issue 13 item 2): every step's index sets (`index_sets` is
-  /// the cost step's); empty without a program.
+  /// the cost step's; with load cases, of the selected case's program); empty without a program.
   std::vector<sensitivity::IndexSets> step_index_sets;
 };
 
@@ -93,25 +94,32 @@ class ShapeOracle final : public optim::Oracle {
   /// the whole history (the product over the steps). state_derivative() is not available.
   ProgramHistory* history() { return history_.get(); }
   const ProgramHistory* history() const { return history_.get(); }
-  /// The load cases of the cost definition (null: the case file's own loads).
+  /// The load cases of the cost definition (null: the case file's own loads). Each case is solved
+  /// as a loading program — its own [[load_case.step]] tables, or one step with its scales (the
+  /// static load) — on the one factorization of A(α) (study/history.hpp); "case k's state" below
+  /// is the state its cost reads (its program's cost step).
   const LoadCases* load_cases() const { return cases_.get(); }
-  /// Load cases: ξ_i of J_k (case k's own cost, unweighted) for the given pieces of case k at α.
+  /// Load cases: case k's history, solved at α.
+  ProgramHistory& case_history(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
+  /// Load cases: ξ_i of J_k (case k's own cost, unweighted) for the given pieces of case k's cost
+  /// step at α (its other steps at their default pieces).
   std::vector<sensitivity::AdjointSensitivity::Result> case_subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                                                          int k,
                                                                          const std::vector<sensitivity::Piece>& pieces);
-  /// Load cases: the index sets of case k at α and its 𝕃.
+  /// Load cases: 𝕃 of case k's cost step at α (the cardinality that of its whole history).
   sensitivity::PieceEnumeration case_pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k, int cap = 256);
+  /// Load cases: the index sets of case k's state at α.
   const sensitivity::IndexSets& case_index_sets(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
   /// Load cases: case k's state at α (solved now if α is not the last solved design).
   const BodyState& case_state(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
-  /// Load cases: makes case k's state at α the last_state() (and the one pieces(), subgradients()
-  /// and state_derivative() read), e.g. for certify's (MF1′) of each active case.
+  /// Load cases: makes case k's state at α the last_state() (and the one pieces() and
+  /// subgradients() read), e.g. for certify's (MF1′) of each active case.
   void select_case(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
 
   const ElasticBody& body() const { return body_; }
   /// The cost (with load cases: that of case 0; each case has its own when a target is initial_mean).
   const cost::CostFunctional& cost() const {
-    return cost_ ? *cost_ : history_ ? history_->cost() : *case_costs_.front();
+    return cost_ ? *cost_ : history_ ? history_->cost() : case_histories_.front()->cost();
   }
   /// The state of the last solved design.
   const BodyState& last_state() const { return *state_; }
@@ -124,10 +132,8 @@ class ShapeOracle final : public optim::Oracle {
  private:
   void solve_state(const Eigen::VectorXd& alpha);
   void solve_cases(const Eigen::VectorXd& alpha);
+  void remember(std::shared_ptr<BodyState> state, const Eigen::VectorXd& alpha);
   sensitivity::CostPartials partials() const;
-  sensitivity::CostPartials case_partials(int k) const;
-  sensitivity::AdjointSensitivity::Result case_subgradient(int k, const sensitivity::Piece& piece,
-                                                           const sensitivity::CostPartials& j);
   void evaluate_cases(Evaluation& e, bool with_subgradient);
   void evaluate_history(Evaluation& e, bool with_subgradient);
   const contact::DelassusMatrix& delassus();
@@ -141,13 +147,10 @@ class ShapeOracle final : public optim::Oracle {
   std::shared_ptr<const contact::DelassusMatrix> delassus_;
   std::map<std::vector<double>, Evaluation> cache_;
   int state_solves_ = 0;
-  // Load cases (issue 13): their loads, one cost per case, the states at state_alpha_ (state_ is
-  // the selected one), each case's last converged contact state (its own warm start).
+  // Load cases (issue 13): their definitions and combination, one history per case (each with
+  // its cost, its states at state_alpha_ and its own warm starts; state_ is the selected case's).
   std::unique_ptr<LoadCases> cases_;
-  std::vector<std::unique_ptr<cost::CostFunctional>> case_costs_;
-  std::vector<std::shared_ptr<BodyState>> case_states_;
-  std::vector<std::optional<contact::ContactState>> case_warm_starts_;
-  std::vector<std::optional<sensitivity::IndexSets>> case_sets_;
+  std::vector<std::unique_ptr<ProgramHistory>> case_histories_;
   int selected_ = 0;
   int last_factorizations_ = 0;
   std::unique_ptr<ProgramHistory> history_;  // a cost along a loading program (issue 13 item 2)
