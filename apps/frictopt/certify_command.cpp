@@ -24,7 +24,7 @@ namespace frictopt::app {
 // frictopt certify: the optimality certificate (thesis §5.3; spec 06 §6) of a run's final design,
 // printed and written to RUN_DIR/certificate.json. Reads RUN_DIR/case.toml (the copy `optimize`
 // made) and RUN_DIR/final_design.json.
-int run_certify(const std::filesystem::path& run_dir, int cap) {
+int run_certify(const std::filesystem::path& run_dir, int cap, double sample_radius, int samples) {
   using namespace frictopt;
   io::RunDirectory run(run_dir, io::RunOpening::kExisting);
   const std::filesystem::path case_path = run.store_case();
@@ -37,6 +37,8 @@ int run_certify(const std::filesystem::path& run_dir, int cap) {
   study::ShapeOracle oracle(body, description.required_cost());
   study::CertifyOptions options;
   options.cap = cap;
+  options.sample_radius = sample_radius;
+  options.samples = samples;
   const study::Certificate c = study::certify(oracle, alpha, options);
   fmt::print("{}: {} design variables, {} contact nodes, cost {}\n{}", run_dir.string(),
              body.num_design_variables(), body.contact_boundary()->num_nodes(), oracle.cost().name(), c.report());

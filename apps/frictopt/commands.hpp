@@ -33,7 +33,7 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
 /// directory), so that every rank's bundle method resumes from rank 0's checkpoint. Collective.
 void mirror_run_for_resume(const std::filesystem::path& out_dir);
 #endif
-int run_certify(const std::filesystem::path& run_dir, int cap);
+int run_certify(const std::filesystem::path& run_dir, int cap, double sample_radius = 0.0, int samples = 0);
 int run_identify(const std::filesystem::path& case_path, const std::filesystem::path& out_dir, bool generate,
                  std::uint64_t seed, bool noise_free);
 

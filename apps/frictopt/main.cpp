@@ -82,6 +82,14 @@ int main(int argc, char** argv) {
   CLI::App* certify = app.add_subcommand("certify", "Optimality certificate of a run's final design (thesis 5.3)");
   certify->add_option("run_dir", run_dir, "run directory written by `frictopt optimize`")->required();
   certify->add_option("--cap", certify_cap, "largest |L| enumerated in full (else sampled)")->check(CLI::Range(1, 1 << 20));
+  double certify_radius = 0.0;
+  int certify_samples = 0;
+  certify
+      ->add_option("--sample-radius", certify_radius,
+                   "also a sampled (Goldstein) certificate with designs within this radius [m] of the final one")
+      ->check(CLI::NonNegativeNumber);
+  certify->add_option("--samples", certify_samples, "designs sampled with --sample-radius (default 10(d + 1))")
+      ->check(CLI::Range(1, 100000));
   bool identify_generate = false, identify_noise_free = false;
   std::uint64_t identify_seed = 1;
   CLI::App* identify = app.add_subcommand(
@@ -143,7 +151,7 @@ int main(int argc, char** argv) {
       return run_optimize(case_path, out_dir, resume, force);
     }
     if (*check_gradient) return run_check_gradient(case_path, design_path, relative_step);
-    if (*certify) return run_certify(run_dir, certify_cap);
+    if (*certify) return run_certify(run_dir, certify_cap, certify_radius, certify_samples);
     if (*identify) return run_identify(case_path, out_dir, identify_generate, identify_seed, identify_noise_free);
     if (*experiment) return run_experiment(case_path, out_dir);
     if (*export_fclib) return run_export_fclib(case_path, fclib_out, fclib_units, !fclib_no_solution);

@@ -273,6 +273,20 @@ JsonValue to_json(const study::Certificate& c, const study::CertifyOptions& opti
   m["clarke_minimizer_is_extreme"] = c.mordukhovich.clarke_minimizer_is_extreme;
   m["stationary"] = c.mordukhovich.stationary;
   json["mordukhovich"] = m;
+  if (c.goldstein.computed) {
+    // "goldstein": the sampled certificate ("sampled" above says whether 𝕃 was sampled).
+    JsonValue sampled = JsonValue::object();
+    sampled["radius"] = c.goldstein.radius;
+    sampled["requested"] = c.goldstein.requested;
+    sampled["evaluated"] = c.goldstein.evaluated;
+    sampled["skipped"] = c.goldstein.failed;
+    sampled["largest_step"] = c.goldstein.largest_step;
+    sampled["distance"] = c.goldstein.clarke.distance;
+    sampled["relative_distance"] = c.goldstein.relative_distance;
+    sampled["stationary"] = c.goldstein.stationary;
+    sampled["message"] = c.goldstein.message;
+    json["goldstein"] = sampled;
+  }
   json["time_seconds"] = c.time_seconds;
   return json;
 }

@@ -17,6 +17,8 @@
 #include "frictopt/sensitivity/adjoint.hpp"
 #include "frictopt/sensitivity/piece.hpp"
 #include "frictopt/study/shape_optimization.hpp"
+#include "sampled_certificate.hpp"
+#include "scaled_stationarity.hpp"
 
 namespace frictopt::study {
 namespace {
@@ -46,20 +48,7 @@ std::string constraint_name(const std::string& origin, const shape::LinearConstr
 }
 
 // The stationarity QP of optim with the generators divided by `scale` (results scaled back).
-// N_Υ is a cone, so dist(0, conv{ξ_i/s} + N) = dist(0, conv{ξ_i} + N)/s; the dense QP's
-// tolerances are absolute, and ξ of a cost in N² (e.g. 1e14) against unit constraint normals
-// would leave it stuck at its start.
-optim::StationarityCertificate scaled_certificate(const Eigen::MatrixXd& Xi, const Eigen::VectorXd& x,
-                                                  const optim::LinearConstraints& constraints,
-                                                  const optim::StationarityOptions& options, double scale) {
-  const double s = scale > 0.0 ? scale : 1.0;
-  optim::StationarityCertificate c = optim::stationarity_certificate(Xi / s, x, constraints, options);
-  c.distance *= s;
-  c.subgradient_part *= s;
-  c.normal_part *= s;
-  c.subgradient_scale *= s;
-  return c;
-}
+using detail::scaled_certificate;
 
 // One equation of the tight system at a node, in the node's local unknowns: s·(G u)_i + c·z_i +
 // gap·g_i = 0 (the form of sensitivity::linearize_piece; g_i = (B̃α)_i).
@@ -506,6 +495,11 @@ void CertifyOptions::validate() const {
     throw InvalidInput(fmt::format("CertifyOptions::stationary_tolerance = {}; expected > 0", stationary_tolerance));
   if (!(case_active_tolerance >= 0.0))
     throw InvalidInput(fmt::format("CertifyOptions::case_active_tolerance = {}; expected >= 0", case_active_tolerance));
+  if (!(std::isfinite(sample_radius) && sample_radius >= 0.0))
+    throw InvalidInput(fmt::format("CertifyOptions::sample_radius = {}; expected a finite radius >= 0 (0: no sampled "
+                                   "certificate)",
+                                   sample_radius));
+  if (samples < 0) throw InvalidInput(fmt::format("CertifyOptions::samples = {}; expected >= 0 (0: 10(d + 1))", samples));
 }
 
 std::string Certificate::report() const {
@@ -556,6 +550,7 @@ std::string Certificate::report() const {
     s += fmt::format("  rows of spec 03 §11.1's table only (no R2 stick rows): {} x {}, rank {}: {}\n", mf1.spec_rows,
                      mf1.cols, mf1.spec_rank, mf1.spec_full_row_rank ? "full row rank" : "rank deficient");
   s += "Mordukhovich (extreme-point test): " + mordukhovich.message + "\n";
+  if (goldstein.computed) s += "sampled certificate: " + goldstein.message + "\n";
   return s;
 }
 
@@ -653,6 +648,15 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   } else {
     c.mf1 = mf1_report(oracle, c.index_sets, options);
     c.mordukhovich = mordukhovich_report(c, alpha, constraints, options);
+  }
+  if (options.sample_radius > 0.0) {
+    // Last: it solves the oracle at other designs (the state at α is no longer the last one).
+    c.goldstein = detail::sampled_certificate(oracle, alpha, c.subgradients, upsilon, options);
+    if (c.goldstein.clarke.status != Status::kConverged) {
+      c.status = Status::kNumericalFailure;
+      c.message = c.goldstein.message;
+      return c;
+    }
   }
   c.status = Status::kConverged;
   c.message.clear();

@@ -102,6 +102,20 @@ TEST(CliCertify, WritesCertificateJsonForAFreshRun) {
   EXPECT_GE(json.at("mf1").at("rank").as_integer(), 1);
   EXPECT_EQ(json.at("pieces").as_array().size(),
             static_cast<std::size_t>(json.at("sampled").as_bool() ? 4096 : json.at("cardinality_L").as_number()));
+  EXPECT_FALSE(json.contains("goldstein")) << "no sampled certificate unless asked for";
+
+  // The sampled (Goldstein) certificate: 6 designs within 1e-6 m; its generators contain those at
+  // x, so its distance cannot exceed the exact one (up to the QP's accuracy).
+  const RunResult g = run("certify " + run_dir.string() + " --sample-radius 1e-6 --samples 6");
+  ASSERT_EQ(g.exit_code, 0) << g.output;
+  EXPECT_NE(g.output.find("sampled certificate: 6 of 6 sampled designs within 1.000e-06"), std::string::npos) << g.output;
+  const auto sampled = frictopt::io::parse_json(read_text(run_dir / "certificate.json")).at("goldstein");
+  EXPECT_EQ(sampled.at("evaluated").as_integer(), 6);
+  EXPECT_GT(sampled.at("largest_step").as_number(), 0.0);
+  EXPECT_LE(sampled.at("largest_step").as_number(), 1e-6 * (1.0 + 1e-12));
+  EXPECT_LE(sampled.at("distance").as_number(), distance * (1.0 + 1e-6) + 1e-12 * scale);
+  const RunResult bad = run("certify " + run_dir.string() + " --sample-radius -1");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
 }
 
 TEST(CliCertify, MissingFinalDesignIsAnInputErrorNamingTheFile) {

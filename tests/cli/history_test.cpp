@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Costs along a loading history through the command line (issue 13 items 2 and 6): check-gradient
-// and certify read the [[program.step]] tables of the shipped press-and-drag punch; a history cost
+// Costs along a loading history through the command line (issue 13 items 1, 2 and 6): check-gradient
+// and certify read the [[program.step]] tables of the shipped press-and-drag punch, check-gradient
+// the [[load_case.step]] tables of the shipped grip dragged in three directions; a history cost
 // on a one-step case, a step out of range or of the wrong type, and the compliance with a program
 // exit 2 naming the field.
 #include <gtest/gtest.h>
@@ -53,6 +54,17 @@ TEST(HistoryCli, CheckGradientReadsTheProgram) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("cost dissipation"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("loading program: 3 steps"), std::string::npos) << r.output;
+}
+
+TEST(HistoryCli, CheckGradientReadsLoadCasesGivenAsPrograms) {
+  // cases3d/grip-press-drag-directions: three load cases, each a three-step program (issue 13 item 1).
+  const RunResult r =
+      run("check-gradient " + std::string(FRICTOPT_SOURCE_DIR) + "/cases3d/grip-press-drag-directions/case.toml");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("cost dissipation"), std::string::npos) << r.output;
+  for (const char* name : {"load case drag 0 ", "load case drag 45 ", "load case drag 90 "})
+    EXPECT_NE(r.output.find(name), std::string::npos) << name << " in:\n" << r.output;
+  EXPECT_NE(r.output.find("backward adjoint over 3 steps"), std::string::npos) << r.output;
 }
 
 TEST(HistoryCli, OptimizeAndCertifyReadTheProgram) {

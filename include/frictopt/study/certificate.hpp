@@ -41,7 +41,35 @@ struct CertifyOptions {
   // case_active_tolerance·|Θ|; the generators are those of every active case (docs/theory/
   // load-cases.md: the ε-active reading, since an optimizer stops near, not at, a tie). >= 0.
   double case_active_tolerance = 1e-3;
+  // A sampled (Goldstein-type) certificate in addition to the exact one (0: none): the generators
+  // at α together with ξ(y_j) at `samples` admissible designs y_j with ‖y_j − α‖ ≤ sample_radius
+  // (design units, m; docs/theory/stationarity.md, "Sampled certificate"). >= 0, finite.
+  double sample_radius = 0.0;
+  // Designs sampled when sample_radius > 0; 0 means 10(d + 1) for d design variables (more than
+  // gradient sampling's usual 2d: the cells of the pieces next to a stick/slip change are thin,
+  // and 2(d + 1) samples often miss one; docs/theory/stationarity.md). >= 0.
+  int samples = 0;
   void validate() const;  // throws InvalidInput naming field, value, expectation
+};
+
+/// The sampled (Goldstein-type) certificate: dist(0, conv({ξ_i(α)} ∪ {ξ(y_j)}) + N_Υ(α)) over
+/// subgradients at α and at admissible designs y_j within `radius` of α. Zero there certifies
+/// that α is stationary in the Goldstein ε-sense for ε = radius (an element of the convex hull of
+/// the Clarke subdifferentials over the ball, plus the normal cone, is near 0) — weaker than the
+/// exact certificate at α, and what a nonsmooth method's own stopping test asserts; it is the
+/// certificate that sees the pieces of nodes that change their status next to α.
+struct SampledCertificate {
+  bool computed = false;
+  double radius = 0.0;       ///< requested ‖y_j − α‖ ≤ radius (the y_j lie on or inside the sphere)
+  int requested = 0;         ///< samples asked for
+  int evaluated = 0;         ///< y_j whose ξ entered the hull
+  int failed = 0;            ///< y_j the oracle could not evaluate (skipped)
+  double largest_step = 0.0;  ///< max_j ‖y_j − α‖ of the evaluated y_j
+  double scale = kNaN;       ///< max ‖ξ‖ over all generators
+  optim::StationarityCertificate clarke;  ///< the QP over all generators
+  double relative_distance = kNaN;        ///< distance / scale
+  bool stationary = false;                ///< relative_distance <= stationary_tolerance
+  std::string message;
 };
 
 /// Condition (MF1′) of spec 03 §11.1: full row rank of the tight system's Jacobian.
@@ -125,6 +153,8 @@ struct Certificate {
   /// With load cases given as programs: the lines of each active case of more than one step,
   /// prefixed by its name (its generators are its default pieces varied one step at a time).
   std::vector<std::string> history_steps;
+  /// CertifyOptions::sample_radius > 0: the sampled (Goldstein-type) certificate.
+  SampledCertificate goldstein;
   double time_seconds = 0.0;
   /// A few lines for the CLI.
   [[nodiscard]] std::string report() const;
