@@ -147,7 +147,8 @@ class BundleTrust {
     // Variable metric (docs/optim.md, "Variable metric"; issue 16, seventh round; opt-in): the
     // proximal term of the direction QP is dᵀHd/(2t) with H = diag(h) a relative diagonal metric
     // (geometric mean 1) estimated by least squares from the last `metric_memory` pairs
-    // (x_{k+1} − x_k, g(x_{k+1}) − g(x_k)) of serious steps, moved towards each new estimate by
+    // (x_{k+1} − x_k, g(x_{k+1}) − z_k) of serious steps (z_k the aggregate subgradient of the
+    // step's QP), moved towards each new estimate by
     // the geometric fraction metric_damping, its condition number bounded by metric_ratio_bound,
     // and reset to the identity after j_max consecutive null steps. The stopping test and the
     // certificate are then read in the variables H^{1/2}x. false (default): H = I, the
@@ -155,7 +156,7 @@ class BundleTrust {
     // docs/optim-testset.md).
     bool variable_metric = false;
     int metric_memory = 10;           // >= 1
-    double metric_damping = 0.1;      // in (0, 1]; 1 = no damping
+    double metric_damping = 0.2;      // in (0, 1]; 1 = no damping
     double metric_ratio_bound = 1e8;  // >= 1
     // A start point violating Υ by more than this (user units, max norm) is projected.  > 0.
     double feasibility_tolerance = 1e-9;
