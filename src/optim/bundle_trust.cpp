@@ -574,8 +574,7 @@ class Run {
   // model's subgradient at x_k; Lukšan–Vlček's variable-metric bundle methods take the aggregate
   // subgradient too. Measured on the test set (docs/optim-testset.md, seventh round): with
   // u = g(x_{k+1}) − g(x_k), the subgradient of one piece at x_k, 70 of 72 runs were solved at
-  // ε = 1e-6 and 1e-7 (ShellDual lost) and L1HILB needed up to 5.7x the evaluations; with z_k,
-  // 71 at every ε.
+  // ε = 1e-6 and 1e-7 (ShellDual ended stalled 3.2e-6 off); with z_k, 71 at every ε.
   void update_metric(BundleTrust::IterationSummary& st, const Eigen::VectorXd& dx, const Eigen::VectorXd& u) const {
     st.null_streak = 0;
     update_diagonal_metric(st.metric, dx, u, o_.metric_memory, o_.metric_ratio_bound, o_.metric_damping);
