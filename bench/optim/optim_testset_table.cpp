@@ -3,10 +3,13 @@
 // variant solved by BundleTrust with DEFAULT options (only keep_history is switched off), and
 // the median evaluation count. Exit code 0 iff every problem is solved to the accuracy and no
 // run reports "converged" at an inaccurate value.
-//   optim_testset_table [--epsilon E] [--accuracy A] [--confirm] [--baseline] [--only NAME] > table.md
+//   optim_testset_table [--epsilon E] [--accuracy A] [--confirm] [--metric [--metric-ratio K]
+//                       [--metric-memory M] [--metric-damping W]] [--baseline] [--only NAME] > table.md
 // --epsilon sets BundleTrust::Options::epsilon (default: the default, 1e-4) and --accuracy the
 // relative accuracy checked (default: 1e-4). --confirm passes every "converged" through
-// confirm_in_point_units (point_units_check.hpp; evaluations include it). --baseline adds the projected subgradient method
+// confirm_in_point_units (point_units_check.hpp; evaluations include it). --metric switches on
+// BundleTrust::Options::variable_metric (--metric-ratio, --metric-memory, --metric-damping set its
+// bound, memory and damping). --baseline adds the projected subgradient method
 // with 10 000 evaluations. --only runs one problem and prints its brief report on stderr;
 // with --only, the final point is also checked by gradient sampling (Burke–Lewis–Overton): the
 // certificate of g(x) and 4n fresh subgradients at uniform points of the ball B(x, r), for
@@ -43,9 +46,13 @@ int main(int argc, char** argv) {
     else if (a == "--accuracy" && i + 1 < argc) accuracy = std::atof(argv[++i]);
     else if (a == "--baseline") baseline = true;
     else if (a == "--confirm") confirm = true;
+    else if (a == "--metric") bt.variable_metric = true;
+    else if (a == "--metric-ratio" && i + 1 < argc) bt.metric_ratio_bound = std::atof(argv[++i]);
+    else if (a == "--metric-memory" && i + 1 < argc) bt.metric_memory = std::atoi(argv[++i]);
+    else if (a == "--metric-damping" && i + 1 < argc) bt.metric_damping = std::atof(argv[++i]);
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else {
-      std::fprintf(stderr, "usage: %s [--epsilon E] [--accuracy A] [--confirm] [--baseline] [--only NAME]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--epsilon E] [--accuracy A] [--confirm] [--metric] [--metric-ratio K] [--metric-memory M] [--metric-damping W] [--baseline] [--only NAME]\n", argv[0]);
       return 2;
     }
   }

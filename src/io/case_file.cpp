@@ -739,6 +739,8 @@ void read_optimization(const TableReader& r, optim::BundleTrust::Options& o) {
     if (*n < 3) r.fail_value("bundle_size", "bundle_size >= 3");
     o.max_bundle_size = *n;
   }
+  // The opt-in diagonal variable metric of the proximal term (docs/optim.md, "Variable metric").
+  if (const std::optional<bool> b = r.optional_bool("variable_metric")) o.variable_metric = *b;
 }
 
 OutputSpec read_output(const TableReader& r, std::string default_name) {
@@ -1121,7 +1123,8 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   c.optimization = study::default_study_options(body);
   if (const toml::table* optimization = top.optional_table("optimization"))
     read_optimization(TableReader(*optimization, "optimization", origin,
-                                  {"max_iterations", "max_evaluations", "epsilon", "max_step_length", "bundle_size"}),
+                                  {"max_iterations", "max_evaluations", "epsilon", "max_step_length", "bundle_size",
+                                   "variable_metric"}),
                       c.optimization);
 
   if (const toml::table* identification = top.optional_table("identification"))

@@ -175,6 +175,21 @@ JsonValue checkpoint_to_json(const RunCheckpoint& c) {
   j["t_reference"] = s.t_reference;
   // x_1: the locality unit grows with ‖x_k − x_1‖∞ (docs/optim.md); empty before a run
   if (s.x_start.size() > 0) j["x_start"] = s.x_start;
+  // The opt-in variable metric (docs/optim.md, "Variable metric"): g(x_1) for its G, the metric
+  // and its secant pairs (column-major, `pairs` columns of n), so that a resume continues it.
+  if (s.g_start.size() > 0) j["g_start"] = s.g_start;
+  j["null_streak"] = s.null_streak;
+  const optim::DiagonalMetric& m = s.metric;
+  if (!m.is_identity() || m.steps.size() > 0 || m.resets > 0) {
+    JsonValue metric = JsonValue::object();
+    metric["h"] = m.h;
+    metric["pairs"] = static_cast<std::int64_t>(m.steps.cols());
+    metric["steps"] = Eigen::VectorXd(m.steps.reshaped());
+    metric["differences"] = Eigen::VectorXd(m.differences.reshaped());
+    metric["updates"] = m.updates;
+    metric["resets"] = m.resets;
+    j["metric"] = std::move(metric);
+  }
   JsonValue bundle = JsonValue::array();
   for (const optim::BundleElement& e : s.bundle) {
     JsonValue element = JsonValue::object();
@@ -248,6 +263,24 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
                             std::pair{"t_start", &s.t_start}, std::pair{"t_reference", &s.t_reference}})
     if (j.contains(key)) *field = top.number(key);
   if (j.contains("x_start")) s.x_start = top.vector("x_start", n);  // absent: resume() uses x
+  // Variable metric state (absent: identity, as before the option existed).
+  if (j.contains("g_start")) s.g_start = top.vector("g_start", n);
+  if (j.contains("null_streak")) s.null_streak = static_cast<int>(top.count("null_streak"));
+  if (j.contains("metric")) {
+    const Fields m(top.at("metric"), origin, "metric.");
+    optim::DiagonalMetric& metric = s.metric;
+    metric.h = m.vector("h");
+    if (metric.h.size() != 0 && metric.h.size() != n)
+      fail_field(origin, "metric.h", fmt::format("a list of {} numbers", metric.h.size()),
+                 fmt::format("[] (identity) or {} numbers", n));
+    for (Eigen::Index i = 0; i < metric.h.size(); ++i)
+      if (!(metric.h(i) > 0.0)) fail_field(origin, fmt::format("metric.h[{}]", i), format_number(metric.h(i)), "> 0");
+    const Eigen::Index pairs = static_cast<Eigen::Index>(m.count("pairs"));
+    metric.steps = m.vector("steps", n * pairs).reshaped(n, pairs);
+    metric.differences = m.vector("differences", n * pairs).reshaped(n, pairs);
+    metric.updates = static_cast<int>(m.count("updates"));
+    metric.resets = static_cast<int>(m.count("resets"));
+  }
   const JsonValue& bundle = top.at("bundle");
   if (!bundle.is_array() || bundle.as_array().empty()) fail_field(origin, "bundle", "empty", "a non-empty list");
   for (std::size_t i = 0; i < bundle.as_array().size(); ++i) {

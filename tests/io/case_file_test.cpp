@@ -280,6 +280,12 @@ TEST(ParseCase, CostAndOptimizationTablesAreValidated) {
   EXPECT_TRUE(std::isnan(c.cost->target_pressure)) << "NaN: the initial mean pressure";
   EXPECT_EQ(c.optimization.max_iterations, 30);
   EXPECT_EQ(c.optimization.epsilon, 1e-5);
+  EXPECT_FALSE(c.optimization.variable_metric) << "opt-in";
+  const CaseDescription metric =
+      parse_case(std::string(kValid2d) + "\n[optimization]\nvariable_metric = true\n", "case.toml");
+  EXPECT_TRUE(metric.optimization.variable_metric);
+  expect_invalid_case(std::string(kValid2d) + "\n[optimization]\nvariable_metric = 1\n",
+                      {"optimization.variable_metric"});
   expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"x\"\n", {"cost.kind"});
   expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"target_pressure\"\n", {"cost.target"});
   expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"compliance\"\nexponent = 4\n", {"cost.exponent"});

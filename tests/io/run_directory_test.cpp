@@ -191,6 +191,40 @@ TEST(Checkpoint, RoundTripsEveryFieldExactly) {
   EXPECT_EQ(back.initial_cost, 4.0);
 }
 
+// The opt-in variable metric's state (docs/optim.md, "Variable metric") is part of the method
+// state: without it a resumed run would restart from the identity metric.
+TEST(Checkpoint, RoundTripsTheVariableMetricState) {
+  RunCheckpoint c = valid_checkpoint();
+  c.method.g_start = Eigen::Vector2d(3.0, -4.0 / 3.0);
+  c.method.null_streak = 4;
+  c.method.metric.h = Eigen::Vector2d(0.1, 10.0);
+  c.method.metric.steps = Eigen::MatrixXd::Random(2, 3);
+  c.method.metric.differences = Eigen::MatrixXd::Random(2, 3);
+  c.method.metric.updates = 3;
+  c.method.metric.resets = 1;
+  const RunCheckpoint back = checkpoint_from_json(parse_json(to_json_string(checkpoint_to_json(c))));
+  EXPECT_EQ(back.method.g_start, c.method.g_start);
+  EXPECT_EQ(back.method.null_streak, 4);
+  EXPECT_EQ(back.method.metric.h, c.method.metric.h);
+  EXPECT_EQ(back.method.metric.steps, c.method.metric.steps);
+  EXPECT_EQ(back.method.metric.differences, c.method.metric.differences);
+  EXPECT_EQ(back.method.metric.updates, 3);
+  EXPECT_EQ(back.method.metric.resets, 1);
+  // Identity (the default): nothing written, nothing read back.
+  const RunCheckpoint plain = checkpoint_from_json(checkpoint_to_json(valid_checkpoint()));
+  EXPECT_TRUE(plain.method.metric.is_identity());
+  EXPECT_FALSE(checkpoint_to_json(valid_checkpoint()).contains("metric"));
+  // A metric entry that is not positive is refused, naming it.
+  JsonValue j = checkpoint_to_json(c);
+  j["metric"]["h"] = Eigen::VectorXd(Eigen::Vector2d(0.1, -1.0));
+  try {
+    (void)checkpoint_from_json(j, "cp.json");
+    FAIL() << "a negative metric entry was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("metric.h[1]"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Checkpoint, OutOfRangeFieldsAreRefusedNamingThem) {
   // Issue 17 item 4: iteration = -5 and 10^12 (which wrapped to a negative int) were accepted.
   for (const auto& [key, value, fragment] :

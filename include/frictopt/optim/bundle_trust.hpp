@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "frictopt/core/status.hpp"
+#include "frictopt/optim/diagonal_metric.hpp"
 #include "frictopt/optim/linear_constraints.hpp"
 #include "frictopt/optim/oracle.hpp"
 
@@ -78,6 +79,10 @@ class BundleTrust {
     /// centers have moved that far (docs/optim.md).
     double t_reference = kNaN;
     Eigen::VectorXd x_start;    ///< x_1 (for t_reference); empty in old checkpoints: x_k is used
+    Eigen::VectorXd g_start;    ///< g(x_1) in the method's units (G in the variable metric); may be empty
+    /// Variable metric of the proximal term (Options::variable_metric; identity otherwise).
+    DiagonalMetric metric;
+    int null_streak = 0;        ///< null steps since the last serious step (metric reset)
   };
   using IterationCallback = std::function<CallbackResult(const IterationSummary&)>;
 
@@ -139,6 +144,20 @@ class BundleTrust {
     // aggregate error from the direction QP's multipliers <= ε·F, or the run ends with
     // StopReason::kStationarityNotCertified (Status kStalled) instead of kConverged.
     bool certify_stationarity = true;
+    // Variable metric (docs/optim.md, "Variable metric"; issue 16, seventh round; opt-in): the
+    // proximal term of the direction QP is dᵀHd/(2t) with H = diag(h) a relative diagonal metric
+    // (geometric mean 1) estimated by least squares from the last `metric_memory` pairs
+    // (x_{k+1} − x_k, g(x_{k+1}) − z_k) of serious steps (z_k the aggregate subgradient of the
+    // step's QP), moved towards each new estimate by
+    // the geometric fraction metric_damping, its condition number bounded by metric_ratio_bound,
+    // and reset to the identity after j_max consecutive null steps. The stopping test and the
+    // certificate are then read in the variables H^{1/2}x. false (default): H = I, the
+    // Euclidean method (with the metric the test-set table needs more evaluations in total:
+    // docs/optim-testset.md).
+    bool variable_metric = false;
+    int metric_memory = 10;           // >= 1
+    double metric_damping = 0.2;      // in (0, 1]; 1 = no damping
+    double metric_ratio_bound = 1e8;  // >= 1
     // A start point violating Υ by more than this (user units, max norm) is projected.  > 0.
     double feasibility_tolerance = 1e-9;
     // Keep the per-iteration history in the Summary.
@@ -180,7 +199,8 @@ class BundleTrust {
     double subgradient_scale = kNaN;  ///< G of the relative test, unscaled
     double value_scale = kNaN;        ///< F of the relative test, unscaled
     /// Stationarity certificate of the final check: dist(0, conv{local g_i} + N_Υ(x)), unscaled;
-    /// NaN when the stopping test was not met (or certify_stationarity is off).
+    /// NaN when the stopping test was not met (or certify_stationarity is off). With
+    /// Options::variable_metric: in the variables H^{1/2}x of the metric at the stop.
     double certificate_distance = kNaN;
     double t = kNaN;                ///< last trust parameter
     double t_max_given = kNaN;      ///< Options::t_max (NaN = no cap)
