@@ -192,7 +192,8 @@ cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the
 
   m.def(
       "certify",
-      [](const py::object& case_object, const py::object& alpha_object, const py::object& run_directory, int cap) {
+      [](const py::object& case_object, const py::object& alpha_object, const py::object& run_directory, int cap,
+         double sample_radius, int samples) {
         std::shared_ptr<const Case> source;
         Eigen::VectorXd alpha;
         std::string design_name = "python";
@@ -212,6 +213,8 @@ cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the
         auto o = make_oracle(source, source->description.body);
         study::CertifyOptions options;
         options.cap = cap;
+        options.sample_radius = sample_radius;
+        options.samples = samples;
         options.validate();
         study::Certificate c;
         {
@@ -231,14 +234,17 @@ cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the
         return result;
       },
       py::arg("case") = py::none(), py::arg("alpha") = py::none(), py::kw_only(), py::arg("run_directory") = py::none(),
-      py::arg("cap") = 4096,
+      py::arg("cap") = 4096, py::arg("sample_radius") = 0.0, py::arg("samples") = 0,
       R"doc(The optimality certificate of a design (thesis §5.3; docs/certificate.md): index sets, |𝕃| and
 the ξ_i of its pieces, the Clarke stationarity distance δ = dist(0, conv{ξ_i} + N_Υ(α)), condition
 (MF1′) and the extreme-point check. Either ``certify(case, alpha)`` (α [m], default α⁰) or
 ``certify(run_directory=DIR)`` for a run written by ``optimize`` (reads DIR/case.toml and
 DIR/final_design.json, writes DIR/certificate.json like ``frictopt certify``). Returns a Summary
 with the fields of certificate.json plus ``report`` (the CLI's text). ``cap`` bounds the pieces
-enumerated (above it a seeded sample). A failed solve is the status, not an exception.)doc");
+enumerated (above it a seeded sample). ``sample_radius`` [m] > 0 adds the sampled (Goldstein)
+certificate over ξ at ``samples`` admissible designs within that radius (default 10(d + 1)),
+returned as ``goldstein`` (``frictopt certify --sample-radius``). A failed solve is the status,
+not an exception.)doc");
 }
 
 }  // namespace frictopt::python

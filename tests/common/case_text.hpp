@@ -47,4 +47,18 @@ inline std::string pressed_dragged_block_3d() {
          "[contact.friction]\nkind = \"disc_exact\"\nmu = 0.3\n";
 }
 
+/// The 1 m block pushed by a traction on its left face and pressed by its top plate (one [[load]],
+/// one [[dirichlet]]), flat bottom (2 × 2 controls), isotropic μ = 0.3: the parser tests of
+/// loading programs and load cases append their tables.
+inline std::string pushed_block_3d() {
+  return block_header_3d("1.0", "0.5") + R"([[load]]
+face = "left"
+traction = [1.0e5, 0.0, 0.0]
+)" + top_dirichlet("[0.0, 0.0, -1.0e-4]") +
+         design_table("[2, 2]", "[0.0, 0.0, 0.0, 0.0]", "1.0e-3") + R"([contact.friction]
+kind = "isotropic"
+mu = 0.3
+)";
+}
+
 }  // namespace frictopt::testing

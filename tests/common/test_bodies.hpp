@@ -60,4 +60,13 @@ inline study::BodyDefinition dish_block_3d(
   return b;
 }
 
+/// The thesis' 2D body (20 × 8 cells) with a second traction on the right face, whose length
+/// X(α) changes with the design: load cases and program steps that scale it exercise the
+/// load-change term of the adjoint (load cases, histories).
+inline study::BodyDefinition two_load_body_2d() {
+  study::BodyDefinition b = thesis_body_2d(contact::FrictionLaw::interval(0.25, 0.25), 20, 8);
+  b.tractions.push_back({"right", Eigen::Vector2d(-2e7, 0.0)});
+  return b;
+}
+
 }  // namespace frictopt::testing

@@ -68,6 +68,20 @@ def test_certify_at_the_initial_design(coarse_case: frictopt.Case) -> None:
     assert json.loads(c.to_json())["status"] == "converged"
 
 
+def test_certify_with_a_sampled_certificate(coarse_case: frictopt.Case) -> None:
+    # The sampled (Goldstein) certificate adds ξ at designs within the radius: its distance cannot
+    # exceed the exact one (its generators contain those at the point).
+    c = frictopt.certify(coarse_case, cap=64, sample_radius=1e-6, samples=4)
+    assert c.status == "converged", c.message
+    g = c.goldstein
+    assert g.evaluated == 4 and g.skipped == 0
+    assert 0.0 < g.largest_step <= 1e-6 * (1 + 1e-12)
+    assert g.distance <= c.clarke.distance * (1 + 1e-6) + 1e-12 * c.scale_max_xi_norm
+    assert "sampled certificate" in c.report
+    with pytest.raises(ValueError, match="sample_radius = -1; expected a finite radius >= 0"):
+        frictopt.certify(coarse_case, sample_radius=-1.0)
+
+
 def test_export_fclib(root, tmp_path) -> None:
     case = frictopt.load_case(root / "cases3d" / "punch" / "case.toml").with_overrides(mesh={"cells": [6, 6, 3]})
     body = frictopt.Body(case)

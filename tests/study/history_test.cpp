@@ -31,13 +31,7 @@ BodyDefinition pressed_block_3d(const contact::FrictionLaw& law) {
   return b;
 }
 
-// The thesis' 2D body with a second traction on the right face (whose length X(α) changes, so the
-// load-change term of a step that scales it is exercised).
-BodyDefinition two_load_body_2d() {
-  BodyDefinition b = frictopt::testing::thesis_body_2d(contact::FrictionLaw::interval(0.25, 0.25), 20, 8);
-  b.tractions.push_back({"right", Eigen::Vector2d(-2e7, 0.0)});
-  return b;
-}
+using frictopt::testing::two_load_body_2d;
 
 LoadStepDefinition step(std::vector<double> load_scale, std::vector<double> dirichlet_scale, bool friction = true) {
   LoadStepDefinition s;

@@ -22,13 +22,7 @@
 namespace frictopt::study {
 namespace {
 
-// The thesis' 2D body with a second traction on the right face (its length X(α) changes, so the
-// load-change term of the adjoint is exercised), as in history_test.cpp.
-BodyDefinition two_load_body_2d() {
-  BodyDefinition b = frictopt::testing::thesis_body_2d(contact::FrictionLaw::interval(0.25, 0.25), 20, 8);
-  b.tractions.push_back({"right", Eigen::Vector2d(-2e7, 0.0)});
-  return b;
-}
+using frictopt::testing::two_load_body_2d;
 
 LoadStepDefinition step(std::vector<double> load_scale) {
   LoadStepDefinition s;
@@ -236,17 +230,9 @@ TEST(ProgramCasesInput, TheOracleRefusesWhatHasNoMeaning) {
             std::string::npos);
 }
 
-// The 3D block with one [[load]] and one [[dirichlet]] (common/case_text.hpp), a [cost] and `extra`.
+// The pushed 3D block (common/case_text.hpp), a [cost] and `extra`.
 std::string block_case(const std::string& cost, const std::string& extra) {
-  using frictopt::testing::block_header_3d, frictopt::testing::design_table, frictopt::testing::top_dirichlet;
-  return block_header_3d("1.0", "0.5") + R"([[load]]
-face = "left"
-traction = [1.0e5, 0.0, 0.0]
-)" + top_dirichlet("[0.0, 0.0, -1.0e-4]") +
-         design_table("[2, 2]", "[0.0, 0.0, 0.0, 0.0]", "1.0e-3") + R"([contact.friction]
-kind = "isotropic"
-mu = 0.3
-)" + cost + extra;
+  return frictopt::testing::pushed_block_3d() + cost + extra;
 }
 
 const std::string kTwoPrograms = R"(

@@ -24,13 +24,8 @@
 namespace frictopt::study {
 namespace {
 
-// The thesis' 2D body (clamped left, top traction) with a second traction on the right face,
-// whose length changes with the design (X(α) moves its nodes): cases scale both.
-BodyDefinition two_load_body() {
-  BodyDefinition b = frictopt::testing::thesis_body_2d(contact::FrictionLaw::interval(0.25, 0.25), 20, 8);
-  b.tractions.push_back({"right", Eigen::Vector2d(-2e7, 0.0)});
-  return b;
-}
+// The thesis' 2D body with a second traction on the right face (common/test_bodies.hpp).
+using frictopt::testing::two_load_body_2d;
 
 LoadCaseDefinition load_case(std::string name, std::vector<double> load_scale, double weight = 1.0) {
   LoadCaseDefinition c;
@@ -62,7 +57,7 @@ Eigen::VectorXd fd_gradient(ShapeOracle& oracle, const Eigen::VectorXd& alpha) {
 }
 
 TEST(LoadCases, OneCaseAsWrittenIsThePlainOracleBitForBit) {
-  ElasticBody plain_body(two_load_body()), case_body(two_load_body());
+  ElasticBody plain_body(two_load_body_2d()), case_body(two_load_body_2d());
   ShapeOracle plain(plain_body, plain_cost());
   ShapeOracle cased(case_body, cost_with_cases(CaseCombination::kWorst, {load_case("as written", {})}));
   const Eigen::VectorXd alpha = plain_body.definition().initial_design;
@@ -75,7 +70,7 @@ TEST(LoadCases, OneCaseAsWrittenIsThePlainOracleBitForBit) {
 }
 
 TEST(LoadCases, KCasesShareOneFactorizationPerDesign) {
-  ElasticBody body(two_load_body());
+  ElasticBody body(two_load_body_2d());
   ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWeighted, {load_case("a", {1.0, 0.0}),
                                                                           load_case("b", {1.0, 1.0}),
                                                                           load_case("c", {0.8, 2.0})}));
@@ -90,7 +85,7 @@ TEST(LoadCases, KCasesShareOneFactorizationPerDesign) {
 }
 
 TEST(LoadCases, WeightedSubgradientMatchesCentralDifferences) {
-  ElasticBody body(two_load_body());
+  ElasticBody body(two_load_body_2d());
   ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWeighted, {load_case("a", {1.0, 0.0}, 0.5),
                                                                           load_case("b", {1.0, 1.0}, 1.0),
                                                                           load_case("c", {0.8, 2.0}, 2.0)}));
@@ -109,7 +104,7 @@ TEST(LoadCases, WeightedSubgradientMatchesCentralDifferences) {
 TEST(LoadCases, TheLoadChangeTermIsNeeded) {
   // The right traction's load changes with α: without the term −∇_α[ψᵀ(l_k − l)] the ξ of a case
   // that scales it would differ from central differences (a test that can fail).
-  ElasticBody body(two_load_body());
+  ElasticBody body(two_load_body_2d());
   ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWorst, {load_case("c", {0.8, 2.0})}));
   const Eigen::VectorXd alpha = body.definition().initial_design;
   const Evaluation e = oracle.evaluate_design(alpha);
@@ -125,7 +120,7 @@ TEST(LoadCases, TheLoadChangeTermIsNeeded) {
 }
 
 TEST(LoadCases, WorstCaseAtAStrictlyActiveCaseIsThatCasesSubgradient) {
-  ElasticBody body(two_load_body()), single_body(two_load_body());
+  ElasticBody body(two_load_body_2d()), single_body(two_load_body_2d());
   ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWorst, {load_case("a", {1.0, 0.0}),
                                                                        load_case("c", {0.8, 2.0}),
                                                                        load_case("b", {1.0, 1.0})}));
@@ -154,7 +149,7 @@ TEST(LoadCases, WorstCaseAtAStrictlyActiveCaseIsThatCasesSubgradient) {
 TEST(LoadCases, AtATieTheOneSidedDerivativesAreTheMaxOfTheCases) {
   // Weights that make w_a J_a = w_c J_c at α exactly (up to rounding): Θ = max is at a kink, and
   // for every direction h, Θ'(α; h) = max(w_a ξ_a·h, w_c ξ_c·h) (docs/theory/load-cases.md).
-  ElasticBody probe_body(two_load_body());
+  ElasticBody probe_body(two_load_body_2d());
   ShapeOracle probe(probe_body, cost_with_cases(CaseCombination::kWeighted, {load_case("a", {1.0, 0.0}),
                                                                                load_case("c", {0.8, 2.0})}));
   const Eigen::VectorXd alpha = probe_body.definition().initial_design;
@@ -165,7 +160,7 @@ TEST(LoadCases, AtATieTheOneSidedDerivativesAreTheMaxOfTheCases) {
   const auto xc = probe.case_subgradients(alpha, 1, {sensitivity::default_piece(probe.case_index_sets(alpha, 1))});
   const Eigen::VectorXd xi_a = xi[0].subgradient, xi_c = w_c * xc[0].subgradient;
 
-  ElasticBody body(two_load_body());
+  ElasticBody body(two_load_body_2d());
   ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWorst, {load_case("a", {1.0, 0.0}, 1.0),
                                                                        load_case("c", {0.8, 2.0}, w_c)}));
   const Evaluation e = oracle.evaluate_design(alpha);
@@ -205,7 +200,7 @@ TEST(LoadCases, AtATieTheOneSidedDerivativesAreTheMaxOfTheCases) {
 TEST(LoadCases, WeightedCertificateSumsOnePiecePerCase) {
   // At a point strict in every case, 𝕃_k = {default}: the generators of Σ_k w_k ∂J_k are the one
   // sum Σ_k w_k ξ_k, which is the oracle's ξ; every case is active.
-  ElasticBody body(two_load_body());
+  ElasticBody body(two_load_body_2d());
   ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWeighted, {load_case("a", {1.0, 0.0}, 0.5),
                                                                           load_case("b", {1.0, 1.0}, 1.0),
                                                                           load_case("zero", {0.8, 2.0}, 0.0)}));
@@ -232,17 +227,7 @@ TEST(LoadCases, WeightedCertificateSumsOnePiecePerCase) {
 // Bad input (item 6): each an InvalidInput naming the field.
 
 std::string block_case(const std::string& extra) {
-  using frictopt::testing::block_header_3d, frictopt::testing::design_table, frictopt::testing::top_dirichlet;
-  return block_header_3d("1.0", "0.5") + R"([[load]]
-face = "left"
-traction = [1.0e5, 0.0, 0.0]
-)" + top_dirichlet("[0.0, 0.0, -1.0e-4]") +
-         design_table("[2, 2]", "[0.0, 0.0, 0.0, 0.0]", "1.0e-3") + R"([contact.friction]
-kind = "isotropic"
-mu = 0.3
-[cost]
-kind = "pressure_norm"
-)" + extra;
+  return frictopt::testing::pushed_block_3d() + "[cost]\nkind = \"pressure_norm\"\n" + extra;
 }
 
 TEST(LoadCasesInput, ValidCasesParse) {

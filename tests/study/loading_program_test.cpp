@@ -210,17 +210,7 @@ TEST(LoadingProgram, CattaneoMindlin2dStickHalfWidth) {
 // ---------------------------------------------------------------------------------------------
 // Bad input (issue 12, item 9): each a clear InvalidInput naming the field.
 
-std::string block_case(const std::string& extra) {
-  using frictopt::testing::block_header_3d, frictopt::testing::design_table, frictopt::testing::top_dirichlet;
-  return block_header_3d("1.0", "0.5") + R"([[load]]
-face = "left"
-traction = [1.0e5, 0.0, 0.0]
-)" + top_dirichlet("[0.0, 0.0, -1.0e-4]") +
-         design_table("[2, 2]", "[0.0, 0.0, 0.0, 0.0]", "1.0e-3") + R"([contact.friction]
-kind = "isotropic"
-mu = 0.3
-)" + extra;
-}
+std::string block_case(const std::string& extra) { return frictopt::testing::pushed_block_3d() + extra; }
 
 std::string message_of(const std::string& text) {
   try {
