@@ -30,10 +30,12 @@ SampledCertificate sampled_certificate(ShapeOracle& oracle, const Eigen::VectorX
   std::uniform_real_distribution<double> uniform;
   std::vector<Eigen::VectorXd> columns;
   for (Eigen::Index j = 0; j < at_alpha.cols(); ++j) columns.push_back(at_alpha.col(j));
-  for (int j = 0; j < out.requested; ++j) {
+  // No direction keeps the equalities (Υ's affine hull is the point): nothing to sample.
+  for (int j = 0; Z.cols() > 0 && j < out.requested; ++j) {
     Eigen::VectorXd w(Z.cols());
     for (Eigen::Index i = 0; i < w.size(); ++i) w(i) = normal(rng);
     Eigen::VectorXd v = Z * w;
+    if (!(v.norm() > 0.0)) continue;  // a draw of measure zero
     const double t = out.radius * std::pow(uniform(rng), 1.0 / k);  // uniform in the ball's volume
     v *= t / v.norm();
     // The projection onto Υ is nonexpansive and α ∈ Υ: ‖y − α‖ ≤ t.
