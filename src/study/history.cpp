@@ -50,9 +50,10 @@ ProgramHistory::ProgramHistory(ElasticBody& body, const CostDefinition& definiti
   const int k_steps = num_steps();
   const std::string tables = where == "program" ? "[[program.step]]" : "[[load_case.step]]";
   if (definition.kind == cost::CostKind::kCompliance)
-    throw InvalidInput("cost.kind = \"compliance\" with [[program.step]] tables: the compliance reads the case file's "
-                       "own loads, not a step's; expected a contact cost (target_pressure, normal_force_power, "
-                       "pressure_norm, total_slip, traction_uniformity) or dissipation");
+    throw InvalidInput("cost.kind = \"compliance\" with " + tables +
+                       " tables: the compliance reads the case file's own loads, not a step's; expected a contact cost "
+                       "(target_pressure, normal_force_power, pressure_norm, total_slip, traction_uniformity) or "
+                       "dissipation");
   if (definition.step < 0 || definition.step > k_steps)
     throw InvalidInput(fmt::format("cost.step = {}; expected \"last\" or an integer in [1, {}] ({} has {} step{} ({} "
                                    "tables))",
