@@ -741,6 +741,9 @@ void read_optimization(const TableReader& r, optim::BundleTrust::Options& o) {
   }
   // The opt-in diagonal variable metric of the proximal term (docs/optim.md, "Variable metric").
   if (const std::optional<bool> b = r.optional_bool("variable_metric")) o.variable_metric = *b;
+  // Worst-case load cases: the other cases' cuts in the bundle (docs/optim.md, "Cuts of the
+  // pieces of a max"); off saves K − 1 adjoints per evaluation.
+  if (const std::optional<bool> b = r.optional_bool("case_cuts")) o.use_piece_cuts = *b;
 }
 
 OutputSpec read_output(const TableReader& r, std::string default_name) {
@@ -1124,7 +1127,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   if (const toml::table* optimization = top.optional_table("optimization"))
     read_optimization(TableReader(*optimization, "optimization", origin,
                                   {"max_iterations", "max_evaluations", "epsilon", "max_step_length", "bundle_size",
-                                   "variable_metric"}),
+                                   "variable_metric", "case_cuts"}),
                       c.optimization);
 
   if (const toml::table* identification = top.optional_table("identification"))

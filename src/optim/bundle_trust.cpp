@@ -269,7 +269,18 @@ struct Evaluation {
   bool ok = false;
   double f = kNaN;
   Eigen::VectorXd g;
+  std::vector<PieceCut> pieces;  // OracleResult::pieces, in the method's units
 };
+
+// f and g (and the pieces' cuts) divided by the objective scale.
+void rescale(Evaluation& e, double scale) {
+  e.f /= scale;
+  e.g /= scale;
+  for (PieceCut& p : e.pieces) {
+    p.value /= scale;
+    p.subgradient /= scale;
+  }
+}
 
 }  // namespace
 
@@ -378,8 +389,28 @@ class Run {
       return e;
     }
     e.ok = true;
-    e.f = r.value / scale;
-    e.g = r.subgradient / scale;
+    e.f = r.value;
+    e.g = r.subgradient;
+    if (o_.use_piece_cuts) {
+      for (const PieceCut& p : r.pieces) {
+        if (p.subgradient.size() != x.size() || !std::isfinite(p.value) || !p.subgradient.allFinite()) continue;
+        if (p.value > r.value)
+          throw InvalidInput("BundleTrust: the oracle returned a piece cut with value " + std::to_string(p.value) +
+                             " above f(x) = " + std::to_string(r.value) +
+                             "; expected the pieces of f = max_i phi_i, each <= f(x)");
+        e.pieces.push_back(p);
+      }
+      // Automatic j_max with piece cuts: max(2n, 10) for the cuts of f, plus room for two
+      // evaluations' worth of piece cuts — each piece's cut at the center and at the last trial,
+      // the least the QP needs to model the max of the pieces near x_k. Measured on the 8-case
+      // worst-case grip study (docs/benchmarks.md §2c): j_max 32 → 140 iterations, 40 → 92,
+      // 48 (this rule) → 67, 64 → 70.
+      if (o_.max_bundle_size == 0 && !e.pieces.empty()) {
+        const int base = std::max(10, 2 * static_cast<int>(x.size()));
+        s_.bundle_size_used = std::max(s_.bundle_size_used, base + 2 * static_cast<int>(1 + e.pieces.size()));
+      }
+    }
+    rescale(e, scale);
     return e;
   }
 
@@ -389,7 +420,7 @@ class Run {
     while (st.iteration < o_.max_iterations) {
       Trial trial;
       if (!inner_iteration(st, trial)) return;  // stopped: finish() was called
-      reset_bundle(st, trial.qp);
+      reset_bundle(st, trial);
       update_bundle(st, trial);
       update_t(st, trial);
       if (!record(st, trial)) return;
@@ -579,10 +610,16 @@ class Run {
     st.null_streak = 0;
     update_diagonal_metric(st.metric, dx, u, o_.metric_memory, o_.metric_ratio_bound, o_.metric_damping);
   }
-  // Reset (spec 04 §4 step 5, §5 item 10), before the new element is inserted.
-  void reset_bundle(BundleTrust::IterationSummary& st, const DirectionQp& qp) const;
+  // Reset (spec 04 §4 step 5, §5 item 10), before the new elements are inserted.
+  void reset_bundle(BundleTrust::IterationSummary& st, const Trial& trial) const;
   // Update (spec 04 §6, SERIOUS / NULL; §5 items 7 and 9).
   void update_bundle(BundleTrust::IterationSummary& st, const Trial& trial) const;
+
+ public:
+  // The cuts of the other pieces of a max evaluated at y (OracleResult::pieces).
+  void add_piece_cuts(BundleTrust::IterationSummary& st, const Eigen::VectorXd& y, const Evaluation& e) const;
+
+ private:
   // Step rule for the next inner iteration (docs/optim.md, "step bound").
   void update_t(BundleTrust::IterationSummary& st, const Trial& trial);
   // History and callback; false when the callback stopped the run.
@@ -774,9 +811,13 @@ void Run::line_search(const BundleTrust::IterationSummary& st, const DirectionQp
   }
 }
 
-void Run::reset_bundle(BundleTrust::IterationSummary& st, const DirectionQp& qp) const {
+void Run::reset_bundle(BundleTrust::IterationSummary& st, const Trial& trial) const {
+  const DirectionQp& qp = trial.qp;
   const auto j_max = static_cast<std::size_t>(s_.bundle_size_used);
-  if (st.bundle.size() < j_max) return;
+  // The update adds the trial's cut and its pieces' cuts: room for all of them, so that the
+  // bundle never exceeds j_max (with one cut per evaluation: the spec's size < j_max).
+  const std::size_t incoming = 1 + trial.e.pieces.size();
+  if (st.bundle.size() + incoming <= j_max) return;
   const Eigen::VectorXd& theta = qp.theta;
   const double wsum = std::max(theta.sum(), 1e-300);
   BundleElement agg;
@@ -799,13 +840,31 @@ void Run::reset_bundle(BundleTrust::IterationSummary& st, const DirectionQp& qp)
     const double tb = theta(static_cast<Eigen::Index>(b));
     return ta != tb ? ta > tb : a > b;
   });
-  order.resize(std::min(order.size(), j_max - 3));
+  order.resize(std::min(order.size(), j_max > incoming + 2 ? j_max - incoming - 2 : std::size_t{0}));
   std::sort(order.begin(), order.end());
   std::vector<BundleElement> kept;
   kept.push_back(st.bundle[center]);
   for (std::size_t i : order) kept.push_back(st.bundle[i]);
   kept.push_back(std::move(agg));
   st.bundle = std::move(kept);
+}
+
+// The cuts of the other pieces of a max-type f evaluated at y (OracleResult::pieces), relative
+// to the center: α_i = f(x_k) − φ_i(y) − g_iᵀ(x_k − y), the linearization error of the piece's
+// cut as a cut of f (φ_i <= f). A piece inactive at the center has α_i >= f(x_k) − φ_i(x_k) > 0
+// in the convex case, so the locality keeps it out of the certificate's local subgradients
+// unless the piece is nearly active — as in the Clarke (Goldstein) subdifferential of the max.
+void Run::add_piece_cuts(BundleTrust::IterationSummary& st, const Eigen::VectorXd& y, const Evaluation& e) const {
+  const double distance = (y - st.x).norm();
+  for (const PieceCut& p : e.pieces) {
+    BundleElement b;
+    b.g = p.subgradient;
+    b.y = y;
+    b.lin_err = st.f - p.value - p.subgradient.dot(st.x - y);
+    b.distance = distance;
+    b.locality = beta_of(b.lin_err, distance, st.t_reference);
+    st.bundle.push_back(std::move(b));
+  }
 }
 
 void Run::update_bundle(BundleTrust::IterationSummary& st, const Trial& trial) const {
@@ -827,6 +886,7 @@ void Run::update_bundle(BundleTrust::IterationSummary& st, const Trial& trial) c
     st.bundle.push_back(std::move(c));
     st.x = trial.y;
     st.f = trial.e.f;
+    add_piece_cuts(st, trial.y, trial.e);
     ++st.serious_steps;
     grow_locality_unit(st);
   } else {
@@ -837,6 +897,7 @@ void Run::update_bundle(BundleTrust::IterationSummary& st, const Trial& trial) c
     b.distance = (trial.y - st.x).norm();
     b.locality = beta_of(b.lin_err, b.distance, st.t_reference);
     st.bundle.push_back(std::move(b));
+    add_piece_cuts(st, trial.y, trial.e);
     ++st.null_steps;
     ++st.null_streak;
     // Reset: a bundle's worth of null steps without a serious step means the model — with its
@@ -952,8 +1013,7 @@ BundleTrust::Summary BundleTrust::minimize(Oracle& oracle,
   }
   IterationSummary st;
   st.objective_scale = options_.scale_objective ? std::max(std::abs(e1.f), 1e-300) : 1.0;
-  e1.f /= st.objective_scale;
-  e1.g /= st.objective_scale;
+  rescale(e1, st.objective_scale);
   s.objective_scale = st.objective_scale;
   // t_1: a first step of length max_step_length (spec 04 §7's C_0), or the user's t_1.
   // First step length C_0: the user's max_step_length, or 10·‖x_1‖∞ (10 when x_1 = 0) — a
@@ -981,6 +1041,7 @@ BundleTrust::Summary BundleTrust::minimize(Oracle& oracle,
   c.y = x0;
   c.is_center = true;
   st.bundle.push_back(std::move(c));
+  run.add_piece_cuts(st, x0, e1);
   st.evaluations = s.evaluations;
   run.run(st);
   s.f = st.f * st.objective_scale;

@@ -74,6 +74,8 @@ optim::BundleTrust::Summary optimize(ShapeOracle& oracle, optim::BundleTrust::Op
       return on_progress({s, center, elapsed, oracle.num_state_solves()});
     };
   }
+  // The other load cases' cuts cost an adjoint each: computed only when the method uses them.
+  oracle.set_case_cuts(options.use_piece_cuts);
   const optim::BundleTrust method(options, oracle.body().admissible_set());
   optim::BundleTrust::Summary summary = checkpoint ? method.resume(oracle, *checkpoint)
                                                    : method.minimize(oracle, oracle.body().initial_design());

@@ -250,6 +250,18 @@ void ShapeOracle::evaluate_cases(Evaluation& e, bool with_subgradient) {
       e.friction_gradient += w * result.friction_gradient;
     }
   }
+  if (e.ok && case_cuts_ && cases_->definition().combine == CaseCombination::kWorst) {
+    // The other cases' cuts for the optimizer's model of the max (Evaluation::case_cuts): one
+    // adjoint each on the factorization the state solve left.
+    for (int k = 0; k < n_cases; ++k) {
+      const double w = (*cases_)[k].weight;
+      if (k == combined.selected || w == 0.0) continue;
+      ProgramHistory& history = *case_histories_[static_cast<std::size_t>(k)];
+      const HistorySubgradient result = history.subgradient(history.default_pieces());
+      if (result.summary.status != Status::kConverged) continue;
+      e.case_cuts.push_back({w * e.case_values[static_cast<std::size_t>(k)], w * result.subgradient});
+    }
+  }
   e.subgradient_seconds = seconds_since(start);
 }
 
@@ -363,7 +375,9 @@ optim::OracleResult ShapeOracle::evaluate(const Eigen::Ref<const Eigen::VectorXd
   try {
     const Evaluation& e = evaluate_design(x, true);
     if (!e.ok) return optim::OracleResult::failure(e.message);
-    return optim::OracleResult::success(e.value, e.subgradient);
+    optim::OracleResult result = optim::OracleResult::success(e.value, e.subgradient);
+    result.pieces = e.case_cuts;
+    return result;
   } catch (const InvalidInput& error) {
     // An inverting trial design: the optimizer shrinks its step.
     return optim::OracleResult::failure(error.what());

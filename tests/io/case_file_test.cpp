@@ -286,6 +286,12 @@ TEST(ParseCase, CostAndOptimizationTablesAreValidated) {
   EXPECT_TRUE(metric.optimization.variable_metric);
   expect_invalid_case(std::string(kValid2d) + "\n[optimization]\nvariable_metric = 1\n",
                       {"optimization.variable_metric"});
+  EXPECT_TRUE(c.optimization.use_piece_cuts) << "the other load cases' cuts are on by default";
+  const CaseDescription no_cuts =
+      parse_case(std::string(kValid2d) + "\n[optimization]\ncase_cuts = false\n", "case.toml");
+  EXPECT_FALSE(no_cuts.optimization.use_piece_cuts);
+  expect_invalid_case(std::string(kValid2d) + "\n[optimization]\ncase_cuts = \"no\"\n",
+                      {"optimization.case_cuts"});
   expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"x\"\n", {"cost.kind"});
   expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"target_pressure\"\n", {"cost.target"});
   expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"compliance\"\nexponent = 4\n", {"cost.exponent"});

@@ -146,6 +146,53 @@ TEST(LoadCases, WorstCaseAtAStrictlyActiveCaseIsThatCasesSubgradient) {
   EXPECT_LE(error, 1e-5);
 }
 
+// The optimizer's cuts of the other cases (Evaluation::case_cuts, docs/theory/load-cases.md §2):
+// for every case k ≠ s with w_k > 0, (w_k J_k, w_k ξ_k) — checked against each case solved alone
+// as a one-case study (an independent oracle), and passed on as optim::OracleResult::pieces.
+TEST(LoadCases, WorstCaseReturnsTheOtherCasesCutsForTheOptimizer) {
+  const std::vector<LoadCaseDefinition> cases = {load_case("a", {1.0, 0.0}, 1.0), load_case("c", {0.8, 2.0}, 0.5),
+                                                 load_case("b", {1.0, 1.0}, 2.0), load_case("off", {1.0, 0.5}, 0.0)};
+  ElasticBody body(two_load_body_2d());
+  ShapeOracle oracle(body, cost_with_cases(CaseCombination::kWorst, cases));
+  const Eigen::VectorXd alpha = body.definition().initial_design;
+  const Evaluation e = oracle.evaluate_design(alpha);
+  ASSERT_TRUE(e.ok) << e.message;
+  const int s = e.selected_case;
+  ASSERT_EQ(e.case_cuts.size(), 2u) << "one cut per other case with a positive weight";
+  std::size_t cut = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (k == s) continue;
+    const double w = cases[static_cast<std::size_t>(k)].weight;
+    ElasticBody alone_body(two_load_body_2d());
+    LoadCaseDefinition unweighted = cases[static_cast<std::size_t>(k)];
+    unweighted.weight = 1.0;
+    ShapeOracle alone(alone_body, cost_with_cases(CaseCombination::kWorst, {unweighted}));
+    const Evaluation one = alone.evaluate_design(alpha);
+    ASSERT_TRUE(one.ok) << one.message;
+    const optim::PieceCut& c = e.case_cuts[cut++];
+    EXPECT_NEAR(c.value, w * one.value, 1e-12 * w * one.value) << "case " << k;
+    EXPECT_LE((c.subgradient - w * one.subgradient).norm(), 1e-8 * w * one.subgradient.norm()) << "case " << k;
+    EXPECT_LE(c.value, e.value);
+  }
+  // The optim::Oracle answer carries them as the pieces of the max.
+  const optim::OracleResult r = oracle.evaluate(alpha);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.pieces.size(), 2u);
+  // Off on request, and never for the weighted sum (not a max).
+  ElasticBody off_body(two_load_body_2d()), sum_body(two_load_body_2d());
+  ShapeOracle off(off_body, cost_with_cases(CaseCombination::kWorst, cases));
+  off.set_case_cuts(false);
+  const Evaluation e_off = off.evaluate_design(alpha);
+  ASSERT_TRUE(e_off.ok) << e_off.message;
+  EXPECT_TRUE(e_off.case_cuts.empty());
+  EXPECT_EQ(e_off.value, e.value);
+  EXPECT_EQ(e_off.subgradient, e.subgradient);
+  ShapeOracle sum(sum_body, cost_with_cases(CaseCombination::kWeighted, cases));
+  const Evaluation e_sum = sum.evaluate_design(alpha);
+  ASSERT_TRUE(e_sum.ok) << e_sum.message;
+  EXPECT_TRUE(e_sum.case_cuts.empty());
+}
+
 TEST(LoadCases, AtATieTheOneSidedDerivativesAreTheMaxOfTheCases) {
   // Weights that make w_a J_a = w_c J_c at α exactly (up to rounding): Θ = max is at a kink, and
   // for every direction h, Θ'(α; h) = max(w_a ξ_a·h, w_c ξ_c·h) (docs/theory/load-cases.md).

@@ -118,7 +118,8 @@ class BundleTrust {
     // Bundle capacity j_max. 0: automatic max(2n, 10) — spec 04 §7 proposes 2d; the floor of 10
     // is our reading for small n, where 2n = 4 cannot hold the center, the aggregate and one cut
     // per active piece (DEM, CB3: thousands of null steps with 4, a few dozen with 10).
-    // Otherwise >= 3.
+    // With piece cuts (OracleResult::pieces) the automatic size adds two evaluations' worth of
+    // cuts, 2·(1 + pieces) (docs/optim.md, "Cuts of the pieces of a max"). Otherwise >= 3.
     int max_bundle_size = 0;
     // γ of β = max(|α|, γ s²/t_1) (spec 04 §5 item 8, made unit-free by the first t). > 0.
     double locality_weight = 1;
@@ -158,6 +159,10 @@ class BundleTrust {
     int metric_memory = 10;           // >= 1
     double metric_damping = 0.2;      // in (0, 1]; 1 = no damping
     double metric_ratio_bound = 1e8;  // >= 1
+    // Add the cuts of the other pieces of a max-type f that the oracle returns with each
+    // evaluation (OracleResult::pieces; docs/optim.md, "Cuts of the pieces of a max"). No
+    // effect for oracles that return none.
+    bool use_piece_cuts = true;
     // A start point violating Υ by more than this (user units, max norm) is projected.  > 0.
     double feasibility_tolerance = 1e-9;
     // Keep the per-iteration history in the Summary.

@@ -53,6 +53,11 @@ struct Evaluation {
   /// A cost along a loading history (issue 13 item 2): every step's index sets (`index_sets` is
   /// the cost step's; with load cases, of the selected case's program); empty without a program.
   std::vector<sensitivity::IndexSets> step_index_sets;
+  /// Load cases with combine = "worst" and case cuts on (ShapeOracle::set_case_cuts): the cut
+  /// (w_k J_k, w_k ξ_k) of every other case k with w_k > 0 at its default pieces — the pieces of
+  /// the max that the optimizer adds as cuts of their own (optim::OracleResult::pieces).
+  /// A case whose adjoint fails is left out (its cut is optional).
+  std::vector<optim::PieceCut> case_cuts;
 };
 
 /// Θ(α) and ξ ∈ ∂Θ(α) (or of the pseudodifferential, spec 03 §8) for a body with contact and a
@@ -128,6 +133,11 @@ class ShapeOracle final : public optim::Oracle {
   const BodyState& state(const Eigen::Ref<const Eigen::VectorXd>& alpha);
   static constexpr std::size_t kRecentStates = 8;
   int num_state_solves() const { return state_solves_; }
+  /// Worst-case load cases: whether an evaluation with subgradient also returns the cuts of the
+  /// other cases (Evaluation::case_cuts: K − 1 further adjoints on the same factorization), which
+  /// the bundle method models the max with (docs/theory/load-cases.md §4). Default on.
+  void set_case_cuts(bool on) { case_cuts_ = on; }
+  bool case_cuts() const { return case_cuts_; }
 
  private:
   void solve_state(const Eigen::VectorXd& alpha);
@@ -153,6 +163,7 @@ class ShapeOracle final : public optim::Oracle {
   std::vector<std::unique_ptr<ProgramHistory>> case_histories_;
   int selected_ = 0;
   int last_factorizations_ = 0;
+  bool case_cuts_ = true;
   std::unique_ptr<ProgramHistory> history_;  // a cost along a loading program (issue 13 item 2)
 };
 
