@@ -114,6 +114,10 @@ BundleTrust::Summary confirm_in_point_units(const BundleTrust::Options& options,
     extra_evaluations += r.evaluations;
     extra_iterations += r.iterations;
     if (!(r.f < f_stop) && r.status == Status::kMaxIterations && (r.evaluation_limit || r.iterations < planned)) {
+      if (r.f < s.f) {  // the best point found
+        s.x = r.x.cwiseProduct(u);
+        s.f = r.f;
+      }
       s.evaluations += extra_evaluations;
       s.iterations += extra_iterations;
       return limit_reached(std::move(s), r.evaluation_limit);
