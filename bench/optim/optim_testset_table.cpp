@@ -3,11 +3,15 @@
 // variant solved by BundleTrust with DEFAULT options (only keep_history is switched off), and
 // the median evaluation count. Exit code 0 iff every problem is solved to the accuracy and no
 // run reports "converged" at an inaccurate value.
-//   optim_testset_table [--epsilon E] [--accuracy A] [--confirm] [--metric [--metric-ratio K]
+//   optim_testset_table [--epsilon E] [--accuracy A] [--confirm] [--no-units-check] [--units-spread S]
+//                       [--metric [--metric-ratio K]
 //                       [--metric-memory M] [--metric-damping W]] [--baseline] [--only NAME] > table.md
 // --epsilon sets BundleTrust::Options::epsilon (default: the default, 1e-4) and --accuracy the
 // relative accuracy checked (default: 1e-4). --confirm passes every "converged" through
-// confirm_in_point_units (point_units_check.hpp; evaluations include it). --metric switches on
+// confirm_in_point_units (point_units_check.hpp; evaluations include it), whatever the units'
+// spread; --no-units-check switches off BundleTrust's default confirmation of stops whose units
+// spread by more than Options::point_units_spread (the method before round 8 of issue 16), and
+// --units-spread S sets that threshold. --metric switches on
 // BundleTrust::Options::variable_metric (--metric-ratio, --metric-memory, --metric-damping set its
 // bound, memory and damping). --baseline adds the projected subgradient method
 // with 10 000 evaluations. --only runs one problem and prints its brief report on stderr;
@@ -46,13 +50,15 @@ int main(int argc, char** argv) {
     else if (a == "--accuracy" && i + 1 < argc) accuracy = std::atof(argv[++i]);
     else if (a == "--baseline") baseline = true;
     else if (a == "--confirm") confirm = true;
+    else if (a == "--no-units-check") bt.confirm_in_point_units = false;
+    else if (a == "--units-spread" && i + 1 < argc) bt.point_units_spread = std::atof(argv[++i]);
     else if (a == "--metric") bt.variable_metric = true;
     else if (a == "--metric-ratio" && i + 1 < argc) bt.metric_ratio_bound = std::atof(argv[++i]);
     else if (a == "--metric-memory" && i + 1 < argc) bt.metric_memory = std::atoi(argv[++i]);
     else if (a == "--metric-damping" && i + 1 < argc) bt.metric_damping = std::atof(argv[++i]);
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
     else {
-      std::fprintf(stderr, "usage: %s [--epsilon E] [--accuracy A] [--confirm] [--metric] [--metric-ratio K] [--metric-memory M] [--metric-damping W] [--baseline] [--only NAME]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--epsilon E] [--accuracy A] [--confirm] [--no-units-check] [--units-spread S] [--metric] [--metric-ratio K] [--metric-memory M] [--metric-damping W] [--baseline] [--only NAME]\n", argv[0]);
       return 2;
     }
   }

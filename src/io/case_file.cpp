@@ -744,6 +744,13 @@ void read_optimization(const TableReader& r, optim::BundleTrust::Options& o) {
   // Worst-case load cases: the other cases' cuts in the bundle (docs/optim.md, "Cuts of the
   // pieces of a max"); off saves K − 1 adjoints per evaluation.
   if (const std::optional<bool> b = r.optional_bool("case_cuts")) o.use_piece_cuts = *b;
+  // The default confirmation of a stop in the point's units when they spread by more than
+  // point_units_spread (docs/optim.md, "Confirmation in the point's units").
+  if (const std::optional<bool> b = r.optional_bool("confirm_in_point_units")) o.confirm_in_point_units = *b;
+  if (const std::optional<double> k = r.optional_number("point_units_spread")) {
+    if (!(*k >= 1.0) || !std::isfinite(*k)) r.fail_value("point_units_spread", "point_units_spread >= 1 (finite)");
+    o.point_units_spread = *k;
+  }
 }
 
 OutputSpec read_output(const TableReader& r, std::string default_name) {
@@ -1127,7 +1134,8 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   if (const toml::table* optimization = top.optional_table("optimization"))
     read_optimization(TableReader(*optimization, "optimization", origin,
                                   {"max_iterations", "max_evaluations", "epsilon", "max_step_length", "bundle_size",
-                                   "variable_metric", "case_cuts"}),
+                                   "variable_metric", "case_cuts", "confirm_in_point_units",
+                                   "point_units_spread"}),
                       c.optimization);
 
   if (const toml::table* identification = top.optional_table("identification"))

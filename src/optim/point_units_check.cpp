@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -21,6 +22,17 @@
 namespace frictopt::optim {
 
 namespace {
+
+// The limits of `options` reached before a stop could be confirmed: the run reports them (with
+// the best point found), not "converged" — an unconfirmed stop is no certified one.
+BundleTrust::Summary limit_reached(BundleTrust::Summary s, bool evaluation_limit) {
+  s.status = Status::kMaxIterations;
+  s.stop_reason = evaluation_limit ? StopReason::kEvaluationLimit : StopReason::kIterationLimit;
+  s.evaluation_limit = evaluation_limit;
+  s.message = std::string("the ") + (evaluation_limit ? "evaluation" : "iteration") +
+              " limit was reached before the stop could be confirmed in the point's units (" + s.message + ")";
+  return s;
+}
 
 // Rounds of "restart in the point's units" before a run that keeps moving is reported as not
 // certified (each round that moves is a full run: the bound keeps the whole thing finite).
@@ -44,6 +56,17 @@ Eigen::VectorXd point_units(const Eigen::Ref<const Eigen::VectorXd>& x, const Ei
   return u;
 }
 
+double point_units_spread(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& x_ref) {
+  const Eigen::VectorXd u = point_units(x, x_ref);
+  double largest = 0.0, smallest = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < u.size(); ++i) {
+    if (x(i) == 0.0 && x_ref(i) == 0.0) continue;  // u_i = 1 by default: no unit of its own
+    largest = std::max(largest, u(i));
+    smallest = std::min(smallest, u(i));
+  }
+  return largest > smallest ? largest / smallest : 1.0;
+}
+
 LinearConstraints in_units(const LinearConstraints& constraints, const Eigen::VectorXd& u) {
   LinearConstraints k = constraints;
   // x = u ∘ x̃: lb ≤ x ≤ ub reads lb/u ≤ x̃ ≤ ub/u, A x ≤ b reads (A diag u) x̃ ≤ b.
@@ -65,17 +88,26 @@ BundleTrust::Summary confirm_in_point_units(const BundleTrust::Options& options,
   for (int round = 0; round < kMaxRounds; ++round) {
     const Eigen::VectorXd u = point_units(s.x, x0);
     const LinearConstraints scaled = in_units(constraints, u);
-    // ∂f̃(x̃) = u ∘ ∂f(u ∘ x̃).
+    // ∂f̃(x̃) = u ∘ ∂f(u ∘ x̃), for f and for the pieces of a max (OracleResult::pieces).
     FunctionOracle scaled_oracle([&oracle, &u](const Eigen::Ref<const Eigen::VectorXd>& x) {
       OracleResult r = oracle.evaluate(x.cwiseProduct(u));
       if (r.ok && r.subgradient.size() == u.size()) r.subgradient = r.subgradient.cwiseProduct(u);
+      for (PieceCut& p : r.pieces)
+        if (p.subgradient.size() == u.size()) p.subgradient = p.subgradient.cwiseProduct(u);
       return r;
     });
     // The check only has to show whether a gain above ε·F exists: it stops as soon as it has
     // gained that much, and after one bundle's worth of iterations (j_max = max(2n, 10)).
+    // The limits of `options` bound the totals, check included.
     const double f_stop = s.f - options.epsilon * s.value_scale;
+    const int planned = 2 * static_cast<int>(std::max<Eigen::Index>(n, 5));
+    const int iterations_left = options.max_iterations - s.iterations - extra_iterations;
+    const int evaluations_left = options.max_evaluations - s.evaluations - extra_evaluations;
+    if (iterations_left < 1 || evaluations_left < 1) return limit_reached(std::move(s), evaluations_left < 1);
     BundleTrust::Options check = options;
-    check.max_iterations = 2 * static_cast<int>(std::max<Eigen::Index>(n, 5));
+    check.confirm_in_point_units = false;  // this is the check
+    check.max_iterations = std::min(planned, iterations_left);
+    check.max_evaluations = evaluations_left;
     check.keep_history = false;
     check.on_iteration = [f_stop](const BundleTrust::IterationSummary& it) {
       return it.f < f_stop ? CallbackResult::kStop : CallbackResult::kContinue;
@@ -83,6 +115,15 @@ BundleTrust::Summary confirm_in_point_units(const BundleTrust::Options& options,
     const BundleTrust::Summary r = BundleTrust(check, scaled).minimize(scaled_oracle, s.x.cwiseQuotient(u));
     extra_evaluations += r.evaluations;
     extra_iterations += r.iterations;
+    if (!(r.f < f_stop) && r.status == Status::kMaxIterations && (r.evaluation_limit || r.iterations < planned)) {
+      if (r.f < s.f) {  // the best point found
+        s.x = r.x.cwiseProduct(u);
+        s.f = r.f;
+      }
+      s.evaluations += extra_evaluations;
+      s.iterations += extra_iterations;
+      return limit_reached(std::move(s), r.evaluation_limit);
+    }
     if (!(r.f < f_stop)) {  // confirmed: no gain above ε·F in the point's units
       if (r.f < s.f) {
         s.x = r.x.cwiseProduct(u);
@@ -98,7 +139,17 @@ BundleTrust::Summary confirm_in_point_units(const BundleTrust::Options& options,
     }
     // x was not stationary to ε in these units: go on in them with the full options.
     BundleTrust::Options go_on = options;
+    go_on.confirm_in_point_units = false;  // its stop is checked by the next round here
     go_on.on_iteration = nullptr;
+    go_on.max_iterations = options.max_iterations - s.iterations - extra_iterations;
+    go_on.max_evaluations = options.max_evaluations - s.evaluations - extra_evaluations;
+    if (go_on.max_iterations < 1 || go_on.max_evaluations < 1) {
+      s.x = r.x.cwiseProduct(u);
+      s.f = r.f;
+      s.evaluations += extra_evaluations;
+      s.iterations += extra_iterations;
+      return limit_reached(std::move(s), go_on.max_evaluations < 1);
+    }
     BundleTrust::Summary next = BundleTrust(go_on, scaled).minimize(scaled_oracle, r.x);
     next.x = next.x.cwiseProduct(u);
     extra_evaluations += next.evaluations;

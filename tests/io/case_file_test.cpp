@@ -292,6 +292,19 @@ TEST(ParseCase, CostAndOptimizationTablesAreValidated) {
   EXPECT_FALSE(no_cuts.optimization.use_piece_cuts);
   expect_invalid_case(std::string(kValid2d) + "\n[optimization]\ncase_cuts = \"no\"\n",
                       {"optimization.case_cuts"});
+  // The confirmation in the point's units is on by default (issue 16, eighth round); a case can
+  // switch it off or move its threshold, never below 1.
+  EXPECT_TRUE(c.optimization.confirm_in_point_units);
+  EXPECT_EQ(c.optimization.point_units_spread, 10.0);
+  const CaseDescription units = parse_case(
+      std::string(kValid2d) + "\n[optimization]\nconfirm_in_point_units = false\npoint_units_spread = 100\n",
+      "case.toml");
+  EXPECT_FALSE(units.optimization.confirm_in_point_units);
+  EXPECT_EQ(units.optimization.point_units_spread, 100.0);
+  expect_invalid_case(std::string(kValid2d) + "\n[optimization]\npoint_units_spread = 0.5\n",
+                      {"optimization.point_units_spread", "0.5"});
+  expect_invalid_case(std::string(kValid2d) + "\n[optimization]\nconfirm_in_point_units = \"yes\"\n",
+                      {"optimization.confirm_in_point_units"});
   expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"x\"\n", {"cost.kind"});
   expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"target_pressure\"\n", {"cost.target"});
   expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"compliance\"\nexponent = 4\n", {"cost.exponent"});

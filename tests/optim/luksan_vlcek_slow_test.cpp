@@ -60,3 +60,13 @@ TEST(LuksanVlcekFullSet, EpsilonOneTenthOfTheAccuracyReachesOneInAMillion) {
   o.epsilon = 1e-7;
   check_table(o, 1e-6, {"BPfilter"});
 }
+
+// The issue's tight target: ε = 1e-6 for accuracy 1e-6 with otherwise default options. HS114
+// said "converged" 4.8e-6 off f* here until the default confirmation in the point's units
+// (issue 16, eighth round; docs/optim-testset.md).
+TEST(LuksanVlcekFullSet, EpsilonOneInAMillionReachesOneInAMillion) {
+  fo::BundleTrust::Options o;
+  o.keep_history = false;
+  o.epsilon = 1e-6;
+  check_table(o, 1e-6, {"BPfilter"});
+}

@@ -10,6 +10,7 @@
 
 #include "frictopt/core/error.hpp"
 #include "frictopt/optim/bundle_trust.hpp"
+#include "frictopt/optim/point_units_check.hpp"
 
 namespace fo = frictopt::optim;
 using frictopt::Status;
@@ -19,15 +20,22 @@ namespace {
 // f(x) = max_k ½ (x − c_k)ᵀ D (x − c_k), D = diag(1, 2, …, n), c_k = e_k/√D_kk (k < K). In
 // y = D^{1/2} x the pieces are ½‖y − e_k‖²: f is minimal at the circumcenter of e_1 … e_K,
 // y = (1/K) Σ e_k, with f* = ½(1 − 1/K).
+// With `units` s: D = diag(1/s_i²), c_k = s_k e_k (the same f* in y = x ⊘ s).
 struct MaxOfQuadratics {
   int n = 10;
   int K = 6;
   bool with_pieces = true;
+  Eigen::VectorXd units;  // empty: D = diag(1, …, n), c_k = e_k/√D_kk
   int calls = 0;
   double piece(const Eigen::VectorXd& x, int k, Eigen::VectorXd& g) const {
     Eigen::VectorXd r = x;
-    r(k) -= 1.0 / std::sqrt(k + 1.0);
-    const Eigen::VectorXd d = Eigen::VectorXd::LinSpaced(n, 1.0, n);
+    Eigen::VectorXd d = Eigen::VectorXd::LinSpaced(n, 1.0, n);
+    if (units.size() == n) {
+      d = units.cwiseAbs2().cwiseInverse();
+      r(k) -= units(k);
+    } else {
+      r(k) -= 1.0 / std::sqrt(k + 1.0);
+    }
     g = d.cwiseProduct(r);
     return 0.5 * r.dot(g);
   }
@@ -123,4 +131,44 @@ TEST(PieceCuts, APieceAboveTheValueIsRefusedAndUnusablePiecesAreIgnored) {
   EXPECT_EQ(a.status, Status::kConverged) << a.brief_report();
   EXPECT_EQ(a.evaluations, b.evaluations);
   EXPECT_EQ(a.f, b.f);
+}
+
+// The check continues a stop that is not stationary in the point's units (here a loose ε = 1e-2
+// run, checked at ε = 1e-7): the run in x ⊘ u must reach f* with the pieces' cuts in its units.
+TEST(PieceCuts, TheConfirmationRunContinuesWithThePiecesInItsUnits) {
+  MaxOfQuadratics problem;
+  problem.n = 4;
+  problem.K = 3;
+  problem.units = Eigen::Vector4d(1.0, 10.0, 100.0, 1000.0);
+  fo::FunctionOracle oracle([&](const Eigen::Ref<const Eigen::VectorXd>& x) { return problem(x); });
+  const Eigen::VectorXd x0 = 0.3 * problem.units;
+  fo::BundleTrust::Options loose;
+  loose.epsilon = 1e-2;
+  loose.confirm_in_point_units = false;
+  const fo::BundleTrust::Summary first = fo::BundleTrust(loose).minimize(oracle, x0);
+  ASSERT_EQ(first.status, Status::kConverged) << first.brief_report();
+  ASSERT_GT(first.f - problem.f_star(), 1e-5 * problem.f_star()) << "the loose stop is not at f*";
+  fo::BundleTrust::Options tight;
+  tight.epsilon = 1e-7;
+  const fo::BundleTrust::Summary s = fo::confirm_in_point_units(tight, {}, oracle, x0, first);
+  ASSERT_EQ(s.status, Status::kConverged) << s.brief_report();
+  EXPECT_LE(std::abs(s.f - problem.f_star()), 1e-6 * problem.f_star()) << s.brief_report();
+}
+
+// With the default confirmation (the units spread by 900 here) a run with pieces ends at f*.
+TEST(PieceCuts, DefaultRunInDisparateUnitsReachesTheMinimum) {
+  MaxOfQuadratics problem;
+  problem.n = 4;
+  problem.K = 3;
+  problem.units = Eigen::Vector4d(1.0, 10.0, 100.0, 1000.0);
+  fo::FunctionOracle oracle([&](const Eigen::Ref<const Eigen::VectorXd>& x) { return problem(x); });
+  for (double epsilon : {1e-5, 1e-7}) {
+    fo::BundleTrust::Options o;
+    o.epsilon = epsilon;
+    o.keep_history = false;
+    const fo::BundleTrust::Summary s = fo::BundleTrust(o).minimize(oracle, 0.3 * problem.units);
+    ASSERT_EQ(s.status, Status::kConverged) << s.brief_report();
+    const double accuracy = epsilon == 1e-5 ? 1e-4 : 1e-6;
+    EXPECT_LE(std::abs(s.f - problem.f_star()), accuracy * problem.f_star()) << s.brief_report();
+  }
 }

@@ -163,6 +163,17 @@ class BundleTrust {
     // evaluation (OracleResult::pieces; docs/optim.md, "Cuts of the pieces of a max"). No
     // effect for oracles that return none.
     bool use_piece_cuts = true;
+    // Confirmation of a "converged" in the point's units (docs/optim.md, "Confirmation in the
+    // point's units"; issue 16, eighth round): when the stop's per-coordinate units
+    // u_i = max(|x_i|, |x_1,i|) spread by more than point_units_spread (max u / min u over the
+    // coordinates that have a unit), the stop is checked by confirm_in_point_units
+    // (point_units_check.hpp) before minimize/resume return it: a restart in x ⊘ u that gains more
+    // than ε·F continues the run in those units. Nearly uniform units are skipped: the method is
+    // invariant under x → c·x, and with a spread κ the stop is already κε-stationary in x ⊘ u.
+    // The check's evaluations count towards max_evaluations/max_iterations; it does not call
+    // on_iteration. false: the Euclidean stop is returned as it is (the method before round 8).
+    bool confirm_in_point_units = true;
+    double point_units_spread = 10.0;  // >= 1
     // A start point violating Υ by more than this (user units, max norm) is projected.  > 0.
     double feasibility_tolerance = 1e-9;
     // Keep the per-iteration history in the Summary.

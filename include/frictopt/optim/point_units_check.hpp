@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // A "converged" of BundleTrust confirmed in the per-coordinate units of the point found
-// (issue 16, sixth round; docs/optim.md, "Confirmation in the point's units").
+// (issue 16, sixth round; docs/optim.md, "Confirmation in the point's units"). Since the eighth
+// round BundleTrust::minimize/resume call it by default on stops whose units spread by more than
+// Options::point_units_spread; called directly it checks any converged summary.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,6 +17,12 @@ namespace frictopt::optim {
 [[nodiscard]] Eigen::VectorXd point_units(const Eigen::Ref<const Eigen::VectorXd>& x,
                                           const Eigen::Ref<const Eigen::VectorXd>& x_ref);
 
+/// Spread of point_units(x, x_ref): max u_i / min u_i over the coordinates where x_i or x_ref,i
+/// is nonzero (a coordinate where both vanish has no unit to compare; its u_i = 1 is a default,
+/// not a measurement); 1 when fewer than two coordinates have a unit. Invariant under x → c·x.
+[[nodiscard]] double point_units_spread(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                        const Eigen::Ref<const Eigen::VectorXd>& x_ref);
+
 /// Υ in the variables x̃ = x ⊘ u (u_i > 0): bounds divided by u, constraint columns times u.
 [[nodiscard]] LinearConstraints in_units(const LinearConstraints& constraints, const Eigen::VectorXd& u);
 
@@ -24,7 +32,9 @@ namespace frictopt::optim {
 /// more than ε·F (F = summary.value_scale). If it does not, the stop is confirmed (the better
 /// of the two points is returned). If it does, x was not stationary to ε in these units: the
 /// run goes on in them with the full options and its stop is confirmed in turn, at most 5
-/// rounds (then kStalled, kStationarityNotCertified). A summary that is not converged is
+/// rounds (then kStalled, kStationarityNotCertified). options.max_iterations and
+/// max_evaluations bound the totals, check included: a check that the limits cut short ends the
+/// run with kMaxIterations (the stop is then not confirmed). A summary that is not converged is
 /// returned unchanged. The result's x and f are in the original variables; its counters are the
 /// totals; stationarity, scales, certificate, history and last_state are those of the last run,
 /// in its variables (not resumable with `oracle`). options.on_iteration is not called by the
