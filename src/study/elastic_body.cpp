@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "frictopt/contact/delassus.hpp"
@@ -150,6 +151,21 @@ Eigen::VectorXd ElasticBody::shape_design(const Eigen::Ref<const Eigen::VectorXd
   // sensitivity reads definition().contact->law), until the next design turns it again.
   set_friction_law(orientation_design_->law_for_variable(x(d)));
   return x.head(d);
+}
+
+const fem::LinearElasticity& ElasticBody::traction_kernel(std::size_t j) const {
+  FRICTOPT_ASSERT(j < definition_.tractions.size(), "traction_kernel: a [[load]] of the body");
+  if (traction_kernels_.size() != definition_.tractions.size()) traction_kernels_.resize(definition_.tractions.size());
+  if (!traction_kernels_[j])
+    traction_kernels_[j] = std::make_unique<fem::LinearElasticity>(
+        *mesh_, definition_.material, fem::PrescribedDofs{}, std::vector<fem::FaceTraction>{definition_.tractions[j]},
+        definition_.linear_solver);
+  return *traction_kernels_[j];
+}
+
+int ElasticBody::num_traction_kernels() const {
+  return static_cast<int>(std::count_if(traction_kernels_.begin(), traction_kernels_.end(),
+                                         [](const auto& k) { return k != nullptr; }));
 }
 
 BodyState ElasticBody::solve_step(const Eigen::Ref<const Eigen::VectorXd>& alpha, const StepLoads& step,

@@ -78,7 +78,6 @@ LoadCases::LoadCases(const ElasticBody& body, LoadCasesDefinition definition)
     if (definition_.cases[k].program) definition_.cases[k].program->validate(def, fmt::format("load_case[{}]", k));
   if (!body_.contact_boundary())
     throw InvalidInput("load_case: load cases combine a contact cost; expected a [contact] table");
-  traction_kernels_.resize(def.tractions.size());
 }
 
 Eigen::VectorXd LoadCases::load_change_shape_derivative(int k, const Eigen::Ref<const Eigen::MatrixXd>& X,
@@ -87,18 +86,12 @@ Eigen::VectorXd LoadCases::load_change_shape_derivative(int k, const Eigen::Ref<
   Eigen::VectorXd out = Eigen::VectorXd::Zero(body_.definition().shape.num_controls());
   if (c.load_scale.empty()) return out;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(body_.mesh().num_dofs());
-  const BodyDefinition& def = body_.definition();
-  for (std::size_t j = 0; j < traction_kernels_.size(); ++j) {
+  for (std::size_t j = 0; j < c.load_scale.size(); ++j) {
     const double change = c.load_scale[j] - 1.0;
     if (change == 0.0) continue;
-    // Built on first use (a kernel holds the mesh's element pattern): only its traction_load and
-    // shape_derivative are used — no Dirichlet data, never factorized.
-    if (!traction_kernels_[j])
-      traction_kernels_[j] = std::make_unique<fem::LinearElasticity>(
-          body_.mesh(), def.material, fem::PrescribedDofs{}, std::vector<fem::FaceTraction>{def.tractions[j]},
-          def.linear_solver);
+    // The body's kernel of load j (built on first use, shared by every case and step).
     // shape_derivative(X, 0, ψ) = ∇_α[ψᵀ(A·0 − l_j(α))] = −∇_α[ψᵀ l_j(α)].
-    out += change * traction_kernels_[j]->shape_derivative(X, zero, psi);
+    out += change * body_.traction_kernel(j).shape_derivative(X, zero, psi);
   }
   return out;
 }

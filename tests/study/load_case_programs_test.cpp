@@ -169,6 +169,9 @@ TEST(ProgramCases, OneFactorizationForEveryStepOfEveryCase) {
   const Evaluation e = oracle.evaluate_design(alpha);
   ASSERT_TRUE(e.ok) << e.message;
   EXPECT_EQ(e.factorizations, 1) << "6 contact solves on one factorization";
+  // The shape-derivative kernels of the scaled [[load]] tables are the body's: one per load,
+  // shared by the three cases' six steps (each holds the mesh's element pattern).
+  EXPECT_EQ(body.num_traction_kernels(), 2);
   Eigen::VectorXd moved = alpha;
   moved(1) += 1e-5;
   moved(2) -= 1e-5;  // the volume stays

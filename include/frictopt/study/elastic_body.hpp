@@ -156,6 +156,15 @@ class ElasticBody {
                                                                           const Eigen::MatrixXd& gap_matrix);
   void set_warm_start(std::optional<contact::ContactState> state) { warm_start_ = std::move(state); }
 
+  /// A kernel for the shape derivative of the case file's [[load]] j alone: a LinearElasticity
+  /// on the body's mesh whose only traction is load j (no Dirichlet data, never factorized; only
+  /// traction_load and shape_derivative are used). Built on first use and kept by the body, so
+  /// that every load case and loading-program step that scales load j shares one (a kernel holds
+  /// the mesh's element pattern: about 1.75 kB per unknown).
+  const fem::LinearElasticity& traction_kernel(std::size_t j) const;
+  /// How many traction kernels have been built so far (for tests and memory reports).
+  int num_traction_kernels() const;
+
  private:
   BodyDefinition definition_;
   std::unique_ptr<const mesh::Mesh> mesh_;  // heap: fem_ and boundary_ keep references to it
@@ -180,6 +189,8 @@ class ElasticBody {
   std::shared_ptr<const Eigen::MatrixXd> step_delassus_matrix_;
   BodyState solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha, const std::string& design_label,
                        const StepLoads* step);
+  // traction_kernel(j), null until first needed (a cache: the body stays logically const).
+  mutable std::vector<std::unique_ptr<fem::LinearElasticity>> traction_kernels_;
 };
 
 }  // namespace frictopt::study

@@ -49,9 +49,6 @@ class LoadCases {
  private:
   const ElasticBody& body_;
   LoadCasesDefinition definition_;
-  // Per [[load]] j that some case scales by s_kj ≠ 1: a kernel whose only traction is load j, for
-  // its shape derivative (fem's kernel is per traction set); null until first needed.
-  mutable std::vector<std::unique_ptr<fem::LinearElasticity>> traction_kernels_;
 };
 
 }  // namespace frictopt::study
