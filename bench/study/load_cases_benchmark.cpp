@@ -5,7 +5,8 @@
 // single-load one. The body, law and loads are cases3d/grip-worst-case: the demo's block under
 // the anisotropic 4-gon, pressed, then dragged 0.1 mm in K directions θ_k = 2πk/K.
 //   build/bench/study/load_cases_benchmark            (evaluations: K = 1, 2, 4, 8)
-//   build/bench/study/load_cases_benchmark --study    (also the two optimizations, minutes)
+//   build/bench/study/load_cases_benchmark --study    (also the optimizations: K = 1, K = 8 with and
+//                                                      without the other cases' cuts; minutes)
 #include <fmt/format.h>
 
 #include <cmath>
@@ -59,21 +60,26 @@ std::vector<Eigen::VectorXd> designs(const Eigen::VectorXd& alpha0, int n) {
 
 struct Row {
   int K = 0;
-  double evaluation = 0, factorization = 0, contact = 0, adjoints = 0, worst_evaluation = 0;
+  double evaluation = 0, factorization = 0, contact = 0, adjoints = 0, worst_evaluation = 0, cuts_evaluation = 0;
   int factorizations = 0;
 };
 
 Row time_evaluations(const io::CaseDescription& description, int K, int repeats) {
   Row row;
   row.K = K;
-  std::vector<double> eval_s, worst_s, fact_s, contact_s, adjoint_s;
-  study::ElasticBody body(description.body), worst_body(description.body);
+  std::vector<double> eval_s, worst_s, cuts_s, fact_s, contact_s, adjoint_s;
+  study::ElasticBody body(description.body), worst_body(description.body), cuts_body(description.body);
   study::ShapeOracle weighted(body, with_directions(*description.cost, K, study::CaseCombination::kWeighted));
+  // The worst case with one adjoint (the selected case's), and with the other cases' cuts for
+  // the optimizer (K adjoints; the default in study::optimize).
   study::ShapeOracle worst(worst_body, with_directions(*description.cost, K, study::CaseCombination::kWorst));
+  worst.set_case_cuts(false);
+  study::ShapeOracle cuts(cuts_body, with_directions(*description.cost, K, study::CaseCombination::kWorst));
   const auto alphas = designs(description.body.initial_design, repeats + 1);
   // Warm-up at α⁰ (first symbolic analysis, first cold contact solves).
   (void)weighted.evaluate_design(description.body.initial_design);
   (void)worst.evaluate_design(description.body.initial_design);
+  (void)cuts.evaluate_design(description.body.initial_design);
   for (int r = 0; r < repeats; ++r) {
     const Eigen::VectorXd& alpha = alphas[static_cast<std::size_t>(r)];
     // Θ and ξ with K adjoints ("weighted"), and with one ("worst").
@@ -86,6 +92,10 @@ Row time_evaluations(const io::CaseDescription& description, int K, int repeats)
     const study::Evaluation& w = worst.evaluate_design(alpha);
     worst_s.push_back(seconds(t0, Clock::now()));
     if (!w.ok) throw NumericalFailure(w.message);
+    t0 = Clock::now();
+    const study::Evaluation& c = cuts.evaluate_design(alpha);
+    cuts_s.push_back(seconds(t0, Clock::now()));
+    if (!c.ok) throw NumericalFailure(c.message);
     // The floor's parts at the same α: the factorization (with assembly) of case 0, the K
     // contact solves as the solver reports them, and K adjoints timed one by one.
     const study::BodyState& s0 = weighted.case_state(alpha, 0);
@@ -104,6 +114,7 @@ Row time_evaluations(const io::CaseDescription& description, int K, int repeats)
   }
   row.evaluation = median(eval_s);
   row.worst_evaluation = median(worst_s);
+  row.cuts_evaluation = median(cuts_s);
   row.factorization = median(fact_s);
   row.contact = median(contact_s);
   row.adjoints = median(adjoint_s);
@@ -118,11 +129,13 @@ struct StudyRow {
   std::string status;
 };
 
-StudyRow time_study(const io::CaseDescription& description, int K) {
+StudyRow time_study(const io::CaseDescription& description, int K, bool case_cuts) {
   study::ElasticBody body(description.body);
   study::ShapeOracle oracle(body, with_directions(*description.cost, K, study::CaseCombination::kWorst));
+  optim::BundleTrust::Options options = description.optimization;
+  options.use_piece_cuts = case_cuts;
   const auto t0 = Clock::now();
-  const optim::BundleTrust::Summary s = study::optimize(oracle, description.optimization, {});
+  const optim::BundleTrust::Summary s = study::optimize(oracle, options, {});
   StudyRow row;
   row.K = K;
   row.seconds = seconds(t0, Clock::now());
@@ -142,24 +155,27 @@ int main(int argc, char** argv) {
   fmt::print("load cases on the demo's mesh (16 x 16 x 8, 289 contact nodes); medians of {} evaluations at "
              "fresh designs\n",
              kRepeats);
-  fmt::print("{:>3} {:>12} {:>10} {:>10} {:>10} {:>12} {:>8} {:>14} {:>7}\n", "K", "eval (K adj)", "factor.",
-             "K contact", "K adjoint", "floor", "ratio", "eval (worst)", "factor");
+  fmt::print("{:>3} {:>12} {:>10} {:>10} {:>10} {:>12} {:>8} {:>14} {:>14} {:>7}\n", "K", "eval (K adj)", "factor.",
+             "K contact", "K adjoint", "floor", "ratio", "worst (1 adj)", "worst + cuts", "factor");
   for (int K : {1, 2, 4, 8}) {
     const Row r = time_evaluations(description, K, kRepeats);
     const double floor = r.factorization + r.contact + r.adjoints;
-    fmt::print("{:>3} {:>11.3f}s {:>9.3f}s {:>9.3f}s {:>9.3f}s {:>11.3f}s {:>8.2f} {:>13.3f}s {:>7}\n", r.K, r.evaluation,
-               r.factorization, r.contact, r.adjoints, floor, r.evaluation / floor, r.worst_evaluation,
-               r.factorizations);
+    fmt::print("{:>3} {:>11.3f}s {:>9.3f}s {:>9.3f}s {:>9.3f}s {:>11.3f}s {:>8.2f} {:>13.3f}s {:>13.3f}s {:>7}\n", r.K,
+               r.evaluation, r.factorization, r.contact, r.adjoints, floor, r.evaluation / floor, r.worst_evaluation,
+               r.cuts_evaluation, r.factorizations);
   }
   fmt::print("peak resident memory {:.0f} MB\n", frictopt::bench::peak_rss_megabytes());
   if (!with_study) return 0;
   fmt::print("\nworst-case optimization (the case's [optimization] options), K = 1 vs K = 8\n");
-  const StudyRow one = time_study(description, 1);
-  const StudyRow eight = time_study(description, 8);
-  for (const StudyRow& r : {one, eight})
-    fmt::print("K = {}: {:.1f} s, {} iterations, {} evaluations, Θ = {:.6e}, {}\n", r.K, r.seconds, r.iterations,
-               r.evaluations, r.value, r.status);
-  fmt::print("time ratio K = 8 / K = 1: {:.2f} (per evaluation {:.2f})\n", eight.seconds / one.seconds,
-             (eight.seconds / eight.evaluations) / (one.seconds / one.evaluations));
+  const StudyRow one = time_study(description, 1, true);
+  const StudyRow eight = time_study(description, 8, true);
+  // The same K = 8 study with the selected case's subgradient only ([optimization] case_cuts = false).
+  const StudyRow plain = time_study(description, 8, false);
+  for (const auto& [r, label] : {std::pair{one, ""}, std::pair{eight, ", case cuts"}, std::pair{plain, ", no case cuts"}})
+    fmt::print("K = {}{}: {:.1f} s, {} iterations, {} evaluations, Θ = {:.6e}, {}\n", r.K, label, r.seconds,
+               r.iterations, r.evaluations, r.value, r.status);
+  for (const auto& [r, label] : {std::pair{eight, "case cuts (default)"}, std::pair{plain, "no case cuts"}})
+    fmt::print("time ratio K = 8 / K = 1, {}: {:.2f} (per evaluation {:.2f})\n", label, r.seconds / one.seconds,
+               (r.seconds / r.evaluations) / (one.seconds / one.evaluations));
   return 0;
 }
