@@ -14,6 +14,7 @@
 #include <string>
 
 #include "common/finite_difference.hpp"
+#include "common/oracle_gradient.hpp"
 #include "common/test_bodies.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/study/certificate.hpp"
@@ -64,10 +65,7 @@ CostDefinition history_cost(cost::CostKind kind, std::shared_ptr<const LoadingPr
   return d;
 }
 
-Eigen::VectorXd fd_gradient(ShapeOracle& oracle, const Eigen::VectorXd& alpha) {
-  const auto theta = [&](const Eigen::VectorXd& a) { return oracle.evaluate_design(a, false).value; };
-  return frictopt::testing::central_gradient(theta, alpha, 1e-4 * alpha.cwiseAbs().maxCoeff());
-}
+using frictopt::testing::oracle_central_gradient;
 
 void expect_strict(ShapeOracle& oracle, const Eigen::VectorXd& alpha) {
   ProgramHistory& h = *oracle.history();
@@ -97,7 +95,7 @@ TEST_P(HistoryGradient, MatchesCentralDifferencesWhereEveryStepIsStrict) {
   expect_strict(oracle, alpha);
   const Evaluation e = oracle.evaluate_design(alpha);
   ASSERT_TRUE(e.ok) << e.message;
-  const Eigen::VectorXd fd = fd_gradient(oracle, alpha);
+  const Eigen::VectorXd fd = oracle_central_gradient(oracle, alpha);
   const double error = (e.subgradient - fd).norm() / fd.norm();
   std::printf("%s: Θ = %.10e, |ξ| = %.4e, relative error vs central differences %.2e\n", c.name.c_str(), e.value,
               e.subgradient.norm(), error);
@@ -146,7 +144,7 @@ TEST(HistoryAdjoint, DroppingTheCouplingBetweenStepsIsWrong) {
     ProgramHistory& h = *oracle.history();
     const HistorySubgradient uncoupled = h.subgradient(h.default_pieces(), false);
     ASSERT_EQ(uncoupled.summary.status, Status::kConverged);
-    const Eigen::VectorXd fd = fd_gradient(oracle, alpha);
+    const Eigen::VectorXd fd = oracle_central_gradient(oracle, alpha);
     const double coupled_error = (e.subgradient - fd).norm() / fd.norm();
     const double uncoupled_error = (uncoupled.subgradient - fd).norm() / fd.norm();
     std::printf("%s: relative error with the coupling %.2e, without %.2e\n", std::string(cost::to_string(kind)).c_str(),
@@ -214,7 +212,7 @@ TEST(HistoryAdjoint, FrictionOrientationAsADesignVariableMatchesCentralDifferenc
   const Evaluation e = oracle.evaluate_design(x);
   ASSERT_TRUE(e.ok) << e.message;
   ASSERT_EQ(e.subgradient.size(), 10);
-  const Eigen::VectorXd fd = fd_gradient(oracle, x);
+  const Eigen::VectorXd fd = oracle_central_gradient(oracle, x);
   const double error = (e.subgradient - fd).norm() / fd.norm();
   std::printf("dissipation with the orientation: dΘ/ds adjoint %.10e, FD %.10e; |ξ − FD|/|FD| = %.2e\n",
               e.subgradient(9), fd(9), error);

@@ -12,6 +12,7 @@
 
 #include "common/case_text.hpp"
 #include "common/finite_difference.hpp"
+#include "common/oracle_gradient.hpp"
 #include "common/invalid_case.hpp"
 #include "common/test_bodies.hpp"
 #include "frictopt/core/error.hpp"
@@ -61,10 +62,7 @@ CostDefinition cases_cost(cost::CostKind kind, CaseCombination combine, std::vec
   return d;
 }
 
-Eigen::VectorXd fd_gradient(ShapeOracle& oracle, const Eigen::VectorXd& alpha) {
-  const auto theta = [&](const Eigen::VectorXd& a) { return oracle.evaluate_design(a, false).value; };
-  return frictopt::testing::central_gradient(theta, alpha, 1e-4 * alpha.cwiseAbs().maxCoeff());
-}
+using frictopt::testing::oracle_central_gradient;
 
 void expect_every_step_strict(ShapeOracle& oracle, const Eigen::VectorXd& alpha) {
   for (int k = 0; k < oracle.load_cases()->size(); ++k) {
@@ -94,7 +92,7 @@ TEST_P(ProgramCasesGradient, WeightedMatchesCentralDifferencesWhereEveryStepIsSt
   ASSERT_TRUE(e.ok) << e.message;
   expect_every_step_strict(oracle, alpha);
   EXPECT_DOUBLE_EQ(e.value, 0.7 * e.case_values[0] + 1.3 * e.case_values[1]);
-  const Eigen::VectorXd fd = fd_gradient(oracle, alpha);
+  const Eigen::VectorXd fd = oracle_central_gradient(oracle, alpha);
   const double error = (e.subgradient - fd).norm() / fd.norm();
   std::printf("%s: J = (%.8e, %.8e), |ξ − FD|/|FD| = %.2e\n", c.name.c_str(), e.case_values[0], e.case_values[1],
               error);
@@ -129,7 +127,7 @@ TEST(ProgramCases, WorstCaseAtAStrictlyActiveCaseIsThatCasesHistory) {
   ASSERT_TRUE(h.ok) << h.message;
   EXPECT_EQ(h.value, e.value);
   EXPECT_LE((h.subgradient - e.subgradient).norm(), 1e-12 * e.subgradient.norm());
-  const Eigen::VectorXd fd = fd_gradient(oracle, alpha);
+  const Eigen::VectorXd fd = oracle_central_gradient(oracle, alpha);
   const double error = (e.subgradient - fd).norm() / fd.norm();
   std::printf("worst, strictly active: |ξ − FD|/|FD| = %.2e\n", error);
   EXPECT_LE(error, 1e-6);

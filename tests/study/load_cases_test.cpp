@@ -13,6 +13,7 @@
 #include <string>
 
 #include "common/finite_difference.hpp"
+#include "common/oracle_gradient.hpp"
 #include "common/invalid_case.hpp"
 #include "common/case_text.hpp"
 #include "common/test_bodies.hpp"
@@ -50,11 +51,7 @@ CostDefinition plain_cost() {
   return d;
 }
 
-// Central differences of the oracle's Θ, step 1e-4 of the design scale (as the adjoint tests).
-Eigen::VectorXd fd_gradient(ShapeOracle& oracle, const Eigen::VectorXd& alpha) {
-  const auto theta = [&](const Eigen::VectorXd& a) { return oracle.evaluate_design(a, false).value; };
-  return frictopt::testing::central_gradient(theta, alpha, 1e-4 * alpha.cwiseAbs().maxCoeff());
-}
+using frictopt::testing::oracle_central_gradient;
 
 TEST(LoadCases, OneCaseAsWrittenIsThePlainOracleBitForBit) {
   ElasticBody plain_body(two_load_body_2d()), case_body(two_load_body_2d());
@@ -95,7 +92,7 @@ TEST(LoadCases, WeightedSubgradientMatchesCentralDifferences) {
   for (int k = 0; k < 3; ++k)
     ASSERT_EQ(oracle.case_index_sets(alpha, k).num_weak_nodes(), 0) << "case " << k << " must be strict";
   EXPECT_DOUBLE_EQ(e.value, 0.5 * e.case_values[0] + e.case_values[1] + 2.0 * e.case_values[2]);
-  const Eigen::VectorXd fd = fd_gradient(oracle, alpha);
+  const Eigen::VectorXd fd = oracle_central_gradient(oracle, alpha);
   const double error = (e.subgradient - fd).norm() / fd.norm();
   std::printf("weighted: Θ = %.6e, |ξ − FD|/|FD| = %.2e (|ξ| = %.3e)\n", e.value, error, fd.norm());
   EXPECT_LE(error, 1e-5);
@@ -114,7 +111,7 @@ TEST(LoadCases, TheLoadChangeTermIsNeeded) {
   const auto& dofs = body.elasticity().dofs();
   for (int k = 0; k < dofs.num_free(); ++k) psi(dofs.free_dofs()[static_cast<std::size_t>(k)]) = results[0].psi_u(k);
   const Eigen::VectorXd term = oracle.load_cases()->load_change_shape_derivative(0, oracle.last_state().positions, psi);
-  const Eigen::VectorXd fd = fd_gradient(oracle, alpha);
+  const Eigen::VectorXd fd = oracle_central_gradient(oracle, alpha);
   EXPECT_LE((e.subgradient - fd).norm() / fd.norm(), 1e-5);
   EXPECT_GT((e.subgradient - term - fd).norm() / fd.norm(), 1e-4) << "the term is not negligible here";
 }
@@ -140,7 +137,7 @@ TEST(LoadCases, WorstCaseAtAStrictlyActiveCaseIsThatCasesSubgradient) {
   ASSERT_TRUE(one.ok) << one.message;
   EXPECT_NEAR(one.value, e.value, 1e-12 * e.value);
   EXPECT_LE((one.subgradient - e.subgradient).norm(), 1e-8 * e.subgradient.norm());
-  const Eigen::VectorXd fd = fd_gradient(oracle, alpha);
+  const Eigen::VectorXd fd = oracle_central_gradient(oracle, alpha);
   const double error = (e.subgradient - fd).norm() / fd.norm();
   std::printf("worst, strictly active: |ξ − FD|/|FD| = %.2e\n", error);
   EXPECT_LE(error, 1e-5);
