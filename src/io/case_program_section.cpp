@@ -128,7 +128,7 @@ study::TribometerDefinition read_experiment(const TableReader& r) {
 
 study::LoadingProgramDefinition read_program(const TableReader& r, std::string_view origin,
                                              const study::BodyDefinition& body, std::string_view where) {
-  const std::string tables = where == "program" ? "[[program.step]]" : "[[load_case.step]]";
+  const std::string tables = study::step_tables(where);
   study::LoadingProgramDefinition program;
   const toml::array* steps = r.optional_table_array("step");
   if (steps == nullptr || steps->empty())

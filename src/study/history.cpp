@@ -48,7 +48,7 @@ ProgramHistory::ProgramHistory(ElasticBody& body, const CostDefinition& definiti
   program_ = *definition.program;
   program_.validate(body_.definition(), where);
   const int k_steps = num_steps();
-  const std::string tables = where == "program" ? "[[program.step]]" : "[[load_case.step]]";
+  const std::string tables = step_tables(where);
   if (definition.kind == cost::CostKind::kCompliance)
     throw InvalidInput("cost.kind = \"compliance\" with " + tables +
                        " tables: the compliance reads the case file's own loads, not a step's; expected a contact cost "

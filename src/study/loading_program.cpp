@@ -93,10 +93,14 @@ Eigen::VectorXd StepLoadBuilder::tangential_displacement(
   return boundary ? boundary->tangential_displacements(displacement) : Eigen::VectorXd();  // in the foundation's frame
 }
 
+std::string step_tables(std::string_view where) {
+  return where.starts_with("load_case") ? "[[load_case.step]]" : "[[program.step]]";
+}
+
 void LoadingProgramDefinition::validate(const BodyDefinition& body, std::string_view where) const {
   if (steps.empty())
-    throw InvalidInput(fmt::format("{}.step: the program has no steps; expected at least one [[{}.step]] table", where,
-                                   where.starts_with("load_case") ? "load_case" : "program"));
+    throw InvalidInput(fmt::format("{}.step: the program has no steps; expected at least one {} table", where,
+                                   step_tables(where)));
   for (std::size_t k = 0; k < steps.size(); ++k) {
     check_scales(steps[k].load_scale, body.tractions.size(), where, k, "load_scale", "load");
     check_scales(steps[k].dirichlet_scale, body.dirichlet.size(), where, k, "dirichlet_scale", "dirichlet");

@@ -38,4 +38,8 @@ struct LoadingProgramDefinition {
   [[nodiscard]] std::vector<LoadStepDefinition> scales_in_force(const BodyDefinition& body) const;
 };
 
+/// The step tables a program named by `where` comes from, for messages: "[[program.step]]" for
+/// "program", "[[load_case.step]]" for "load_case[j]".
+[[nodiscard]] std::string step_tables(std::string_view where);
+
 }  // namespace frictopt::study
