@@ -416,6 +416,10 @@ class Run {
     return e;
   }
 
+  // The cuts of the other pieces of a max evaluated at y (OracleResult::pieces), appended to the
+  // bundle of the center st.x (also for the first evaluation, from minimize).
+  void add_piece_cuts(BundleTrust::IterationSummary& st, const Eigen::VectorXd& y, const Evaluation& e) const;
+
   // Outer loop (spec 04 §6): inner iteration → reset → update → step rule → observation.
   void run(BundleTrust::IterationSummary& st) {
     update_scales(st);
@@ -617,11 +621,6 @@ class Run {
   // Update (spec 04 §6, SERIOUS / NULL; §5 items 7 and 9).
   void update_bundle(BundleTrust::IterationSummary& st, const Trial& trial) const;
 
- public:
-  // The cuts of the other pieces of a max evaluated at y (OracleResult::pieces).
-  void add_piece_cuts(BundleTrust::IterationSummary& st, const Eigen::VectorXd& y, const Evaluation& e) const;
-
- private:
   // Step rule for the next inner iteration (docs/optim.md, "step bound").
   void update_t(BundleTrust::IterationSummary& st, const Trial& trial);
   // History and callback; false when the callback stopped the run.
@@ -990,9 +989,7 @@ BundleTrust::Summary confirm_if_units_disparate(const BundleTrust::Options& o, c
                                                 BundleTrust::Summary s) {
   if (!o.confirm_in_point_units || !s.converged() || point_units_spread(s.x, x_start) <= o.point_units_spread)
     return s;
-  BundleTrust::Options check = o;
-  check.confirm_in_point_units = false;
-  return confirm_in_point_units(check, constraints, oracle, x_start, std::move(s));
+  return confirm_in_point_units(o, constraints, oracle, x_start, std::move(s));  // its runs do not check again
 }
 
 }  // namespace

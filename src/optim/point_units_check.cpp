@@ -115,22 +115,21 @@ BundleTrust::Summary confirm_in_point_units(const BundleTrust::Options& options,
     const BundleTrust::Summary r = BundleTrust(check, scaled).minimize(scaled_oracle, s.x.cwiseQuotient(u));
     extra_evaluations += r.evaluations;
     extra_iterations += r.iterations;
-    if (!(r.f < f_stop) && r.status == Status::kMaxIterations && (r.evaluation_limit || r.iterations < planned)) {
-      if (r.f < s.f) {  // the best point found
-        s.x = r.x.cwiseProduct(u);
-        s.f = r.f;
-      }
-      s.evaluations += extra_evaluations;
-      s.iterations += extra_iterations;
-      return limit_reached(std::move(s), r.evaluation_limit);
-    }
-    if (!(r.f < f_stop)) {  // confirmed: no gain above ε·F in the point's units
+    // The run ends here: the better of x and the check's point, with the counters as totals.
+    const auto end_with_best = [&] {
       if (r.f < s.f) {
         s.x = r.x.cwiseProduct(u);
         s.f = r.f;
       }
       s.evaluations += extra_evaluations;
       s.iterations += extra_iterations;
+    };
+    if (!(r.f < f_stop) && r.status == Status::kMaxIterations && (r.evaluation_limit || r.iterations < planned)) {
+      end_with_best();
+      return limit_reached(std::move(s), r.evaluation_limit);
+    }
+    if (!(r.f < f_stop)) {  // confirmed: no gain above ε·F in the point's units
+      end_with_best();
       std::ostringstream m;
       m << s.message << "; confirmed in the point's units (" << round + 1 << " check(s), " << extra_evaluations
         << " more evaluations)";
@@ -144,10 +143,7 @@ BundleTrust::Summary confirm_in_point_units(const BundleTrust::Options& options,
     go_on.max_iterations = options.max_iterations - s.iterations - extra_iterations;
     go_on.max_evaluations = options.max_evaluations - s.evaluations - extra_evaluations;
     if (go_on.max_iterations < 1 || go_on.max_evaluations < 1) {
-      s.x = r.x.cwiseProduct(u);
-      s.f = r.f;
-      s.evaluations += extra_evaluations;
-      s.iterations += extra_iterations;
+      end_with_best();  // r gained more than ε·F: it is the better point
       return limit_reached(std::move(s), go_on.max_evaluations < 1);
     }
     BundleTrust::Summary next = BundleTrust(go_on, scaled).minimize(scaled_oracle, r.x);

@@ -40,6 +40,7 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
         "dirichlet: no Dirichlet condition; expected at least one face with prescribed displacement "
         "(otherwise rigid-body motions are free and the stiffness matrix is singular)");
   mesh_ = std::make_unique<const mesh::Mesh>(build_mesh(definition_));
+  traction_kernels_.resize(definition_.tractions.size());  // each built on first use
   fem::PrescribedDofs prescribed = fem::expand_dirichlet(*mesh_, definition_.dirichlet);
   fem::add_nodal_constraints(*mesh_, definition_.constraints, prescribed);
   user_prescribed_dofs_ = prescribed.dofs;
@@ -154,8 +155,7 @@ Eigen::VectorXd ElasticBody::shape_design(const Eigen::Ref<const Eigen::VectorXd
 }
 
 const fem::LinearElasticity& ElasticBody::traction_kernel(std::size_t j) const {
-  FRICTOPT_ASSERT(j < definition_.tractions.size(), "traction_kernel: a [[load]] of the body");
-  if (traction_kernels_.size() != definition_.tractions.size()) traction_kernels_.resize(definition_.tractions.size());
+  FRICTOPT_ASSERT(j < traction_kernels_.size(), "traction_kernel: a [[load]] of the body");
   if (!traction_kernels_[j])
     traction_kernels_[j] = std::make_unique<fem::LinearElasticity>(
         *mesh_, definition_.material, fem::PrescribedDofs{}, std::vector<fem::FaceTraction>{definition_.tractions[j]},

@@ -221,45 +221,37 @@ void ShapeOracle::evaluate_cases(Evaluation& e, bool with_subgradient) {
   if (!with_subgradient) return;
   const auto start = std::chrono::steady_clock::now();
   // "worst": ξ = w_s ξ_s of the selected case s (a Clarke subgradient of the max, docs/theory/
-  // load-cases.md); "weighted": ξ = Σ_k w_k ξ_k. Each ξ_k of its case's default pieces (every
-  // step's, by the backward adjoint over its program).
-  std::vector<int> used;
-  if (cases_->definition().combine == CaseCombination::kWorst) {
-    used.push_back(combined.selected);
-  } else {
-    for (int k = 0; k < n_cases; ++k)
-      if ((*cases_)[k].weight > 0.0) used.push_back(k);
-  }
-  for (int k : used) {
+  // load-cases.md §2), and with case cuts on the cut (w_k J_k, w_k ξ_k) of every other case with
+  // w_k > 0 for the optimizer's model of the max (Evaluation::case_cuts); "weighted":
+  // ξ = Σ_k w_k ξ_k. Each ξ_k of its case's default pieces (every step's, by the backward adjoint
+  // over its program), on the factorization the state solve left.
+  const bool worst = cases_->definition().combine == CaseCombination::kWorst;
+  for (int k = 0; k < n_cases; ++k) {
+    const double w = (*cases_)[k].weight;
+    const bool in_xi = !worst || k == combined.selected;
+    if (w == 0.0 || (!in_xi && !case_cuts_)) continue;
     ProgramHistory& history = *case_histories_[static_cast<std::size_t>(k)];
     const HistorySubgradient result = history.subgradient(history.default_pieces());
+    const bool converged = result.summary.status == Status::kConverged;
+    if (!in_xi) {  // a cut is optional: a case whose adjoint fails is left out
+      if (converged) e.case_cuts.push_back({w * e.case_values[static_cast<std::size_t>(k)], w * result.subgradient});
+      continue;
+    }
     e.adjoint = result.summary;
-    if (result.summary.status != Status::kConverged) {
+    if (!converged) {
       e.ok = false;
       e.message = fmt::format("load case \"{}\": subgradient failed: {}", (*cases_)[k].name, result.summary.message);
       e.subgradient.resize(0);
       e.friction_gradient.resize(0);
+      e.case_cuts.clear();
       break;
     }
-    const double w = (*cases_)[k].weight;
     if (e.subgradient.size() == 0) {
       e.subgradient = w * result.subgradient;
       e.friction_gradient = w * result.friction_gradient;
     } else {
       e.subgradient += w * result.subgradient;
       e.friction_gradient += w * result.friction_gradient;
-    }
-  }
-  if (e.ok && case_cuts_ && cases_->definition().combine == CaseCombination::kWorst) {
-    // The other cases' cuts for the optimizer's model of the max (Evaluation::case_cuts): one
-    // adjoint each on the factorization the state solve left.
-    for (int k = 0; k < n_cases; ++k) {
-      const double w = (*cases_)[k].weight;
-      if (k == combined.selected || w == 0.0) continue;
-      ProgramHistory& history = *case_histories_[static_cast<std::size_t>(k)];
-      const HistorySubgradient result = history.subgradient(history.default_pieces());
-      if (result.summary.status != Status::kConverged) continue;
-      e.case_cuts.push_back({w * e.case_values[static_cast<std::size_t>(k)], w * result.subgradient});
     }
   }
   e.subgradient_seconds = seconds_since(start);

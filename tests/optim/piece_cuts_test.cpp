@@ -57,14 +57,25 @@ struct MaxOfQuadratics {
     return r;
   }
   double f_star() const { return 0.5 * (1.0 - 1.0 / K); }
+  // 0.3 in y = x ⊘ s.
+  Eigen::VectorXd start() const { return units.size() == n ? Eigen::VectorXd(0.3 * units) : Eigen::VectorXd::Constant(n, 0.3); }
 };
+
+// n = 4, K = 3 in units 1 … 1000: the point's units spread by 900 at the minimum.
+MaxOfQuadratics disparate_units_problem() {
+  MaxOfQuadratics problem;
+  problem.n = 4;
+  problem.K = 3;
+  problem.units = Eigen::Vector4d(1.0, 10.0, 100.0, 1000.0);
+  return problem;
+}
 
 fo::BundleTrust::Summary run(MaxOfQuadratics& problem, double epsilon) {
   fo::FunctionOracle oracle([&](const Eigen::Ref<const Eigen::VectorXd>& x) { return problem(x); });
   fo::BundleTrust::Options o;
   o.epsilon = epsilon;
   o.keep_history = false;
-  return fo::BundleTrust(o).minimize(oracle, Eigen::VectorXd::Constant(problem.n, 0.3));
+  return fo::BundleTrust(o).minimize(oracle, problem.start());
 }
 
 }  // namespace
@@ -93,7 +104,7 @@ TEST(PieceCuts, OptionOffIgnoresThePieces) {
   fo::FunctionOracle b_oracle([&](const Eigen::Ref<const Eigen::VectorXd>& x) { return without(x); });
   fo::BundleTrust::Options o;
   o.use_piece_cuts = false;
-  const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(with.n, 0.3);
+  const Eigen::VectorXd x0 = with.start();
   const fo::BundleTrust::Summary a = fo::BundleTrust(o).minimize(a_oracle, x0);
   const fo::BundleTrust::Summary b = fo::BundleTrust(o).minimize(b_oracle, x0);
   EXPECT_EQ(a.evaluations, b.evaluations);
@@ -136,12 +147,9 @@ TEST(PieceCuts, APieceAboveTheValueIsRefusedAndUnusablePiecesAreIgnored) {
 // The check continues a stop that is not stationary in the point's units (here a loose ε = 1e-2
 // run, checked at ε = 1e-7): the run in x ⊘ u must reach f* with the pieces' cuts in its units.
 TEST(PieceCuts, TheConfirmationRunContinuesWithThePiecesInItsUnits) {
-  MaxOfQuadratics problem;
-  problem.n = 4;
-  problem.K = 3;
-  problem.units = Eigen::Vector4d(1.0, 10.0, 100.0, 1000.0);
+  MaxOfQuadratics problem = disparate_units_problem();
   fo::FunctionOracle oracle([&](const Eigen::Ref<const Eigen::VectorXd>& x) { return problem(x); });
-  const Eigen::VectorXd x0 = 0.3 * problem.units;
+  const Eigen::VectorXd x0 = problem.start();
   fo::BundleTrust::Options loose;
   loose.epsilon = 1e-2;
   loose.confirm_in_point_units = false;
@@ -157,16 +165,9 @@ TEST(PieceCuts, TheConfirmationRunContinuesWithThePiecesInItsUnits) {
 
 // With the default confirmation (the units spread by 900 here) a run with pieces ends at f*.
 TEST(PieceCuts, DefaultRunInDisparateUnitsReachesTheMinimum) {
-  MaxOfQuadratics problem;
-  problem.n = 4;
-  problem.K = 3;
-  problem.units = Eigen::Vector4d(1.0, 10.0, 100.0, 1000.0);
-  fo::FunctionOracle oracle([&](const Eigen::Ref<const Eigen::VectorXd>& x) { return problem(x); });
   for (double epsilon : {1e-5, 1e-7}) {
-    fo::BundleTrust::Options o;
-    o.epsilon = epsilon;
-    o.keep_history = false;
-    const fo::BundleTrust::Summary s = fo::BundleTrust(o).minimize(oracle, 0.3 * problem.units);
+    MaxOfQuadratics problem = disparate_units_problem();
+    const fo::BundleTrust::Summary s = run(problem, epsilon);
     ASSERT_EQ(s.status, Status::kConverged) << s.brief_report();
     const double accuracy = epsilon == 1e-5 ? 1e-4 : 1e-6;
     EXPECT_LE(std::abs(s.f - problem.f_star()), accuracy * problem.f_star()) << s.brief_report();

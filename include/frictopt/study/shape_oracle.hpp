@@ -135,9 +135,8 @@ class ShapeOracle final : public optim::Oracle {
   int num_state_solves() const { return state_solves_; }
   /// Worst-case load cases: whether an evaluation with subgradient also returns the cuts of the
   /// other cases (Evaluation::case_cuts: K − 1 further adjoints on the same factorization), which
-  /// the bundle method models the max with (docs/theory/load-cases.md §4). Default on.
+  /// the bundle method models the max with (docs/theory/load-cases.md §2). Default on.
   void set_case_cuts(bool on) { case_cuts_ = on; }
-  bool case_cuts() const { return case_cuts_; }
 
  private:
   void solve_state(const Eigen::VectorXd& alpha);
