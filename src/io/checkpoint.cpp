@@ -199,6 +199,7 @@ JsonValue checkpoint_to_json(const RunCheckpoint& c) {
     element["locality"] = e.locality;
     element["y"] = e.y;
     element["is_center"] = e.is_center;
+    element["piece_gap"] = e.piece_gap;
     bundle.push_back(std::move(element));
   }
   j["bundle"] = std::move(bundle);
@@ -294,6 +295,8 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
     const JsonValue& center = e.at("is_center");
     if (!center.is_bool()) fail_field(origin, e.name("is_center"), "not a boolean", "true or false");
     element.is_center = center.as_bool();
+    // Absent in checkpoints written before piece gaps were kept: those bundles held cuts of f.
+    if (bundle.as_array()[i].contains("piece_gap")) element.piece_gap = e.number("piece_gap", true);
     s.bundle.push_back(std::move(element));
   }
   const Fields run(top.at("run"), origin, "run.");

@@ -547,19 +547,28 @@ class Run {
     std::vector<BundleElement> local;
     for (const BundleElement& b : st.bundle)
       if (b.is_center || b.locality <= std::sqrt(o_.epsilon) * st.value_scale) local.push_back(b);
-    Eigen::MatrixXd Xi(st.x.size(), static_cast<Eigen::Index>(local.size()));
-    for (std::size_t i = 0; i < local.size(); ++i) Xi.col(static_cast<Eigen::Index>(i)) = local[i].g;
+    // The subgradients that certify: the local cuts, but a piece's cut only where the piece was
+    // (nearly) the max at its own point — only then is it a subgradient of f there. A piece below
+    // the max by more than ε·F is an element of an α-subdifferential, however small its
+    // locality: f = 1 + max(x, −x − c), c = 1.5ε, said "converged" at x = 0 with the certificate
+    // of {+1, −1} reading 0, c/2 above f* (PieceCuts.APieceBelowTheMaxAtItsPointDoesNotCertifyAStop).
+    // The restart below still keeps every local cut: the pieces are the model of the max.
+    std::vector<const BundleElement*> certifying;
+    for (const BundleElement& b : local)
+      if (b.is_center || b.piece_gap <= o_.epsilon * st.value_scale) certifying.push_back(&b);
+    Eigen::MatrixXd Xi(st.x.size(), static_cast<Eigen::Index>(certifying.size()));
+    for (std::size_t i = 0; i < certifying.size(); ++i) Xi.col(static_cast<Eigen::Index>(i)) = certifying[i]->g;
     double radius = 0.0;
     StationarityCertificate c;
     if (st.metric.is_identity()) {
       c = stationarity_certificate(Xi, st.x, constraints_);
-      for (const BundleElement& b : local) radius = std::max(radius, b.distance);
+      for (const BundleElement* b : certifying) radius = std::max(radius, b->distance);
     } else {
       const Eigen::VectorXd root = st.metric.h.cwiseSqrt();
       const Eigen::VectorXd unit = root.cwiseInverse();  // x = unit ∘ x̃
       c = stationarity_certificate(unit.asDiagonal() * Xi, st.x.cwiseProduct(root), in_units(constraints_, unit));
-      for (const BundleElement& b : local)
-        radius = std::max(radius, b.is_aggregate() ? b.distance * root.maxCoeff() : (b.y - st.x).cwiseProduct(root).norm());
+      for (const BundleElement* b : certifying)
+        radius = std::max(radius, b->is_aggregate() ? b->distance * root.maxCoeff() : (b->y - st.x).cwiseProduct(root).norm());
     }
     const double bound = certificate_bound(st, radius);
     if (c.status == Status::kConverged) {
@@ -594,7 +603,7 @@ class Run {
         << ", exceeds epsilon*F = " << test_factor_ * o_.epsilon * st.value_scale * st.objective_scale
         << " (the QP did not resolve the model to the test's accuracy): x is not certified stationary";
     else
-      m << "the stationarity certificate of the " << local.size() << " local subgradients at x is "
+      m << "the stationarity certificate of the " << certifying.size() << " local subgradients at x is "
         << c.distance * st.objective_scale << " > epsilon*min(G, F/rho) = " << bound * st.objective_scale
         << " (rho = " << radius << "): x is not certified stationary";
     message = m.str();
@@ -828,6 +837,7 @@ void Run::reset_bundle(BundleTrust::IterationSummary& st, const Trial& trial) co
     const double w = theta(static_cast<Eigen::Index>(i)) / wsum;
     agg.lin_err += w * st.bundle[i].lin_err;
     agg.distance += w * st.bundle[i].distance;
+    agg.piece_gap += w * st.bundle[i].piece_gap;
   }
   std::vector<std::size_t> order;
   std::size_t center = 0;
@@ -853,8 +863,8 @@ void Run::reset_bundle(BundleTrust::IterationSummary& st, const Trial& trial) co
 // The cuts of the other pieces of a max-type f evaluated at y (OracleResult::pieces), relative
 // to the center: α_i = f(x_k) − φ_i(y) − g_iᵀ(x_k − y), the linearization error of the piece's
 // cut as a cut of f (φ_i <= f). A piece inactive at the center has α_i >= f(x_k) − φ_i(x_k) > 0
-// in the convex case, so the locality keeps it out of the certificate's local subgradients
-// unless the piece is nearly active — as in the Clarke (Goldstein) subdifferential of the max.
+// in the convex case, so its locality weighs it in the stopping test; the piece's own gap
+// f(y) − φ_i(y) decides whether it is a subgradient of f at y for the certificate (certify).
 void Run::add_piece_cuts(BundleTrust::IterationSummary& st, const Eigen::VectorXd& y, const Evaluation& e) const {
   const double distance = (y - st.x).norm();
   for (const PieceCut& p : e.pieces) {
@@ -862,6 +872,7 @@ void Run::add_piece_cuts(BundleTrust::IterationSummary& st, const Eigen::VectorX
     b.g = p.subgradient;
     b.y = y;
     b.lin_err = st.f - p.value - p.subgradient.dot(st.x - y);
+    b.piece_gap = e.f - p.value;
     b.distance = distance;
     b.locality = beta_of(b.lin_err, distance, st.t_reference);
     st.bundle.push_back(std::move(b));

@@ -191,6 +191,30 @@ TEST(Checkpoint, RoundTripsEveryFieldExactly) {
   EXPECT_EQ(back.initial_cost, 4.0);
 }
 
+// A piece's cut keeps the piece's gap at its point (BundleElement::piece_gap): the certificate
+// of a resumed worst-case run must not take it for a subgradient of f. Checkpoints written
+// before the field existed held cuts of f only and read as gap 0.
+TEST(Checkpoint, RoundTripsThePieceGapOfABundleElement) {
+  RunCheckpoint c = valid_checkpoint();
+  frictopt::optim::BundleElement piece{Eigen::Vector2d(-1.0, 0.5), 0.3, 0.0, 0.3, c.method.x, false};
+  piece.piece_gap = 0.25;
+  c.method.bundle.push_back(piece);
+  const RunCheckpoint back = checkpoint_from_json(parse_json(to_json_string(checkpoint_to_json(c))));
+  ASSERT_EQ(back.method.bundle.size(), 2u);
+  EXPECT_EQ(back.method.bundle[0].piece_gap, 0.0);
+  EXPECT_EQ(back.method.bundle[1].piece_gap, 0.25);
+  JsonValue older = checkpoint_to_json(c);
+  JsonValue::Array bundle;
+  for (const JsonValue& element : older.at("bundle").as_array()) {
+    JsonValue::Object fields;
+    for (const auto& field : element.as_object())
+      if (field.first != "piece_gap") fields.push_back(field);
+    bundle.emplace_back(std::move(fields));
+  }
+  older["bundle"] = JsonValue(std::move(bundle));
+  EXPECT_EQ(checkpoint_from_json(older).method.bundle[1].piece_gap, 0.0);
+}
+
 // The opt-in variable metric's state (docs/optim.md, "Variable metric") is part of the method
 // state: without it a resumed run would restart from the identity metric.
 TEST(Checkpoint, RoundTripsTheVariableMetricState) {

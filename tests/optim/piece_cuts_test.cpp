@@ -173,3 +173,28 @@ TEST(PieceCuts, DefaultRunInDisparateUnitsReachesTheMinimum) {
     EXPECT_LE(std::abs(s.f - problem.f_star()), accuracy * problem.f_star()) << s.brief_report();
   }
 }
+
+// Regression (issue 16, ninth round): the certificate took every cut of small locality as a
+// subgradient near x, the cuts of pieces that were not active where they were taken included.
+// f(x) = 1 + max(x, −x − c) with c = 1.5·ε·F is minimal at x* = −c/2. At x = 0 the piece −x − c
+// lies c below the max; the first QP's aggregate error c/2 passes the stopping test, and the
+// certificate of {+1 (the center), −1 (the piece)} was 0: the run said "converged" at x = 0, c/2
+// above f*. A piece's cut is a subgradient of f only where the piece was within ε·F of the max.
+TEST(PieceCuts, APieceBelowTheMaxAtItsPointDoesNotCertifyAStop) {
+  fo::BundleTrust::Options o;
+  o.epsilon = 1e-5;
+  const double c = 1.5 * o.epsilon;  // F = |f| = 1 at x = 0
+  fo::FunctionOracle oracle([c](const Eigen::Ref<const Eigen::VectorXd>& x) {
+    const double up = x(0);
+    const double down = -x(0) - c;
+    fo::OracleResult r = fo::OracleResult::success(1.0 + std::max(up, down),
+                                                   Eigen::VectorXd::Constant(1, up >= down ? 1.0 : -1.0));
+    r.pieces.push_back(fo::PieceCut{1.0 + std::min(up, down), Eigen::VectorXd::Constant(1, up >= down ? -1.0 : 1.0)});
+    return r;
+  });
+  const auto s = fo::BundleTrust(o).minimize(oracle, Eigen::VectorXd::Zero(1));
+  ASSERT_TRUE(s.converged()) << s.brief_report();
+  const double f_star = 1.0 - 0.5 * c;
+  EXPECT_LT(s.f - f_star, 0.01 * c) << s.brief_report();  // was c/2 = 7.5e-6 at x = 0
+  EXPECT_NEAR(s.x(0), -0.5 * c, 0.01 * c) << s.brief_report();
+}

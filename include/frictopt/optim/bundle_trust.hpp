@@ -25,6 +25,10 @@ struct BundleElement {
   double locality = 0.0;    ///< β = max(|α|, γ s²/t_1)  (spec 04 §5 item 8; docs/optim.md)
   Eigen::VectorXd y;        ///< trial point; empty for an aggregate element
   bool is_center = false;   ///< y is the current stability center (β = 0)
+  /// f(y) − φ(y) >= 0 for the cut of a piece φ of a max taken at y (OracleResult::pieces); 0 for
+  /// a subgradient of f itself; the θ-weighted mean for an aggregate. Only a cut with a gap
+  /// within the test's tolerance is a subgradient of f at y and may enter the certificate.
+  double piece_gap = 0.0;
   [[nodiscard]] bool is_aggregate() const { return y.size() == 0; }
 };
 
