@@ -49,6 +49,9 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     run->check_resume(description, *checkpoint, fingerprint);
   }
   study::ShapeOracle oracle(body, description.required_cost());
+  // Before the first evaluation (Θ(α⁰) for the summary): with case_cuts off, the other load
+  // cases' adjoints are not paid for even once.
+  oracle.set_case_cuts(options.use_piece_cuts);
 
   OptimizationRunResult result;
   // friction_orientation (issue 13 item 3): x = (α, s), s = k φ; φ of x in degrees.
