@@ -5,7 +5,7 @@
 // run reports "converged" at an inaccurate value.
 //   optim_testset_table [--epsilon E] [--accuracy A] [--confirm] [--no-units-check] [--units-spread S]
 //                       [--metric [--metric-ratio K]
-//                       [--metric-memory M] [--metric-damping W]] [--baseline] [--only NAME] > table.md
+//                       [--metric-memory M] [--metric-damping W]] [--pieces] [--baseline] [--only NAME] > table.md
 // --epsilon sets BundleTrust::Options::epsilon (default: the default, 1e-4) and --accuracy the
 // relative accuracy checked (default: 1e-4). --confirm passes every "converged" through
 // confirm_in_point_units (point_units_check.hpp; evaluations include it), whatever the units'
@@ -14,10 +14,14 @@
 // --units-spread S sets that threshold. --metric switches on
 // BundleTrust::Options::variable_metric (--metric-ratio, --metric-memory, --metric-damping set its
 // bound, memory and damping). --baseline adds the projected subgradient method
-// with 10 000 evaluations. --only runs one problem and prints its brief report on stderr;
+// with 10 000 evaluations. --pieces gives the minimax problems of TEST22 their structured oracle
+// (LuksanVlcekProblem::evaluate_with_pieces: the cut of every piece at every point), the others
+// keep theirs. --only runs one problem and prints its brief report on stderr;
 // with --only, the final point is also checked by gradient sampling (Burke–Lewis–Overton): the
 // certificate of g(x) and 4n fresh subgradients at uniform points of the ball B(x, r), for
-// r = 1e-2, 1e-4, 1e-6, 1e-8 times max(1, ‖x‖), relative to the largest of them (stderr).
+// r = 1e-2, 1e-4, 1e-6, 1e-8 times max(1, ‖x‖), relative to the largest of them (stderr); and,
+// for a minimax problem, the exact Clarke certificate at x: dist(0, conv{∇f_k : f_k >= f − τ}
+// + N(x)) over the pieces within τ = 1e-10, 1e-8, 1e-6, 1e-4 times max(1, |f|) of the max.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -41,6 +45,7 @@ int main(int argc, char** argv) {
   double accuracy = 1e-4;  // the report's |f − f*| <= 1e-4·max(1, |f*|)
   bool baseline = false;
   bool confirm = false;
+  bool pieces = false;
   std::string only;
   fo::BundleTrust::Options bt;
   bt.keep_history = false;
@@ -57,8 +62,9 @@ int main(int argc, char** argv) {
     else if (a == "--metric-memory" && i + 1 < argc) bt.metric_memory = std::atoi(argv[++i]);
     else if (a == "--metric-damping" && i + 1 < argc) bt.metric_damping = std::atof(argv[++i]);
     else if (a == "--only" && i + 1 < argc) only = argv[++i];
+    else if (a == "--pieces") pieces = true;
     else {
-      std::fprintf(stderr, "usage: %s [--epsilon E] [--accuracy A] [--confirm] [--no-units-check] [--units-spread S] [--metric] [--metric-ratio K] [--metric-memory M] [--metric-damping W] [--baseline] [--only NAME]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--epsilon E] [--accuracy A] [--confirm] [--no-units-check] [--units-spread S] [--metric] [--metric-ratio K] [--metric-memory M] [--metric-damping W] [--pieces] [--baseline] [--only NAME]\n", argv[0]);
       return 2;
     }
   }
@@ -73,7 +79,7 @@ int main(int argc, char** argv) {
   std::vector<int> evals, evals_original;
   for (const auto& p : problems) {
     if (!only.empty() && p.name != only) continue;
-    fo::FunctionOracle oracle(p.evaluate);
+    fo::FunctionOracle oracle(pieces && p.evaluate_with_pieces ? p.evaluate_with_pieces : p.evaluate);
     auto s = fo::BundleTrust(bt, p.constraints).minimize(oracle, p.x0);
     if (confirm) s = fo::confirm_in_point_units(bt, p.constraints, oracle, p.x0, std::move(s));
     const bool ok = p.solved(s.f, accuracy);
@@ -116,6 +122,20 @@ int main(int argc, char** argv) {
         const auto c = fo::stationarity_certificate(Xi, s.x, p.constraints);
         std::fprintf(stderr, "gradient sampling r = %.0e: delta = %.3e, max|g| = %.3e, delta/max|g| = %.2e\n", r,
                      c.distance, c.subgradient_scale, c.distance / c.subgradient_scale);
+      }
+      if (p.evaluate_with_pieces) {
+        const fo::OracleResult at = p.evaluate_with_pieces(s.x);
+        for (double tau : {1e-10, 1e-8, 1e-6, 1e-4}) {
+          const double gap = tau * std::max(1.0, std::abs(at.value));
+          std::vector<Eigen::VectorXd> active{at.subgradient};
+          for (const fo::PieceCut& c : at.pieces)
+            if (c.value >= at.value - gap) active.push_back(c.subgradient);
+          Eigen::MatrixXd Xi(n, static_cast<Eigen::Index>(active.size()));
+          for (std::size_t j = 0; j < active.size(); ++j) Xi.col(static_cast<Eigen::Index>(j)) = active[j];
+          const auto c = fo::stationarity_certificate(Xi, s.x, p.constraints);
+          std::fprintf(stderr, "Clarke certificate of the pieces within %.0e of the max: %zu pieces, delta = %.3e, max|g| = %.3e, delta/max|g| = %.2e\n",
+                       gap, active.size(), c.distance, c.subgradient_scale, c.distance / c.subgradient_scale);
+        }
       }
     }
   }

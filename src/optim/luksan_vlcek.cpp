@@ -41,14 +41,23 @@ LuksanVlcekProblem with_scaled_values(const LuksanVlcekProblem& p, double c) {
   q.source = p.source + ", f·" + factor_name(c);
   q.f_star = c * p.f_star;
   q.value_unit = c * p.value_unit;
-  q.evaluate = [f = p.evaluate, c](const Eigen::Ref<const Eigen::VectorXd>& x) {
-    OracleResult r = f(x);
-    if (r.ok) {
-      r.value *= c;
-      r.subgradient *= c;
-    }
-    return r;
+  const auto scaled = [c](const FunctionOracle::Function& f) -> FunctionOracle::Function {
+    if (!f) return {};
+    return [f, c](const Eigen::Ref<const Eigen::VectorXd>& x) {
+      OracleResult r = f(x);
+      if (r.ok) {
+        r.value *= c;
+        r.subgradient *= c;
+        for (PieceCut& piece : r.pieces) {
+          piece.value *= c;
+          piece.subgradient *= c;
+        }
+      }
+      return r;
+    };
   };
+  q.evaluate = scaled(p.evaluate);
+  q.evaluate_with_pieces = scaled(p.evaluate_with_pieces);
   return q;
 }
 
@@ -64,11 +73,19 @@ LuksanVlcekProblem with_scaled_variables(const LuksanVlcekProblem& p, double c) 
   if (k.upper.size() > 0) k.upper *= c;
   if (k.A_in.size() > 0) k.A_in /= c;
   if (k.A_eq.size() > 0) k.A_eq /= c;
-  q.evaluate = [f = p.evaluate, c](const Eigen::Ref<const Eigen::VectorXd>& x) {
-    OracleResult r = f(x / c);
-    if (r.ok) r.subgradient /= c;  // ∂f̃(x̃) = ∂f(x̃/c) / c
-    return r;
+  const auto scaled = [c](const FunctionOracle::Function& f) -> FunctionOracle::Function {
+    if (!f) return {};
+    return [f, c](const Eigen::Ref<const Eigen::VectorXd>& x) {
+      OracleResult r = f(x / c);
+      if (r.ok) {
+        r.subgradient /= c;  // ∂f̃(x̃) = ∂f(x̃/c) / c
+        for (PieceCut& piece : r.pieces) piece.subgradient /= c;
+      }
+      return r;
+    };
   };
+  q.evaluate = scaled(p.evaluate);
+  q.evaluate_with_pieces = scaled(p.evaluate_with_pieces);
   return q;
 }
 

@@ -11,7 +11,9 @@
 #include <limits>
 #include <string>
 #include <unsupported/Eigen/AutoDiff>
+#include <functional>
 #include <utility>
+#include <vector>
 
 #include "frictopt/optim/luksan_vlcek.hpp"
 
@@ -79,18 +81,39 @@ inline LuksanVlcekProblem make(std::string name, std::string source, Eigen::Vect
 
 /// Minimax objective max_k f_k(x) (or max_k |f_k(x)| when `absolute`), pieces k = 1..m from
 /// `piece(x, k)` (the Fortran's TAFU22 numbering), one subgradient = gradient of the first
-/// maximal piece (times its sign).
+/// maximal piece (times its sign). With `with_pieces`, the answer also carries the cut of every
+/// other piece (f_k or |f_k|, OracleResult::pieces): the structured oracle of
+/// LuksanVlcekProblem::evaluate_with_pieces.
 template <class Piece>
-OracleResult minimax(Vec x, int m, bool absolute, const Piece& piece) {
+OracleResult minimax(Vec x, int m, bool absolute, bool with_pieces, const Piece& piece) {
   const AdVector a = variables(x);
-  MaxOf best;
+  std::vector<Ad> values;
+  values.reserve(static_cast<std::size_t>(m));
+  int first_max = 0;
   for (int k = 1; k <= m; ++k) {
     const Ad fk = piece(a, k);
     if (!std::isfinite(fk.value()) || !fk.derivatives().allFinite())
       return OracleResult::failure("piece " + std::to_string(k) + " is not finite here");
-    best.add(absolute ? ad_abs(fk) : fk);
+    values.push_back(absolute ? ad_abs(fk) : fk);
+    if (values.back().value() > values[static_cast<std::size_t>(first_max)].value()) first_max = k - 1;
   }
-  return OracleResult::success(best.f, best.g);
+  const Ad& top = values[static_cast<std::size_t>(first_max)];
+  OracleResult r = OracleResult::success(top.value(), top.derivatives());
+  if (with_pieces)
+    for (int k = 0; k < m; ++k)
+      if (k != first_max) r.pieces.push_back(PieceCut{values[static_cast<std::size_t>(k)].value(),
+                                                      values[static_cast<std::size_t>(k)].derivatives()});
+  return r;
+}
+
+/// A minimax problem: `f(x, with_pieces)` gives `evaluate` (false) and `evaluate_with_pieces`
+/// (true).
+inline LuksanVlcekProblem make_minimax(std::string name, std::string source, Eigen::VectorXd x0, double f_star,
+                                       std::function<OracleResult(Vec, bool)> f) {
+  LuksanVlcekProblem p = make(std::move(name), std::move(source), std::move(x0), f_star,
+                              [f](Vec x) { return f(x, false); });
+  p.evaluate_with_pieces = [f](Vec x) { return f(x, true); };
+  return p;
 }
 
 }  // namespace frictopt::optim::detail

@@ -21,6 +21,7 @@ using detail::Ad;
 using detail::AdVector;
 using detail::constant;
 using detail::make;
+using detail::make_minimax;
 using detail::MaxOf;
 using detail::Vec;
 using detail::vec;
@@ -181,8 +182,8 @@ std::vector<LuksanVlcekProblem> luksan_vlcek_constrained() {
     // without setting its bounds (testsets pitfall); we fix it at its starting value 3.5.
     VectorXd x0(7);
     for (int i = 1; i <= 7; ++i) x0(i - 1) = 0.5 * i;
-    auto p = make("MAD6", "TEST22 #6", x0, 0.10183089, [](Vec x) {
-      return detail::minimax(x, 163, true, [](const AdVector& a, int k) {
+    auto p = make_minimax("MAD6", "TEST22 #6", x0, 0.10183089, [](Vec x, bool pieces) {
+      return detail::minimax(x, 163, true, pieces, [](const AdVector& a, int k) {
         const double y = 2.0 * std::numbers::pi * std::sin((0.5 * k + 8.5) * std::numbers::pi / 180.0);
         Ad s = constant(0.0, a.size());
         for (Eigen::Index j = 0; j < a.size(); ++j) s += cos(y * a(j));
@@ -209,9 +210,9 @@ std::vector<LuksanVlcekProblem> luksan_vlcek_constrained() {
   {
     // EQUIL: an economic equilibrium (8 goods, 5 agents), max_k f_k with f_k the excess demand
     // of good k; Σx = 1, x ≥ 1e-8. Data Y of the Fortran (EILD22 label 100).
-    auto p = make("EQUIL", "TEST22 #7", VectorXd::Constant(8, 0.125), 0.0, [](Vec x) {
+    auto p = make_minimax("EQUIL", "TEST22 #7", VectorXd::Constant(8, 0.125), 0.0, [](Vec x, bool pieces) {
       static const std::vector<double> y = equil_data();
-      return detail::minimax(x, 8, false, [](const AdVector& a, int ka) {
+      return detail::minimax(x, 8, false, pieces, [](const AdVector& a, int ka) {
         const Eigen::Index n = 8;
         Ad f = constant(0.0, n);
         for (int i = 1; i <= 5; ++i) {
@@ -311,8 +312,8 @@ std::vector<LuksanVlcekProblem> luksan_vlcek_constrained() {
   {
     // MAD8: max_k |f_k|, f_k = −1 + Σx + x_i(x_i − 1) (k even, i = (k+2)/2) or x_i(2x_i − 1)
     // (k odd, i = (k+1)/2), k = 1..38; bounds x_1..x_10 ≥ 0.5.
-    auto p = make("MAD8", "TEST22 #10", VectorXd::Constant(20, 100.0), 0.50694799, [](Vec x) {
-      return detail::minimax(x, 38, true, [](const AdVector& a, int ka) {
+    auto p = make_minimax("MAD8", "TEST22 #10", VectorXd::Constant(20, 100.0), 0.50694799, [](Vec x, bool pieces) {
+      return detail::minimax(x, 38, true, pieces, [](const AdVector& a, int ka) {
         Ad f = constant(-1.0, a.size());
         for (Eigen::Index i = 0; i < a.size(); ++i) f += a(i);
         if (ka % 2 == 0) {
@@ -333,7 +334,7 @@ std::vector<LuksanVlcekProblem> luksan_vlcek_constrained() {
     // BPfilter: band-pass filter design, max_k |f_k| over 124 frequencies; x_1..x_8 ≥ 0 and
     // 1e4·x_i − x_{i+4} ≥ 0 (i = 1..4).
     const VectorXd x0 = vec({0.0398, 9.68e-5, 1.03e-4, 0.0389, 1.01, 0.968, 1.03, 0.988, -11.6});
-    auto p = make("BPfilter", "TEST22 #11", x0, 0.27607734e-3, [](Vec x) {
+    auto p = make_minimax("BPfilter", "TEST22 #11", x0, 0.27607734e-3, [](Vec x, bool pieces) {
       static const std::vector<double> y = [] {
         std::vector<double> v(124);
         const int l = (124 - 2) / 2;
@@ -346,7 +347,7 @@ std::vector<LuksanVlcekProblem> luksan_vlcek_constrained() {
         v[123] = 1.03268;
         return v;
       }();
-      return detail::minimax(x, 124, true, [](const AdVector& a, int ka) {
+      return detail::minimax(x, 124, true, pieces, [](const AdVector& a, int ka) {
         double w = y[static_cast<std::size_t>(ka - 1)];
         const double s = (ka > 62 && ka < 124) ? -1.0 : 1.0;
         Ad sum = constant(-8.0 * std::log(w), a.size());
@@ -375,8 +376,8 @@ std::vector<LuksanVlcekProblem> luksan_vlcek_constrained() {
     // residuals; bounds and 5 linear constraints of the Fortran (whose x_10 bounds are 140, 160;
     // the report prints 145, 162). The standard start violates the constraints (pitfall).
     const VectorXd x0 = vec({1745, 12000, 110, 3048, 1974, 89.2, 92.8, 8, 3.6, 145});
-    auto p = make("HS114", "TEST22 #12", x0, -1768.8070, [](Vec x) {
-      return detail::minimax(x, 9, false, [](const AdVector& a, int ka) {
+    auto p = make_minimax("HS114", "TEST22 #12", x0, -1768.8070, [](Vec x, bool pieces) {
+      return detail::minimax(x, 9, false, pieces, [](const AdVector& a, int ka) {
         const double pen = 500.0;
         const double q = 0.99;
         Ad f = 5.04 * a(0) + 0.035 * a(1) + 10.0 * a(2) + 3.36 * a(4) - 0.063 * a(3) * a(6);
@@ -420,8 +421,8 @@ std::vector<LuksanVlcekProblem> luksan_vlcek_constrained() {
     // Dembo 3 (a geometric-programming problem, Dembo 1976) as max of the cost and the cost +
     // 1e5 × each constraint g_k − 1; two linear constraints and bounds of the Fortran.
     const VectorXd x0 = vec({1745, 110, 3048, 89, 92, 8, 145});
-    auto p = make("Dembo3", "TEST22 #13", x0, 1227.2260, [](Vec x) {
-      return detail::minimax(x, 13, false, [](const AdVector& a, int ka) {
+    auto p = make_minimax("Dembo3", "TEST22 #13", x0, 1227.2260, [](Vec x, bool pieces) {
+      return detail::minimax(x, 13, false, pieces, [](const AdVector& a, int ka) {
         const double* y = dembo3_data();
         const double pen = 1e5;
         Ad f = y[0] * a(0) + y[1] * a(0) * a(5) + y[2] * a(2) + y[3] * a(1) + y[4] + y[5] * a(2) * a(4);
@@ -456,8 +457,8 @@ std::vector<LuksanVlcekProblem> luksan_vlcek_constrained() {
   {
     // Dembo 5 (heat exchanger design) as a minimax with penalty 1e5; three linear constraints.
     const VectorXd x0 = vec({5000, 5000, 5000, 200, 350, 150, 225, 425});
-    auto p = make("Dembo5", "TEST22 #14", x0, 7049.2480, [](Vec x) {
-      return detail::minimax(x, 4, false, [](const AdVector& a, int ka) {
+    auto p = make_minimax("Dembo5", "TEST22 #14", x0, 7049.2480, [](Vec x, bool pieces) {
+      return detail::minimax(x, 4, false, pieces, [](const AdVector& a, int ka) {
         const double pen = 1e5;
         Ad f = a(0) + a(1) + a(2);
         switch (ka) {
@@ -485,8 +486,8 @@ std::vector<LuksanVlcekProblem> luksan_vlcek_constrained() {
     // Dembo 7 (a membrane separation process) as a minimax with penalty 1e3; one linear
     // constraint 0.002 (x11 − x12) ≤ 1 and bounds.
     const VectorXd x0 = vec({0.8, 0.83, 0.85, 0.87, 0.9, 0.1, 0.12, 0.19, 0.25, 0.29, 512, 13.1, 71.8, 640, 650, 5.7});
-    auto p = make("Dembo7", "TEST22 #15", x0, 174.78699, [](Vec x) {
-      return detail::minimax(x, 19, false, [](const AdVector& a, int ka) {
+    auto p = make_minimax("Dembo7", "TEST22 #15", x0, 174.78699, [](Vec x, bool pieces) {
+      return detail::minimax(x, 19, false, pieces, [](const AdVector& a, int ka) {
         const double pen = 1e3;
         // 1-based names as in the Fortran.
         auto X = [&](int i) -> const Ad& { return a(i - 1); };

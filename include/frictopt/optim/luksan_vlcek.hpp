@@ -29,6 +29,12 @@ struct LuksanVlcekProblem {
   double value_unit = 1.0;
   LinearConstraints constraints;
   FunctionOracle::Function evaluate;
+  /// The structured oracle of a minimax problem of TEST22 written as max_k f_k (or max_k |f_k|):
+  /// `evaluate`'s answer plus the cut of every other piece (OracleResult::pieces), so that the
+  /// bundle method can model the max piece by piece (docs/optim.md, "Cuts of the pieces of a
+  /// max"). Empty for the other problems. The table of docs/optim-testset.md uses `evaluate`
+  /// (one subgradient per point); this one serves the structured comparison (`--pieces`).
+  FunctionOracle::Function evaluate_with_pieces;
   [[nodiscard]] Eigen::Index dimension() const { return x0.size(); }
   /// |f − f*| <= tolerance·max(value_unit, |f*|): the report's relative accuracy test.
   [[nodiscard]] bool solved(double f, double tolerance = 1e-4) const;
