@@ -51,6 +51,7 @@ int run_certify(const std::filesystem::path& run_dir, int cap, double sample_rad
     json["friction_orientation_deg"] = phi_deg;
   }
   json["command"] = "certify";
+  io::add_members(json, io::run_environment());
   json["case"] = case_path.string();
   json["design"] = design_path.string();
   json["cost"] = oracle.cost().name();

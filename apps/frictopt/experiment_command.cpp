@@ -50,6 +50,7 @@ int run_program(const std::filesystem::path& case_path, const std::filesystem::p
   io::JsonValue json = io::JsonValue::object();
   json["case"] = case_path.string();
   json["command"] = "solve";
+  io::add_members(json, io::run_environment());
   json["status"] = std::string(to_string(summary.status));
   json["message"] = summary.message;
   json["steps_solved"] = summary.steps_solved;
@@ -143,6 +144,7 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
   io::JsonValue json = io::JsonValue::object();
   json["case"] = case_path.string();
   json["command"] = "experiment";
+  io::add_members(json, io::run_environment());
   json["drive"] = std::string(study::to_string(description.experiment->drive));
   json["status"] = std::string(to_string(summary.status));
   json["message"] = summary.message;

@@ -93,6 +93,7 @@ int run_identify(const std::filesystem::path& case_path, const std::filesystem::
   io::JsonValue summary = io::JsonValue::object();
   summary["case"] = case_path.string();
   summary["command"] = "identify";
+  io::add_members(summary, io::run_environment());
   io::add_members(summary, io::to_json(s));
   run.write_json_file(io::RunDirectory::kSummary, summary);
   fmt::print("wrote {}{}, {}\n", s.predictions.size() ? run.file("fit.csv").string() + ", " : std::string(),

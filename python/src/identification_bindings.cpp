@@ -109,6 +109,7 @@ Forces and tractions are those the foundation exerts on the body.
         io::JsonValue summary = io::JsonValue::object();
         summary["case"] = source->description.origin;
         summary["command"] = "identify";
+        io::add_members(summary, io::run_environment());
         io::add_members(summary, io::to_json(s));
         py::object result = to_python(summary);
         result.attr("__setitem__")("predictions", to_numpy(s.predictions));

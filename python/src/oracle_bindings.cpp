@@ -224,6 +224,7 @@ cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the
         // The certificate.json of `frictopt certify` (same keys).
         io::JsonValue json = io::JsonValue::object();
         json["command"] = "certify";
+        io::add_members(json, io::run_environment());
         json["case"] = run ? run->file(io::RunDirectory::kCaseCopy).string() : source->description.origin;
         json["design"] = design_name;
         json["cost"] = o->oracle->cost().name();

@@ -161,6 +161,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   JsonValue json = JsonValue::object();
   json["case"] = case_name;
   json["command"] = "optimize";
+  add_members(json, run_environment());
   json["cost"] = oracle.cost().name();
   json["status"] = std::string(to_string(summary.status));
   json["message"] = summary.message;

@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include "frictopt/linalg/blas_threads.hpp"
+
 namespace frictopt::io {
 namespace {
 
@@ -291,11 +293,20 @@ JsonValue to_json(const study::Certificate& c, const study::CertifyOptions& opti
   return json;
 }
 
+JsonValue run_environment() {
+  JsonValue j = JsonValue::object();
+  // With the default (automatic) BLAS thread count the summation order follows the machine's
+  // load, so a record says which policy its round-off was produced under.
+  j["blas_threads"] = linalg::describe_blas_threads();
+  return j;
+}
+
 JsonValue solve_summary(const std::string& case_name, const study::ElasticBody& body, const study::BodyState& state) {
   const auto& mesh = body.mesh();
   JsonValue summary = JsonValue::object();
   summary["case"] = case_name;
   summary["command"] = "solve";
+  add_members(summary, run_environment());
   add_members(summary, to_json(state.summary));
   summary["dim"] = mesh.dim();
   summary["num_nodes"] = static_cast<std::int64_t>(mesh.num_nodes());

@@ -49,6 +49,23 @@ TEST(CliSolve, Writes3dVtuWithDisplacementAndStressArrays) {
   EXPECT_LT(summary.at("relative_residual").as_number(), 1e-10);
 }
 
+// README "Reproducibility": a run is bit-reproducible only for a fixed BLAS thread count, so its
+// summary records the policy it was made under (the Python summaries carry the same key).
+TEST(CliSolve, SummaryRecordsTheBlasThreadPolicy) {
+  const fs::path out = fresh_directory("solve_blas");
+  ::setenv("FRICTOPT_BLAS_THREADS", "1", 1);
+  const RunResult r = run("solve " FRICTOPT_SOURCE_DIR "/tests/cli/data/small3d.toml -o " + out.string());
+  ::unsetenv("FRICTOPT_BLAS_THREADS");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(out / "summary.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  const auto summary = frictopt::io::parse_json(text.str());
+  ASSERT_TRUE(summary.contains("blas_threads")) << text.str();
+  EXPECT_NE(summary.at("blas_threads").as_string().find("FRICTOPT_BLAS_THREADS = 1"), std::string::npos)
+      << summary.at("blas_threads").as_string();
+}
+
 TEST(CliSolve, Writes2dVtuForTheThesisBody) {
   const fs::path out = fresh_directory("solve2d");
   const RunResult r = run("solve " FRICTOPT_SOURCE_DIR "/tests/cli/data/small2d.toml -o " + out.string());
