@@ -128,8 +128,8 @@ int main(int argc, char** argv) {
         for (double tau : {1e-10, 1e-8, 1e-6, 1e-4}) {
           const double gap = tau * std::max(1.0, std::abs(at.value));
           std::vector<Eigen::VectorXd> active{at.subgradient};
-          for (const fo::PieceCut& c : at.pieces)
-            if (c.value >= at.value - gap) active.push_back(c.subgradient);
+          for (const fo::PieceCut& piece : at.pieces)
+            if (piece.value >= at.value - gap) active.push_back(piece.subgradient);
           Eigen::MatrixXd Xi(n, static_cast<Eigen::Index>(active.size()));
           for (std::size_t j = 0; j < active.size(); ++j) Xi.col(static_cast<Eigen::Index>(j)) = active[j];
           const auto c = fo::stationarity_certificate(Xi, s.x, p.constraints);

@@ -7,11 +7,11 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <string>
 #include <unsupported/Eigen/AutoDiff>
-#include <functional>
 #include <utility>
 #include <vector>
 
@@ -28,11 +28,15 @@ using AdVector = Eigen::Matrix<Ad, Eigen::Dynamic, 1>;
 struct MaxOf {
   double f = -std::numeric_limits<double>::infinity();
   Eigen::VectorXd g;
+  int index = -1;  ///< 0-based position, among the pieces added, of the one that is the max
+  int added = 0;
   void add(double value, const Eigen::VectorXd& grad) {
     if (value > f) {
       f = value;
       g = grad;
+      index = added;
     }
+    ++added;
   }
   void add(const Ad& piece) { add(piece.value(), piece.derivatives()); }
 };
@@ -87,22 +91,22 @@ inline LuksanVlcekProblem make(std::string name, std::string source, Eigen::Vect
 template <class Piece>
 OracleResult minimax(Vec x, int m, bool absolute, bool with_pieces, const Piece& piece) {
   const AdVector a = variables(x);
-  std::vector<Ad> values;
-  values.reserve(static_cast<std::size_t>(m));
-  int first_max = 0;
+  MaxOf best;
+  std::vector<PieceCut> cuts;  // every piece's, only for the structured oracle
+  if (with_pieces) cuts.reserve(static_cast<std::size_t>(m));
   for (int k = 1; k <= m; ++k) {
     const Ad fk = piece(a, k);
     if (!std::isfinite(fk.value()) || !fk.derivatives().allFinite())
       return OracleResult::failure("piece " + std::to_string(k) + " is not finite here");
-    values.push_back(absolute ? ad_abs(fk) : fk);
-    if (values.back().value() > values[static_cast<std::size_t>(first_max)].value()) first_max = k - 1;
+    const Ad value = absolute ? ad_abs(fk) : fk;
+    best.add(value);
+    if (with_pieces) cuts.push_back(PieceCut{value.value(), value.derivatives()});
   }
-  const Ad& top = values[static_cast<std::size_t>(first_max)];
-  OracleResult r = OracleResult::success(top.value(), top.derivatives());
-  if (with_pieces)
-    for (int k = 0; k < m; ++k)
-      if (k != first_max) r.pieces.push_back(PieceCut{values[static_cast<std::size_t>(k)].value(),
-                                                      values[static_cast<std::size_t>(k)].derivatives()});
+  OracleResult r = OracleResult::success(best.f, best.g);
+  if (with_pieces) {
+    cuts.erase(cuts.begin() + best.index);  // the max itself is the answer's value and subgradient
+    r.pieces = std::move(cuts);
+  }
   return r;
 }
 

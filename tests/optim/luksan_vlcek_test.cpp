@@ -209,7 +209,8 @@ TEST(LuksanVlcek, StructuredMinimaxOraclesGiveEveryPieceWithItsGradient) {
     const Eigen::VectorXd dir = frictopt::testing::random_direction(rng, p.x0.size());
     const double h = 1e-7 * std::max(1.0, p.x0.lpNorm<Eigen::Infinity>());
     const double fd = (sum(p.x0 + h * dir, nullptr) - sum(p.x0 - h * dir, nullptr)) / (2.0 * h);
-    EXPECT_NEAR(g.dot(dir), fd, 1e-5 * (g.norm() + std::abs(v0))) << p.name;
+    // Measured at this h: at most 4.7e-9 of the scale (BPfilter); a wrong sign or piece is O(1).
+    EXPECT_NEAR(g.dot(dir), fd, 1e-7 * (g.norm() + std::abs(v0))) << p.name;
     const auto fv = fo::with_scaled_values(p, 1e3);
     const auto xv = fo::with_scaled_variables(p, 1e3);
     const fo::OracleResult rf = fv.evaluate_with_pieces(p.x0);

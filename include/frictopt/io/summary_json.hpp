@@ -22,12 +22,12 @@ namespace frictopt::io {
 void add_members(JsonValue& into, const JsonValue& members);
 
 [[nodiscard]] JsonValue to_json(const study::StateSummary& summary);
-/// summary.json of `solve` (CLI and Python alike): the case, the state's summary, mesh sizes, the
-/// contact summary and, for a converged state, energies, volume and the largest von Mises stress.
 /// The conditions a run's numbers were produced under, for every command's summary (CLI and
 /// Python alike): {"blas_threads": the BLAS thread policy}. A run is bit-reproducible only for a
 /// fixed thread count (README, "Reproducibility").
 [[nodiscard]] JsonValue run_environment();
+/// summary.json of `solve` (CLI and Python alike): the case, the state's summary, mesh sizes, the
+/// contact summary and, for a converged state, energies, volume and the largest von Mises stress.
 [[nodiscard]] JsonValue solve_summary(const std::string& case_name, const study::ElasticBody& body,
                                       const study::BodyState& state);
 [[nodiscard]] JsonValue to_json(const contact::TrescaSolver::Summary& summary);
