@@ -15,9 +15,10 @@
 namespace frictopt::contact {
 namespace {
 
-constexpr frictopt::detail::EnumTable<CoulombMethod, 2> kMethodNames{{{
+constexpr frictopt::detail::EnumTable<CoulombMethod, 3> kMethodNames{{{
     {CoulombMethod::kFixedPoint, "fixed_point"},
     {CoulombMethod::kSplit, "split"},
+    {CoulombMethod::kSemismoothNewton, "semismooth_newton"},
 }}};
 
 // Loosest inner tolerance: early fixed-point iterates are far from the solution, so solving
@@ -54,6 +55,9 @@ void CoulombSolver::Options::validate() const {
     fail("relaxation", num(relaxation), "a value in (0, 1]");
   if (divergence_window < 2)
     fail("divergence_window", std::to_string(divergence_window), ">= 2");
+  if (method == CoulombMethod::kSemismoothNewton)
+    fail("method", "semismooth_newton",
+         "fixed_point or split (the semismooth Newton method is the PETSc engine's: solver.engine = \"petsc\")");
   tresca.validate();
 }
 

@@ -483,6 +483,8 @@ ContactNewtonSolver::Summary ContactNewtonSolver::solve(const Eigen::Ref<const E
         }
         step *= 0.5;
       }
+      const double u_norm = m.norm(m.u_try);
+      summary.last_relative_increment = step * m.norm(m.du) / (u_norm > 0.0 ? u_norm : 1.0);
       std::swap(m.u, m.u_try);
       std::swap(m.F, m.F_try);
       residual_norm = trial_norm;

@@ -136,8 +136,9 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   const BodyState& state = oracle.last_state();
   const contact::ContactState& cs = state.contact->state;
   const contact::ContactBoundary& boundary = *body.contact_boundary();
-  const contact::FrictionLaw& law = body.definition().contact->law;
+  const contact::FrictionLaw& law = *state.contact->law;  // the law the state was solved with
   const fem::LinearElasticity& fem = body.elasticity();
+  const linalg::SpdSolver& stiffness = body.engine().stiffness_solver();  // A⁻¹ at the state's design
   const int dim = boundary.dim();
   const Eigen::Index m = boundary.num_unknowns();
   const Eigen::Index d = state.alpha.size();
@@ -152,7 +153,7 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   // with the existing factorization (d + dim·p solves).
   // The state's dense M when it has one (no copy); else m solves with the factorization.
   Eigen::MatrixXd solved_M;
-  if (!state.contact->delassus_matrix) solved_M = contact::dense_delassus(fem.factorization(), boundary);
+  if (!state.contact->delassus_matrix) solved_M = contact::dense_delassus(stiffness, boundary);
   const Eigen::MatrixXd& M = state.contact->delassus_matrix ? *state.contact->delassus_matrix : solved_M;
   const Eigen::MatrixXd B = boundary.gap_jacobian(body.mesh());  // B̃ from V: any mesh producer
   Eigen::MatrixXd R_alpha(fem.dofs().num_free(), d);  // r_α e_k, one column per control point
@@ -162,7 +163,7 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
         Eigen::Map<const Eigen::MatrixXd>(Vh.data(), dim, fem.mesh().num_nodes()).transpose();
     R_alpha.col(k) = fem.dofs().restrict(fem.residual_derivative(state.positions, state.displacement, dX));
   }
-  const Eigen::MatrixXd Ainv_R = fem.factorization().solve_many(R_alpha);  // one blocked solve for all d
+  const Eigen::MatrixXd Ainv_R = stiffness.solve_many(R_alpha);  // one blocked solve for all d
   Eigen::MatrixXd N(m, d);
   for (Eigen::Index k = 0; k < d; ++k) N.col(k) = boundary.times(Ainv_R.col(k));
 

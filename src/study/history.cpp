@@ -10,7 +10,7 @@
 #include "frictopt/core/error.hpp"
 #include "frictopt/sensitivity/friction_parameters.hpp"
 #include "frictopt/study/orientation_design.hpp"
-#include "frictopt/study/shape_oracle.hpp"
+#include "frictopt/study/cost_factory.hpp"
 
 namespace frictopt::study {
 namespace {
@@ -40,7 +40,7 @@ class DissipationName final : public cost::CostFunctional {
 
 ProgramHistory::ProgramHistory(ElasticBody& body, const CostDefinition& definition, Eigen::MatrixXd gap_matrix,
                                std::string_view where)
-    : body_(body), gap_matrix_(std::move(gap_matrix)), frictionless_(contact::frictionless_law(body.mesh().dim())) {
+    : body_(body), gap_matrix_(std::move(gap_matrix)) {
   if (!definition.program)
     throw InvalidInput("ProgramHistory: the cost definition has no loading program; expected [[program.step]] tables");
   if (!body_.contact_boundary() || !body_.definition().contact)
@@ -69,13 +69,10 @@ ProgramHistory::ProgramHistory(ElasticBody& body, const CostDefinition& definiti
     step_cost_ = std::make_unique<DissipationName>();
     return;
   }
-  const bool needs_initial_state =
-      (definition.kind == cost::CostKind::kTargetPressure && std::isnan(definition.target_pressure)) ||
-      (definition.kind == cost::CostKind::kTractionUniformity && definition.target_traction_initial_mean);
   // An "initial_mean" target is the mean of the state the cost reads — the chosen step's — at α⁰:
   // "keep the pressure of the last step as even as it is on average at the start".
   const BodyState* initial = nullptr;
-  if (needs_initial_state) {
+  if (needs_initial_state(definition)) {
     solve(body_.initial_design());
     if (!ok_ && !states_[static_cast<std::size_t>(cost_step_)])
       throw NumericalFailure("cost target = initial_mean: the program at the initial design did not solve: " + message_);
@@ -91,7 +88,8 @@ std::string ProgramHistory::name() const {
 }
 
 const contact::FrictionLaw& ProgramHistory::law(int k) const {
-  return program_.steps[static_cast<std::size_t>(k)].friction ? body_.definition().contact->law : frictionless_;
+  FRICTOPT_ASSERT(states_[static_cast<std::size_t>(k)] != nullptr, "ProgramHistory::law: a solved step");
+  return *states_[static_cast<std::size_t>(k)]->contact->law;  // the law the step was solved with
 }
 
 void ProgramHistory::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
@@ -248,9 +246,6 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
   const contact::ContactBoundary& boundary = *body_.contact_boundary();
   const fem::DofMap& dofs = body_.elasticity().dofs();
   const int dim = body_.mesh().dim();
-  const contact::FrictionLaw& case_law = body_.definition().contact->law;
-  const sensitivity::AdjointSensitivity with_friction(body_.elasticity(), boundary, gap_matrix_, case_law);
-  const sensitivity::AdjointSensitivity without_friction(body_.elasticity(), boundary, gap_matrix_, frictionless_);
   // One A(α), one factorization and one M for every step (the stiffness does not depend on the
   // load): the last step's solve left them in place.
   const contact::DelassusMatrix* delassus = nullptr;
@@ -262,8 +257,9 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
   HistorySubgradient out;
   const Eigen::Index d = body_.definition().shape.num_controls();
   out.subgradient = Eigen::VectorXd::Zero(body_.num_design_variables());
-  out.friction_gradient =
-      Eigen::VectorXd::Zero(static_cast<Eigen::Index>(sensitivity::friction_parameters(case_law).names.size()));
+  // The parameters of the user's law (a turned law has the same ones).
+  out.friction_gradient = Eigen::VectorXd::Zero(
+      static_cast<Eigen::Index>(sensitivity::friction_parameters(body_.definition().contact->law).names.size()));
   out.psi_z.resize(pieces.size());
   out.psi_u.resize(pieces.size());
   out.summary.status = Status::kConverged;
@@ -282,11 +278,11 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
       partial.d_displacement -= dofs.expand_homogeneous(w);
     }
     const bool friction = program_.steps[i].friction;
-    const sensitivity::AdjointSensitivity& adjoint = friction ? with_friction : without_friction;
+    const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), boundary, gap_matrix_, law(k));
     auto result = adjoint.subgradient(pieces[i], *delassus, s.positions, s.displacement, s.contact->state, partial);
     // x = (α, s): the law's orientation enters the friction rows of every friction step,
     // ∂Θ/∂s = Σ_k (∂r_k/∂s)ᵀ ψ_z^k (docs/theory/friction-design.md; a frictionless step has none).
-    if (friction) append_orientation_derivative(body_.orientation_design(), case_law, pieces[i], s.contact->state, result);
+    if (friction) append_orientation_derivative(body_.orientation_design(), law(k), pieces[i], s.contact->state, result);
     if (result.summary.status != Status::kConverged) {
       out.summary = result.summary;
       out.summary.message = fmt::format("step {}: {}", k + 1, result.summary.message);

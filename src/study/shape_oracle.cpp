@@ -21,51 +21,6 @@ std::vector<double> key_of(const Eigen::Ref<const Eigen::VectorXd>& alpha) { ret
 constexpr std::size_t kCacheSize = 512;
 }  // namespace
 
-std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition, ElasticBody& body,
-                                                const BodyState* initial_state) {
-  using Kind = cost::CostKind;
-  // The state at α⁰ for "initial_mean" targets: the caller's, or solved here.
-  std::optional<BodyState> solved;
-  const auto initial = [&](const char* what) -> const BodyState& {
-    if (!initial_state) solved = body.solve(body.initial_design(), "initial design");
-    const BodyState& s = initial_state ? *initial_state : *solved;
-    if (s.summary.status != Status::kConverged)
-      throw NumericalFailure(std::string("cost ") + what + " = initial_mean: the state at the initial design did not solve: " +
-                             s.summary.message);
-    return s;
-  };
-  switch (definition.kind) {
-    case Kind::kTargetPressure: {
-      if (!body.contact_boundary()) throw InvalidInput("cost target_pressure needs a body in contact");
-      const Eigen::VectorXd& areas = body.contact_boundary()->tributary_areas();
-      double pressure = definition.target_pressure;
-      if (std::isnan(pressure)) {
-        const BodyState& s = initial("target_pressure");
-        pressure = s.contact->state.normal_forces().sum() / areas.sum();
-      }
-      return cost::make_target_normal_force(pressure * areas);
-    }
-    case Kind::kNormalForcePower: return cost::make_normal_force_power(definition.exponent);
-    case Kind::kCompliance: return cost::make_compliance();
-    case Kind::kPressureNorm: return cost::make_pressure_norm(definition.exponent);
-    case Kind::kTotalSlip: return cost::make_total_slip(definition.smoothing);
-    case Kind::kTractionUniformity: {
-      if (!definition.target_traction_initial_mean) return cost::make_traction_uniformity(definition.target_traction);
-      if (!body.contact_boundary()) throw InvalidInput("cost traction_uniformity needs a body in contact");
-      const contact::ContactState& cs = initial("traction_uniformity target").contact->state;
-      const int nt = cs.dim - 1;
-      Eigen::VectorXd mean = Eigen::VectorXd::Zero(nt);
-      for (Eigen::Index i = 0; i < cs.num_nodes(); ++i)
-        for (int c = 0; c < nt; ++c) mean(c) -= cs.z(cs.dim * i + c);  // τ_i = −q_i
-      return cost::make_traction_uniformity(mean / body.contact_boundary()->tributary_areas().sum());
-    }
-    case Kind::kDissipation:
-      throw InvalidInput("cost.kind = \"dissipation\" reads the history of a loading program: a history cost on a "
-                         "one-step case; expected [[program.step]] tables (study::ProgramHistory evaluates it)");
-  }
-  return nullptr;
-}
-
 ShapeOracle::ShapeOracle(ElasticBody& body, std::unique_ptr<cost::CostFunctional> cost)
     : body_(body), cost_(std::move(cost)) {
   if (!body_.contact_boundary())
@@ -115,17 +70,14 @@ ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : 
     throw InvalidInput(fmt::format("cost.step = {} on a case without [[program.step]] tables: a history cost on a "
                                    "one-step case; expected [[program.step]] tables or no cost.step",
                                    definition.step));
-  const bool needs_initial_state =
-      (definition.kind == cost::CostKind::kTargetPressure && std::isnan(definition.target_pressure)) ||
-      (definition.kind == cost::CostKind::kTractionUniformity && definition.target_traction_initial_mean);
-  if (needs_initial_state) solve_state(body_.initial_design());
-  cost_ = make_cost(definition, body_, needs_initial_state ? state_.get() : nullptr);
+  const bool initial = needs_initial_state(definition);
+  if (initial) solve_state(body_.initial_design());
+  cost_ = make_cost(definition, body_, initial ? state_.get() : nullptr);
 }
 
 void ShapeOracle::remember(std::shared_ptr<BodyState> state, const Eigen::VectorXd& alpha) {
   state_ = std::move(state);
   state_alpha_ = alpha;
-  delassus_ = state_->contact ? state_->contact->delassus : nullptr;
   recent_.push_front(state_);
   if (recent_.size() > kRecentStates) recent_.pop_back();
   ++state_solves_;
@@ -291,11 +243,6 @@ const BodyState& ShapeOracle::state(const Eigen::Ref<const Eigen::VectorXd>& alp
   return *state_;
 }
 
-const contact::DelassusMatrix& ShapeOracle::delassus() {
-  FRICTOPT_ASSERT(delassus_ != nullptr, "the state solve provides the Delassus matrix");
-  return *delassus_;
-}
-
 sensitivity::CostPartials ShapeOracle::partials() const {
   const BodyState& s = *state_;
   const cost::CostInput input{body_.elasticity(), *body_.contact_boundary(), s.alpha, s.positions, s.displacement,
@@ -330,21 +277,14 @@ const Evaluation& ShapeOracle::evaluate_design(const Eigen::Ref<const Eigen::Vec
   }
   const sensitivity::CostPartials j = partials();
   e.value = j.value;
-  e.index_sets = sensitivity::classify(state_->contact->state, body_.definition().contact->law);
+  const contact::FrictionLaw& law = *state_->contact->law;  // the law the state was solved with
+  e.index_sets = sensitivity::classify(state_->contact->state, law);
   e.ok = true;
   if (with_subgradient) {
     start = std::chrono::steady_clock::now();
-    const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
-                                                  body_.definition().contact->law);
-    // The PETSc engine (issue 14): one transposed Krylov solve on its Newton piece, which is
-    // the default piece wherever the classification is strict (tests/petsc).
     const sensitivity::Piece piece = sensitivity::default_piece(e.index_sets);
-    auto result = body_.uses_petsc_engine()
-                      ? body_.petsc_subgradient(*state_, j, gap_matrix_)
-                      : adjoint.subgradient(piece, delassus(), state_->positions, state_->displacement,
-                                            state_->contact->state, j);
-    append_orientation_derivative(body_.orientation_design(), body_.definition().contact->law, piece,
-                                  state_->contact->state, result);
+    auto result = body_.engine().evaluation_subgradient(*state_, piece, j, gap_matrix_);
+    append_orientation_derivative(body_.orientation_design(), law, piece, state_->contact->state, result);
     e.adjoint = result.summary;
     e.subgradient_seconds = seconds_since(start);
     if (result.summary.status != Status::kConverged) {
@@ -382,16 +322,11 @@ std::vector<sensitivity::AdjointSensitivity::Result> ShapeOracle::subgradients(c
   if (cases_) return case_subgradients(alpha, selected_, pieces);
   // The pieces are the cost step's; every other step keeps its default piece.
   if (history_) return history_->cost_step_subgradients(pieces);
-  const sensitivity::CostPartials j = partials();
-  const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
-                                                body_.definition().contact->law);
-  std::vector<sensitivity::AdjointSensitivity::Result> out;
-  for (const sensitivity::Piece& piece : pieces) {
-    out.push_back(
-        adjoint.subgradient(piece, delassus(), state_->positions, state_->displacement, state_->contact->state, j));
-    append_orientation_derivative(body_.orientation_design(), body_.definition().contact->law, piece,
-                                  state_->contact->state, out.back());
-  }
+  std::vector<sensitivity::AdjointSensitivity::Result> out =
+      body_.engine().subgradients(*state_, pieces, partials(), gap_matrix_);
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    append_orientation_derivative(body_.orientation_design(), *state_->contact->law, pieces[i],
+                                  state_->contact->state, out[i]);
   return out;
 }
 
@@ -403,20 +338,17 @@ sensitivity::AdjointSensitivity::StateDerivative ShapeOracle::state_derivative(
     throw InvalidInput("ShapeOracle::state_derivative: not available for a cost along a loading history or for load "
                        "cases (the state derivative of one step depends on the earlier steps', and a case's on its "
                        "own load change)");
-  const sensitivity::AdjointSensitivity adjoint(body_.elasticity(), *body_.contact_boundary(), gap_matrix_,
-                                                body_.definition().contact->law);
   const sensitivity::Piece chosen =
-      piece ? *piece
-            : sensitivity::default_piece(sensitivity::classify(state_->contact->state, body_.definition().contact->law));
-  return adjoint.state_derivative(chosen, delassus(), state_->positions, state_->displacement, state_->contact->state, h);
+      piece ? *piece : sensitivity::default_piece(sensitivity::classify(state_->contact->state, *state_->contact->law));
+  return body_.engine().state_derivative(*state_, chosen, gap_matrix_, h);
 }
 
 sensitivity::PieceEnumeration ShapeOracle::pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int cap) {
   solve_state(alpha);
   if (cases_) return case_pieces(alpha, selected_, cap);
   if (history_) return history_->cost_step_pieces(cap);
-  const auto sets = sensitivity::classify(state_->contact->state, body_.definition().contact->law);
-  return sensitivity::enumerate_pieces(sets, body_.definition().contact->law, cap);
+  const contact::FrictionLaw& law = *state_->contact->law;
+  return sensitivity::enumerate_pieces(sensitivity::classify(state_->contact->state, law), law, cap);
 }
 
 }  // namespace frictopt::study

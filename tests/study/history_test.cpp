@@ -221,6 +221,28 @@ TEST(HistoryAdjoint, FrictionOrientationAsADesignVariableMatchesCentralDifferenc
   EXPECT_LE(error, 1e-6);
 }
 
+TEST(HistoryAdjoint, EachStepRecordsTheLawItWasSolvedWith) {
+  // A frictionless press, then a drag with friction, the orientation a design variable: each
+  // step's state carries the law it was solved with (W = {0}; the law turned to the design's φ),
+  // which the index sets and the adjoint read; the definition keeps the user's law.
+  const contact::FrictionLaw law = contact::FrictionLaw::regular_polygon(0.3, 8).rotated(0.1);
+  BodyDefinition definition = pressed_block_3d(law);
+  definition.friction_orientation = OrientationDesignDefinition{-1.5, 1.5};
+  ElasticBody body(definition);
+  auto program = std::make_shared<LoadingProgramDefinition>();
+  program->steps = {step({}, {0.95, 0.0}, false), step({}, {1.0, 0.8})};
+  ShapeOracle oracle(body, history_cost(cost::CostKind::kDissipation, program));
+  Eigen::VectorXd x = body.initial_design();
+  x(9) = body.orientation_design()->variable(0.7);
+  const Evaluation& e = oracle.evaluate_design(x, false);
+  ASSERT_TRUE(e.ok) << e.message;
+  const ProgramHistory& history = *oracle.history();
+  EXPECT_EQ(history.law(0).describe(), contact::frictionless_law(3).describe());
+  EXPECT_NEAR(history.law(1).orientation(), 0.7, 1e-15);
+  EXPECT_EQ(history.cost_state()->contact->law.get(), &history.law(1));
+  EXPECT_EQ(body.definition().contact->law.orientation(), law.orientation());
+}
+
 TEST(HistoryAdjoint, AtAKinkEachOneSidedDerivativeIsAnEnumeratedSelections) {
   // Step 1 is the full load; step 2 unloads: on the flat bottom (α = 0, zero gaps) every contact
   // node of step 2 is weak (λ = 0, w = 0), so Θ (the target pressure after step 2) has a kink at

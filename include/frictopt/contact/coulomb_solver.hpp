@@ -21,9 +21,12 @@ namespace frictopt::contact {
 /// How the Coulomb problem is solved.
 enum class CoulombMethod {
   kFixedPoint,  ///< s_{k+1} = λ(s_k): a full Tresca QP per step (thesis §5.1, §6.1.3)
-  kSplit        ///< spec 02, §8: per step one tangential solve (I) and one normal solve (II)
+  kSplit,       ///< spec 02, §8: per step one tangential solve (I) and one normal solve (II)
+  /// The PETSc engine's semismooth Newton method on the displacements (docs/petsc-engine.md):
+  /// reported in its summaries; CoulombSolver refuses it (Options::validate).
+  kSemismoothNewton
 };
-/// "fixed_point", "split".
+/// "fixed_point", "split", "semismooth_newton".
 std::string_view to_string(CoulombMethod method);
 /// Inverse of to_string; throws InvalidInput listing the accepted spellings.
 CoulombMethod parse_coulomb_method(std::string_view text);

@@ -80,6 +80,8 @@ class ContactNewtonSolver {
     int krylov_iterations = 0;           ///< summed over all Newton steps (and the free response)
     int nonmonotone_steps = 0;
     double relative_residual = kNaN;     ///< ‖F‖₂ / ‖F(u_d)‖₂ at return
+    /// ‖t δu‖₂ / ‖u‖₂ of the last accepted Newton step (t its line-search factor; NaN: none).
+    double last_relative_increment = kNaN;
     double kkt_residual = kNaN;          ///< contact::ContactResiduals of the returned state
     double complementarity_gap = kNaN;
     int num_ranks = 1;

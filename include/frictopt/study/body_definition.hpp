@@ -26,6 +26,7 @@
 #include "frictopt/shape/bezier_shape.hpp"
 #include "frictopt/study/load_case_definition.hpp"
 #include "frictopt/study/orientation_design.hpp"
+#include "frictopt/study/state_engine.hpp"
 
 namespace frictopt::study {
 
@@ -78,15 +79,10 @@ struct CostDefinition {
   int step = 0;
 };
 
-/// Which engine solves the state problem (issue 14; docs/petsc-engine.md).
-enum class StateEngine {
-  kDirect,  ///< CHOLMOD factorization + dual QP fixed point on the Delassus matrix (default)
-  kPetsc    ///< PETSc: distributed assembly, semismooth Newton with Krylov steps (MPI)
-};
-
-/// [solver] engine settings.
+/// [solver] engine settings: which engine solves the state problem (study/state_engine.hpp;
+/// docs/petsc-engine.md) and its options.
 struct EngineDefinition {
-  StateEngine kind = StateEngine::kDirect;
+  StateEngine::Kind kind = StateEngine::kDirect;
   /// kPetsc: PETSc options for the Krylov solver (e.g. "-ksp_type gmres -pc_type hypre"); an
   /// option no PETSc object uses is an error at the first solve.
   std::string petsc_options;

@@ -22,10 +22,7 @@
 #include "frictopt/shape/admissible_set.hpp"
 #include "frictopt/study/body_definition.hpp"
 #include "frictopt/study/orientation_design.hpp"
-
-namespace frictopt::petsc {
-class ContactNewtonSolver;  // the PETSc engine (built with FRICTOPT_WITH_PETSC)
-}  // namespace frictopt::petsc
+#include "frictopt/study/state_engine.hpp"
 
 namespace frictopt::study {
 
@@ -57,6 +54,10 @@ struct ContactResult {
   std::optional<contact::FloatingCoulombSolver::Summary> floating;
   /// β: the rigid motion R β added to A⁺(l + Gᵀz) (empty for a held body).
   Eigen::VectorXd rigid_motion;
+  /// The friction law this state was solved with: the definition's, turned to the design's
+  /// orientation with [design] friction_orientation, W = {0} on a frictionless program step.
+  /// The index sets, pieces, subgradients and the certificate read it from here.
+  std::shared_ptr<const contact::FrictionLaw> law;
 };
 
 /// The state of the body at one design.
@@ -95,9 +96,14 @@ struct StepLoads {
 /// Lifetime: holds the mesh and the FE problem; not thread-safe (the factorization is reused).
 class ElasticBody {
  public:
-  /// Validates the definition (throws InvalidInput naming the field); builds mesh and pattern.
+  /// Validates the definition (throws InvalidInput naming the field); builds mesh, pattern and
+  /// the state engine of definition.engine (make_state_engine).
   explicit ElasticBody(BodyDefinition definition);
+  ~ElasticBody();
+  ElasticBody(const ElasticBody&) = delete;
+  ElasticBody& operator=(const ElasticBody&) = delete;
 
+  /// The user's input, as given (a solved state records the law it was solved with).
   const BodyDefinition& definition() const { return definition_; }
   /// The body's mesh (from the structured grid of the definition's shape, height and resolution).
   const mesh::Mesh& mesh() const { return *mesh_; }
@@ -115,9 +121,6 @@ class ElasticBody {
   const OrientationDesign* orientation_design() const {
     return orientation_design_ ? &*orientation_design_ : nullptr;
   }
-  /// Replaces the contact's friction law for the following solves and sensitivities (direct
-  /// engine only; a law of the body's dimension).
-  void set_friction_law(const contact::FrictionLaw& law);
   /// The number r of rigid-body modes the Dirichlet conditions leave free (0: a held body). A
   /// floating body (r > 0, only with contact) is solved with the kernel-aware dual of spec 07 §2.
   int num_floating_modes() const { return static_cast<int>(fixing_dofs_.size()); }
@@ -126,9 +129,10 @@ class ElasticBody {
   /// The contact nodes (null without a foundation).
   const contact::ContactBoundary* contact_boundary() const { return boundary_.get(); }
 
-  /// Solves the state problem at design α — or at x = (α, s) with friction_orientation, which
-  /// first turns the law to φ = s/k (the state's `alpha` is then α): elasticity, and with a foundation the Coulomb
-  /// contact problem (dual QP fixed point, spec 02 §9.3) warm-started from the last solve.
+  /// Solves the state problem at design α — or at x = (α, s) with friction_orientation, with the
+  /// law turned to φ = s/k (recorded in the state; its `alpha` is then α) — by the body's
+  /// engine: elasticity, and with a foundation the Coulomb contact problem, warm-started from
+  /// the last solve (the direct engine: dual QP fixed point, docs/theory/state-problem.md §6).
   /// Throws InvalidInput when α has the wrong size or inverts an element (naming
   /// `design_label`); a failed factorization or contact solve is a status.
   [[nodiscard]] BodyState solve(const Eigen::Ref<const Eigen::VectorXd>& alpha,
@@ -144,16 +148,10 @@ class ElasticBody {
   /// bit for bit (io::RunCheckpoint).
   const std::optional<contact::ContactState>& warm_start() const { return warm_start_; }
 
-  /// True with engine = "petsc": the subgradient of the default piece is then the engine's own
-  /// (petsc_subgradient), one transposed Krylov solve instead of a Delassus block.
-  bool uses_petsc_engine() const { return petsc_engine_ != nullptr; }
-  /// ξ at `state`, which must be the last one solve() returned, for the piece of the engine's
-  /// Newton linearization (docs/petsc-engine.md, "Subgradient"); `gap_matrix` is B̃ (p × d).
-  /// The result's psi_u, psi_z and friction_gradient are empty (the engine's adjoint lives on
-  /// the displacements, not on the dual system). Collective under MPI. Only with the PETSc engine.
-  [[nodiscard]] sensitivity::AdjointSensitivity::Result petsc_subgradient(const BodyState& state,
-                                                                          const sensitivity::CostPartials& partials,
-                                                                          const Eigen::MatrixXd& gap_matrix);
+  /// The engine that solves the states (study/state_engine.hpp): subgradients and the
+  /// operators of the last solved design are asked from it.
+  StateEngine& engine() { return *engine_; }
+  const StateEngine& engine() const { return *engine_; }
   void set_warm_start(std::optional<contact::ContactState> state) { warm_start_ = std::move(state); }
 
   /// A kernel for the shape derivative of the case file's [[load]] j alone: a LinearElasticity
@@ -171,23 +169,16 @@ class ElasticBody {
   std::unique_ptr<fem::LinearElasticity> fem_;
   shape::LinearConstraints admissible_;
   std::optional<OrientationDesign> orientation_design_;
-  // α of a design x: x itself, or its first d entries after turning the law to x's φ.
-  Eigen::VectorXd shape_design(const Eigen::Ref<const Eigen::VectorXd>& x);
+  // The design x split into α and the law to solve with (x's φ turns it with friction_orientation).
+  Eigen::VectorXd shape_design(const Eigen::Ref<const Eigen::VectorXd>& x,
+                               std::shared_ptr<const contact::FrictionLaw>& law) const;
   std::unique_ptr<contact::ContactBoundary> boundary_;
   std::optional<contact::ContactState> warm_start_;  // last converged contact state
-  // engine = "petsc" (issue 14): the engine and its last converged displacement (warm start).
-  std::shared_ptr<petsc::ContactNewtonSolver> petsc_engine_;
-  Eigen::VectorXd petsc_displacement_;
-  BodyState solve_with_petsc(BodyState state);
-  Eigen::VectorXd nodal_forces_;  // free-DOF load of definition_.forces (empty: none)
-  Eigen::VectorXd nodal_forces_full_;       // the same, full DOF vector
-  std::vector<int> user_prescribed_dofs_;   // the DOFs the Dirichlet conditions prescribe
-  std::vector<int> fixing_dofs_;            // floating body: DOFs held for A⁺ (spec 07 §2)
-  // solve_step's reuse: the design whose A is factorized and its Delassus operator/matrix.
-  std::optional<Eigen::VectorXd> step_alpha_;
-  std::shared_ptr<const contact::DelassusMatrix> step_delassus_;
-  std::shared_ptr<const Eigen::MatrixXd> step_delassus_matrix_;
-  BodyState solve_impl(const Eigen::Ref<const Eigen::VectorXd>& alpha, const std::string& design_label,
+  // The definition's law and W = {0} (a frictionless program step), shared by the states.
+  std::shared_ptr<const contact::FrictionLaw> law_, frictionless_;
+  std::vector<int> fixing_dofs_;            // floating body: DOFs held at 0 so that A⁺ is a generalized inverse
+  std::unique_ptr<StateEngine> engine_;     // after mesh_, fem_, boundary_: it refers to them
+  BodyState solve_impl(const Eigen::Ref<const Eigen::VectorXd>& x, const std::string& design_label,
                        const StepLoads* step);
   // traction_kernel(j), null until first needed (a cache: the body stays logically const).
   mutable std::vector<std::unique_ptr<fem::LinearElasticity>> traction_kernels_;

@@ -75,7 +75,8 @@ class ProgramHistory {
   /// Numeric factorizations of A in the last solve (0 when the body's factorization at α was
   /// already there, e.g. from another load case's program at the same design).
   int factorizations() const { return factorizations_; }
-  /// The law of step k: the case's, or W = {0} for a frictionless step.
+  /// The law step k was solved with (its state's: the case's, turned to the design's orientation
+  /// with friction_orientation, or W = {0} for a frictionless step); step k must be solved.
   const contact::FrictionLaw& law(int k) const;
 
   /// J at the solved states (needs ok()).
@@ -109,7 +110,6 @@ class ProgramHistory {
   int cost_step_ = 0;
   bool dissipation_ = false;
   std::unique_ptr<cost::CostFunctional> step_cost_;
-  contact::FrictionLaw frictionless_;
   // Step k's scales carried over (empty lists keep the previous step's), as one "load case" per
   // step: LoadCases gives the shape derivative of a step's traction change.
   std::unique_ptr<LoadCases> step_loads_;

@@ -16,18 +16,12 @@
 #include "frictopt/sensitivity/adjoint.hpp"
 #include "frictopt/sensitivity/index_sets.hpp"
 #include "frictopt/sensitivity/piece.hpp"
+#include "frictopt/study/cost_factory.hpp"
 #include "frictopt/study/elastic_body.hpp"
 #include "frictopt/study/history.hpp"
 #include "frictopt/study/load_cases.hpp"
 
 namespace frictopt::study {
-
-/// Builds the cost of `definition` for `body`; a target-pressure cost with the "initial mean"
-/// target needs the state at the body's initial design: `initial_state` when given, else it is
-/// solved here (ShapeOracle's constructor from a CostDefinition passes its own, so that state
-/// is not solved twice).
-std::unique_ptr<cost::CostFunctional> make_cost(const CostDefinition& definition, ElasticBody& body,
-                                                const BodyState* initial_state = nullptr);
 
 /// One evaluation of the oracle at a design.
 struct Evaluation {
@@ -145,7 +139,6 @@ class ShapeOracle final : public optim::Oracle {
   sensitivity::CostPartials partials() const;
   void evaluate_cases(Evaluation& e, bool with_subgradient);
   void evaluate_history(Evaluation& e, bool with_subgradient);
-  const contact::DelassusMatrix& delassus();
 
   ElasticBody& body_;
   std::unique_ptr<cost::CostFunctional> cost_;
@@ -153,7 +146,6 @@ class ShapeOracle final : public optim::Oracle {
   std::shared_ptr<BodyState> state_;  // the last solved design (the body's factorization is of it)
   Eigen::VectorXd state_alpha_;
   std::deque<std::shared_ptr<BodyState>> recent_;  // newest first, state_ included
-  std::shared_ptr<const contact::DelassusMatrix> delassus_;
   std::map<std::vector<double>, Evaluation> cache_;
   int state_solves_ = 0;
   // Load cases (issue 13): their definitions and combination, one history per case (each with
