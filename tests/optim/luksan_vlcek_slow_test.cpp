@@ -10,7 +10,7 @@
 #include <string>
 
 #include "frictopt/optim/bundle_trust.hpp"
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 
 namespace fo = frictopt::optim;
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Quick part of the Lukšan–Vlček validation: the oracles' subgradients against central
 // differences, and BundleTrust on the small problems. The full set is luksan_vlcek_slow_test.
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 
 #include <gtest/gtest.h>
 

@@ -12,7 +12,7 @@
 
 #include "common/finite_difference.hpp"
 #include "frictopt/core/error.hpp"
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 
 namespace fo = frictopt::optim;
 using frictopt::testing::kSeed;
