@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/core/validation.hpp"
 #include "frictopt/optim/dense_qp.hpp"
 #include "frictopt/optim/point_units_check.hpp"
 #include "frictopt/optim/stationarity.hpp"
@@ -46,13 +47,8 @@ std::string_view to_string(StopReason reason) {
 
 namespace {
 
-template <class T>
-void require(bool ok, const char* field, T value, const char* expected) {
-  if (!ok) {
-    std::ostringstream s;
-    s << "BundleTrust::Options::" << field << " = " << value << "; expected " << expected;
-    throw InvalidInput(s.str());
-  }
+void require(bool ok, const char* field, double value, const char* expected) {
+  require_field(ok, "BundleTrust::Options", field, value, expected);
 }
 
 // Solution of the direction-finding QP (spec 04 §3.2) at center xc with parameter t.

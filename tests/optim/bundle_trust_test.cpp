@@ -153,7 +153,7 @@ TEST(BundleTrust, OptionsValidationNamesFieldValueAndExpectation) {
     fo::BundleTrust bt(o);
     FAIL() << "expected InvalidInput";
   } catch (const frictopt::InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("BundleTrust::Options::m2 = 0.05; expected in (m1, 1)"),
+    EXPECT_NE(std::string(e.what()).find("BundleTrust::Options: m2 = 0.05; expected in (m1, 1)"),
               std::string::npos)
         << e.what();
   }
