@@ -12,8 +12,8 @@ namespace frictopt::shape {
 ///   2D: G_α(x1)     = Σ_i α_i b_i(x1/a),                 i = 0..m1−1  (thesis §5.2)
 ///   3D: G_α(x1, x2) = Σ_{i,j} α_{ij} b_i(x1/a) b_j(x2/b),  i < m1, j < m2 (thesis §6.1)
 /// with Bernstein polynomials b of degree m−1. The design vector α has d = m1 (2D) or
-/// d = m1·m2 (3D) entries, ordered row-major with x1 fastest: k = i + m1·j (DESIGN.md;
-/// docs/theory/problem.md §2; any fixed order is equivalent).
+/// d = m1·m2 (3D) entries, ordered row-major with x1 fastest: k = i + m1·j
+/// (docs/theory/problem.md §2; any fixed order is equivalent).
 /// Only the heights are design variables; control abscissae are equispaced.
 class BezierShape {
  public:
