@@ -229,7 +229,7 @@ CoulombSolver::Summary CoulombSolver::solve_split(const Eigen::VectorXd& c, Cont
   const bool warm = state.z.size() == c.size() && state.dim == dim;
   FixedPointMonitor monitor(options_, summary);
   if (!warm) {
-    // Frictionless start (spec 02, §8): τ⁰ = 0, λ⁰ = argmin_{λ>=0} K(0, λ).
+    // Frictionless start (docs/theory/state-problem.md §6): τ⁰ = 0, λ⁰ = argmin_{λ>=0} K(0, λ).
     state = ContactState(dim, p);
     const auto qp = tresca_.solve_block(TrescaSolver::Block::kNormal, c, Eigen::VectorXd::Zero(p),
                                         state, inner_tolerance(std::numeric_limits<double>::infinity()));

@@ -419,10 +419,10 @@ TrescaSolver::Summary TrescaSolver::solve_impl(const Eigen::Ref<const Eigen::Vec
     } else if (summary.algorithm_used == TrescaAlgorithm::kJointMpgp) {
       summary.status = engine.run(z, g, cc, Part::kBoth, eps, budget);
     } else {
-      // Block Gauss–Seidel (spec 02, §8, steps I/II): each block is solved to a tolerance a
-      // tenth of the current joint residual (but not below half the final one), so that inner
-      // accuracy follows the outer progress. The joint reduced gradient is the concatenation of
-      // the two blocks', so at least one block has work in every sweep.
+      // Block Gauss–Seidel (docs/theory/state-problem.md §6, steps I/II): each block is solved to a
+      // tolerance a tenth of the current joint residual (but not below half the final one), so that
+      // inner accuracy follows the outer progress. The joint reduced gradient is the concatenation
+      // of the two blocks', so at least one block has work in every sweep.
       summary.status = Status::kMaxIterations;
       while (true) {
         const double r = engine.reduced_gradient_norm(z, g);

@@ -11,7 +11,7 @@
 
 namespace frictopt::sensitivity {
 namespace {
-// The thesis' directions v_j at φ_j = π(2j+1)/n (0-based; spec 02 §10.2).
+// The thesis' directions v_j at φ_j = π(2j+1)/n (0-based; docs/theory/state-problem.md §3).
 Eigen::Vector2d direction(int j, int n) {
   const double phi = std::numbers::pi * (2.0 * j + 1.0) / n;
   return {std::cos(phi), std::sin(phi)};

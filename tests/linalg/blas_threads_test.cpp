@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The BLAS thread rule (issue 18, item 4): one thread for small work and whenever no core is
-// idle; never more threads than idle cores; fixed and user modes as documented.
+// The BLAS thread rule (docs/benchmarks.md, "BLAS threads on a shared machine"): one thread for
+// small work and whenever no core is idle; never more threads than idle cores; fixed and user modes
+// as documented.
 #include "frictopt/linalg/blas_threads.hpp"
 
 #include <gtest/gtest.h>

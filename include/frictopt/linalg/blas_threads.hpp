@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // How many threads the BLAS behind CHOLMOD and the dense kernels may use, chosen per call from
-// the size of the work and the cores other processes leave idle (issue 18, item 4;
-// docs/benchmarks.md, "BLAS threads on a shared machine"). OpenBLAS' pthread workers spin while
+// the size of the work and the cores other processes leave idle
+// (docs/benchmarks.md, "BLAS threads on a shared machine"). OpenBLAS' pthread workers spin while
 // they wait; with another process on the second core a threaded call waited for a descheduled
 // worker, and the demo's factorization took 2.0 s with two threads against 0.23 s with one.
 #pragma once

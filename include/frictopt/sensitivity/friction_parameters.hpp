@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The friction coefficients of a law as controls (issue 4 item 4, thesis §4 remark that other
+// The friction coefficients of a law as controls (thesis §4 remark that other
 // controls than the shape fit the same adjoint): their names, values, and the derivatives of
 // the friction set's vertices (polygonal laws) or semi-axes and orientation (disc, ellipse).
 // The orientation φ of a turned law (FrictionLaw::rotated) is a parameter only when asked for
-// (issue 13 item 3: the law's orientation as a design variable).
+// (docs/theory/friction-design.md: the law's orientation as a design variable).
 #pragma once
 
 #include <Eigen/Core>
