@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "common/finite_difference.hpp"
 #include "frictopt/contact/friction_law.hpp"
 #include "frictopt/core/error.hpp"
 
@@ -52,14 +53,18 @@ Eigen::Vector2d random_vector(const FrictionLaw& law, std::mt19937_64& rng, doub
   return scale * v;
 }
 
-// Central differences of f: R² → R² at x along the law's tangential components.
+// The shared checker's central-difference Jacobian (STYLE.md §7) of a map f: R² → R² at x
+// along the law's tangential components (2D: component 0 only), with h = cbrt(eps)·max(1, |x|).
 template <class F>
-Eigen::Matrix2d central_difference(const F& f, const Eigen::Vector2d& x, double h, int components) {
+Eigen::Matrix2d central_difference(const F& f, const Eigen::Vector2d& x, int components) {
+  const Eigen::VectorXd head = x.head(components);
+  const auto g = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+    Eigen::Vector2d full = x;
+    full.head(components) = v;
+    return f(full);
+  };
   Eigen::Matrix2d J = Eigen::Matrix2d::Zero();
-  for (int k = 0; k < components; ++k) {
-    const Eigen::Vector2d e = Eigen::Vector2d::Unit(k) * h;
-    J.col(k) = (f(x + e) - f(x - e)) / (2.0 * h);
-  }
+  J.leftCols(components) = testing::central_jacobian(g, head, testing::central_step(head));
   return J;
 }
 
@@ -135,8 +140,8 @@ TEST(FrictionLawGeometry, ProjectionJacobianMatchesCentralDifferences) {
       ASSERT_LE((p.point - c.law.project(y, 1.0)).norm(), 1e-15 * mu) << c.name;
       // The projection is piecewise smooth: a pair whose sides lie on different faces (the
       // second difference jumps by O(h)) is skipped, the check is at smooth points only.
-      const double h = 6e-6 * mu;
-      const auto project = [&](const Eigen::Vector2d& x) { return c.law.project(x, 1.0); };
+      const double h = testing::central_step(y);
+      const auto project = [&](const Eigen::Vector2d& x) -> Eigen::VectorXd { return c.law.project(x, 1.0); };
       bool smooth = true;
       for (int k = 0; k < c.law.tangential_dim(); ++k) {
         const Eigen::Vector2d e = Eigen::Vector2d::Unit(k) * h;
@@ -145,7 +150,9 @@ TEST(FrictionLawGeometry, ProjectionJacobianMatchesCentralDifferences) {
       if (!smooth) continue;
       ++compared;
       if (p.face.face != FrictionFace::kInterior) ++outside;
-      const Eigen::Matrix2d fd = central_difference(project, y, h, c.law.tangential_dim());
+      const Eigen::Matrix2d fd = central_difference(project, y, c.law.tangential_dim());
+      // Truncation ~h²/r², h = 6e-6, r >= μ_min²/μ_max = 0.067 the smallest curvature radius
+      // (the ellipse): ~1e-8; rounding eps/h ~ 4e-11. 1e-6 on entries of size <= 1.
       EXPECT_LE((p.jacobian - fd).norm(), 1e-6) << c.name << " y = " << y.transpose() << " face "
                                                 << to_string(p.face.face);
       // J is symmetric with eigenvalues in [0, 1] (the derivative of a projection onto a convex set).
@@ -176,14 +183,14 @@ TEST(FrictionLawGeometry, ExposedPointJacobianMatchesCentralDifferences) {
     int compared = 0;
     for (int trial = 0; trial < 200; ++trial) {
       const Eigen::Vector2d u = random_vector(c.law, rng, 1.0);
-      const double h = 6e-6 * u.norm();
-      const auto w = [&](const Eigen::Vector2d& v) { return c.law.exposed_point(v); };
+      const double h = testing::central_step(u);
+      const auto w = [&](const Eigen::Vector2d& v) -> Eigen::VectorXd { return c.law.exposed_point(v); };
       // A polygon's exposed point jumps across an edge-normal ray: skip a pair that straddles one.
       if (c.law.is_polygonal() && (w(u + Eigen::Vector2d::Unit(0) * h) != w(u - Eigen::Vector2d::Unit(0) * h) ||
                                    (nt == 2 && w(u + Eigen::Vector2d::Unit(1) * h) != w(u - Eigen::Vector2d::Unit(1) * h))))
         continue;
       ++compared;
-      const Eigen::Matrix2d fd = central_difference(w, u, h, nt);
+      const Eigen::Matrix2d fd = central_difference(w, u, nt);
       EXPECT_LE((c.law.exposed_point_jacobian(u) - fd).norm(), 1e-6 * c.law.max_coefficient() / u.norm())
           << c.name << " u = " << u.transpose();
       // ∂w/∂u u = 0: w is 0-homogeneous in u.
