@@ -274,10 +274,13 @@ Eigen::MatrixXd FrictionLaw::exposed_point_coefficient_jacobian(const Eigen::Vec
     case FrictionLawKind::kEllipse: {
       // ∂/∂(μ_x, μ_y) of R w₀(Rᵀu); the disc's μ moves both semi-axes.
       const Eigen::Matrix2d axes = frame_ * ellipse_exposed_point_axis_jacobian(semi_axes_, frame_.transpose() * u);
-      if (kind_ == FrictionLawKind::kDisc)
-        J.col(0) = axes * Eigen::Vector2d(1.0, 1.0);
-      else
+      if (kind_ == FrictionLawKind::kDisc) {
+        const Eigen::Vector2d both = axes * Eigen::Vector2d(1.0, 1.0);
+        J(0, 0) = both(0);
+        J(1, 0) = both(1);
+      } else {
         J = axes;
+      }
       return J;
     }
     case FrictionLawKind::kInterval:
