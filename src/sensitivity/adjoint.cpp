@@ -81,7 +81,7 @@ PieceLinearization linearize_piece(const Piece& piece, const contact::FrictionLa
       case TangentialBranch::kSmoothSlip: {
         // q − λ w(u_t) = 0; δ: δq − w δλ − λ Dw δu_t, with δu_t = −(G δu)_t.
         const Eigen::Vector2d w = law.exposed_point(ut);
-        const Eigen::Matrix2d Dw = detail::exposed_point_jacobian(law, ut);
+        const Eigen::Matrix2d Dw = law.exposed_point_jacobian(ut);
         for (int c = 0; c < 2; ++c) {
           cz.emplace_back(base + c, base + c, 1.0);
           cz.emplace_back(base + c, normal, -w(c));
