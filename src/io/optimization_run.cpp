@@ -64,7 +64,8 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     // friction_orientation (issue 13 item 3): one more column, φ of x_k in degrees.
     std::vector<std::string> columns = optimization_history_columns();
     if (body.orientation_design()) columns.push_back("friction_orientation_deg");
-    history.emplace(run->open_history(columns, start_iteration, result.notes));
+    history.emplace(run->open_history(columns, start_iteration, result.notes,
+                                      checkpoint ? std::optional<double>(checkpoint->method.f) : std::nullopt));
     run->start_series(definition.name, start_iteration, result.notes);
   }
   for (const std::string& note : result.notes) report(fmt::format("note: {}", note));
