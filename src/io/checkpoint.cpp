@@ -232,6 +232,11 @@ JsonValue checkpoint_to_json(const RunCheckpoint& c) {
   run["state_solves"] = c.state_solves;
   run["warm_start_dim"] = c.warm_start_dim;
   run["warm_start"] = c.warm_start;
+  if (!c.history_warm_starts.empty()) {
+    JsonValue states = JsonValue::array();
+    for (const Eigen::VectorXd& z : c.history_warm_starts) states.push_back(JsonValue(z));
+    run["history_warm_starts"] = std::move(states);
+  }
   JsonValue center = JsonValue::object();
   center["coulomb_iterations"] = c.center.coulomb_iterations;
   center["qp_iterations"] = c.center.qp_iterations;
@@ -360,6 +365,16 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
     fail_field(origin, "run.warm_start", fmt::format("a list of {} numbers", c.warm_start.size()),
                fmt::format("a multiple of run.warm_start_dim = {} (2 or 3)", c.warm_start_dim));
   const Fields center(run.at("center"), origin, "run.center.");
+  if (top.at("run").contains("history_warm_starts")) {
+    const JsonValue& states = run.at("history_warm_starts");
+    if (!states.is_array()) fail_field(origin, "run.history_warm_starts", "not a list", "a list of lists of numbers");
+    for (std::size_t k = 0; k < states.as_array().size(); ++k) {
+      JsonValue holder = JsonValue::object();
+      holder["z"] = states.as_array()[k];
+      const Fields state(holder, origin, fmt::format("run.history_warm_starts[{}].", k));
+      c.history_warm_starts.push_back(state.vector("z"));
+    }
+  }
   c.center.coulomb_iterations = center.count("coulomb_iterations");
   c.center.qp_iterations = center.count("qp_iterations", 0, std::numeric_limits<std::int64_t>::max());
   c.center.weak_nodes = center.count("weak_nodes", 0, std::numeric_limits<std::int64_t>::max());
@@ -367,6 +382,11 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
   c.center.subgradient_seconds = center.number("subgradient_seconds", true);
   const Fields f(top.at("fingerprint"), origin, "fingerprint.");
   c.fingerprint.dim = static_cast<int>(f.count("dim", 2, 3));
+  for (std::size_t k = 0; k < c.history_warm_starts.size(); ++k)
+    if (c.history_warm_starts[k].size() % c.fingerprint.dim != 0)
+      fail_field(origin, fmt::format("run.history_warm_starts[{}]", k),
+                 fmt::format("a list of {} numbers", c.history_warm_starts[k].size()),
+                 fmt::format("a multiple of fingerprint.dim = {}", c.fingerprint.dim));
   c.fingerprint.case_hash = f.hash("case_hash");
   c.fingerprint.num_nodes = f.count("num_nodes", 1, std::numeric_limits<std::int64_t>::max());
   c.fingerprint.mesh_hash = f.hash("mesh_hash");

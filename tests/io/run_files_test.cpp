@@ -69,6 +69,8 @@ RunCheckpoint checkpoint_with_every_kind_of_element() {
   c.fingerprint.case_hash = hash_settings(c.fingerprint.settings);
   c.fingerprint.num_nodes = 8;
   c.initial_cost = 4.0;
+  // A loading program's steps: a cold start and a warm one (load cases, a cost along a program).
+  c.history_warm_starts = {Eigen::VectorXd(), Eigen::VectorXd::LinSpaced(6, 0.1, 0.6) / 7.0};
   return c;
 }
 
@@ -92,6 +94,9 @@ TEST(RunFilesCheckpoint, EveryBundleElementRoundTripsTheAggregateToo) {
     EXPECT_EQ(a.is_aggregate(), b.is_aggregate());
   }
   EXPECT_TRUE(back.method.bundle.back().is_aggregate());
+  ASSERT_EQ(back.history_warm_starts.size(), 2u);
+  EXPECT_EQ(back.history_warm_starts[0].size(), 0);
+  EXPECT_EQ(back.history_warm_starts[1], c.history_warm_starts[1]);  // bit for bit
   // The method's safeguards continue after the resume.
   EXPECT_EQ(back.method.restarts, 2);
   EXPECT_EQ(back.method.tightenings, 1);
