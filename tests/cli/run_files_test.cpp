@@ -229,7 +229,7 @@ TEST(RunFiles, DeeplyNestedOrDamagedJsonIsRefusedNamingTheFile) {
   write_text(dir / "case.toml", ex521(2));
   const std::string args = "optimize " + (dir / "case.toml").string() + " -o " + (dir / "run").string();
   ASSERT_EQ(run(args).exit_code, 0);
-  write_text(dir / "run" / "checkpoint.json", std::string(200000, '['));
+  write_text(dir / "run" / "checkpoint.json", std::string(200000, '[') + std::string(200000, ']'));
   expect_refused(run(args + " --resume"), {"checkpoint.json", "nested deeper than"});
   write_text(dir / "deep.json", "{\"alpha\": " + std::string(200000, '[') + std::string(200000, ']') + "}");
   expect_refused(run("check-gradient " + (dir / "case.toml").string() + " --design " + (dir / "deep.json").string()),
