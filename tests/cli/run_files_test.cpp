@@ -188,7 +188,7 @@ TEST(RunFiles, DamagedDuplicatedOrCopiedHistoryRowsAreRefused) {
   expect_refused(run(args + " --resume"), {"history.csv:4", "iteration 2 after iteration 2"});
   // 100,000 copies of a row.
   std::vector<std::string> copied = lines;
-  for (int k = 0; k < 100000; ++k) copied.insert(copied.begin() + 2, lines[1]);
+  copied.insert(copied.begin() + 2, 100000, lines[1]);
   write_text(history, join(copied));
   expect_refused(run(args + " --resume"), {"history.csv:3", "iteration 1 after iteration 1"});
   write_text(history, rows);
@@ -229,8 +229,10 @@ TEST(RunFiles, DeeplyNestedOrDamagedJsonIsRefusedNamingTheFile) {
   write_text(dir / "case.toml", ex521(2));
   const std::string args = "optimize " + (dir / "case.toml").string() + " -o " + (dir / "run").string();
   ASSERT_EQ(run(args).exit_code, 0);
+  const std::string checkpoint = read_text(dir / "run" / "checkpoint.json");
   write_text(dir / "run" / "checkpoint.json", std::string(200000, '[') + std::string(200000, ']'));
   expect_refused(run(args + " --resume"), {"checkpoint.json", "nested deeper than"});
+  write_text(dir / "run" / "checkpoint.json", checkpoint);
   write_text(dir / "deep.json", "{\"alpha\": " + std::string(200000, '[') + std::string(200000, ']') + "}");
   expect_refused(run("check-gradient " + (dir / "case.toml").string() + " --design " + (dir / "deep.json").string()),
                  {"deep.json", "nested deeper than"});
