@@ -316,7 +316,9 @@ fs::path RunDirectory::store_case() {
 
 void RunDirectory::store_case_text(const std::string& text, const fs::path& origin) {
   const fs::path copy = file(kCaseCopy);
-  if (std::error_code ec; fs::exists(copy, ec) && !holds_run(path_) && read_whole(copy) != case_copy_text(text, origin))
+  std::error_code ec;
+  detail::require_regular_output(copy);  // a FIFO there would block the comparison below
+  if (fs::exists(copy, ec) && !holds_run(path_) && read_whole(copy) != case_copy_text(text, origin))
     throw InvalidInput(fmt::format("{}: exists and {} holds no frictopt run (no {}, {} or {}); frictopt does not "
                                    "replace a case file it did not write: choose another output directory or move "
                                    "the file away",
