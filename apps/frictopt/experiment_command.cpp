@@ -87,13 +87,15 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
     // The law itself, for the polar plot: the radial function μ(φ) of W (the friction force's
     // magnitude per unit P in direction φ) and the support function N_W(θ) (the resistance to
     // sliding along θ).
-    io::CsvWriter law(run.file("tribometer_law.csv"), {"angle_degrees", "radial_mu", "support_mu"});
+    io::CsvWriter law(run.file("tribometer_law.csv"), {"angle_degrees", "radial_mu", "support_mu"},
+                      io::CsvWriter::Mode::kReplace);
     const contact::FrictionLaw& w = description.body.contact->law;
     for (int k = 0; k <= 720; ++k) {
       const double phi = k * 0.5 * std::numbers::pi / 180.0;
       const Eigen::Vector2d d(std::cos(phi), std::sin(phi));
       law.write_row({k * 0.5, w.max_step(Eigen::Vector2d::Zero(), 1.0, d), w.support(d)});
     }
+    law.finish();
   }
   const study::Tribometer::Summary summary =
       tribometer.run([&](const study::TribometerAngleResult& a) {

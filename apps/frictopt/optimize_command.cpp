@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <string_view>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/io/file_error.hpp"
 #include "frictopt/io/optimization_run.hpp"
 #include "frictopt/io/run_directory.hpp"
 #ifdef FRICTOPT_HAVE_PETSC
@@ -56,7 +58,9 @@ void mirror_run_for_resume(const std::filesystem::path& out_dir) {
     if (!root && message[0] == '1') {
       std::ofstream out(out_dir / name, std::ios::binary);
       out << std::string_view(message).substr(1);
-      if (!out) throw InvalidInput(fmt::format("{}: could not write a rank's copy of {}", (out_dir / name).string(), name));
+      if (!out)
+        throw io::FileSystemError(fmt::format("{}: could not write a rank's copy of {}", (out_dir / name).string(), name),
+                                  out_dir / name, errno);
     }
   }
 }

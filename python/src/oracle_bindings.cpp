@@ -211,6 +211,8 @@ cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the
           alpha = design_from_python(alpha_object, case_initial_design(source->description), "alpha");
         }
         auto o = make_oracle(source, source->description.body);
+        // The run's checkpoint names its problem: an edited case.toml is not the run's.
+        if (run) run->check_run_fingerprint(io::fingerprint_of(source->description, *o->body));
         study::CertifyOptions options;
         options.cap = cap;
         options.sample_radius = sample_radius;

@@ -49,6 +49,26 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     run->check_resume(description, *checkpoint, fingerprint);
   }
   study::ShapeOracle oracle(body, description.required_cost());
+  // The loading programs' warm starts (load cases, a cost along a program): with the body's,
+  // what makes the resumed run repeat the uninterrupted one.
+  if (checkpoint && !checkpoint->history_warm_starts.empty()) {
+    std::vector<std::optional<contact::ContactState>> states;
+    for (const Eigen::VectorXd& z : checkpoint->history_warm_starts) {
+      if (z.size() == 0) {
+        states.emplace_back();
+        continue;
+      }
+      contact::ContactState warm(fingerprint.dim, z.size() / fingerprint.dim);
+      warm.z = z;
+      states.emplace_back(std::move(warm));
+    }
+    try {
+      oracle.set_history_warm_starts(states);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("{}: run.history_warm_starts does not fit the run's loading programs ({})",
+                                     run->file(RunDirectory::kCheckpoint).string(), e.what()));
+    }
+  }
   // Before the first evaluation (Θ(α⁰) for the summary): with case_cuts off, the other load
   // cases' adjoints are not paid for even once.
   oracle.set_case_cuts(options.use_piece_cuts);
@@ -64,7 +84,8 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     // friction_orientation (issue 13 item 3): one more column, φ of x_k in degrees.
     std::vector<std::string> columns = optimization_history_columns();
     if (body.orientation_design()) columns.push_back("friction_orientation_deg");
-    history.emplace(run->open_history(columns, start_iteration, result.notes));
+    history.emplace(run->open_history(columns, start_iteration, result.notes,
+                                      checkpoint ? std::optional<double>(checkpoint->method.f) : std::nullopt));
     run->start_series(definition.name, start_iteration, result.notes);
   }
   for (const std::string& note : result.notes) report(fmt::format("note: {}", note));
@@ -142,6 +163,8 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
         c.warm_start = warm->z;
         c.warm_start_dim = warm->dim;
       }
+      for (const auto& warm : oracle.history_warm_starts())
+        c.history_warm_starts.push_back(warm ? warm->z : Eigen::VectorXd());
       c.initial_cost = initial_value;
       c.elapsed_seconds = elapsed;
       c.state_solves = solves;

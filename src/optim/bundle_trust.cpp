@@ -421,6 +421,11 @@ class Run {
   // Outer loop (docs/theory/bundle-trust.md §4–§5): inner iteration → reset → update → step rule →
   // observation.
   void run(BundleTrust::IterationSummary& st) {
+    // A resumed run continues the safeguards of the run it resumes (IterationSummary).
+    restarts_ = st.restarts;
+    tightenings_ = st.tightenings;
+    test_factor_ = st.test_factor;
+    resolution_reached_ = st.resolution_reached;
     update_scales(st);
     while (st.iteration < o_.max_iterations) {
       Trial trial;
@@ -590,8 +595,8 @@ class Run {
       test_factor_ *= 0.1;
       return Check::kRestart;
     }
-    // (The restart and tightening counters belong to this minimize/resume call; a resumed run
-    // starts them afresh.)
+    // (The restart and tightening counters belong to the run: the checkpoint carries them
+    // through IterationSummary, so a resumed run continues them.)
     std::ostringstream m;
     m << "the stopping test passed (|z+w| = " << st.stationarity * st.objective_scale
       << ", agg. error = " << st.aggregate_error * st.objective_scale << ") but ";
@@ -965,6 +970,11 @@ void Run::update_t(BundleTrust::IterationSummary& st, const Trial& trial) {
 bool Run::record(BundleTrust::IterationSummary& st, const Trial& trial) {
   ++st.iteration;
   st.evaluations = s_.evaluations;
+  st.restarts = restarts_;
+  st.tightenings = tightenings_;
+  st.test_factor = test_factor_;
+  st.resolution_reached = resolution_reached_;
+  st.bundle_size_used = s_.bundle_size_used;
   const double scale = st.objective_scale;
   if (o_.keep_history) {
     s_.history.push_back({st.iteration, st.evaluations, trial.kind, st.f * scale, trial.t,
@@ -1101,7 +1111,8 @@ BundleTrust::Summary BundleTrust::resume(Oracle& oracle, const IterationSummary&
   s.t_max_given = options_.t_max;
   s.t_max_used = checkpoint.t_max;
   s.bundle_size_given = options_.max_bundle_size;
-  s.bundle_size_used = std::max<int>(automatic_bundle_size(options_, n), static_cast<int>(checkpoint.bundle.size()));
+  s.bundle_size_used = std::max<int>({automatic_bundle_size(options_, n), static_cast<int>(checkpoint.bundle.size()),
+                                       options_.max_bundle_size > 0 ? 0 : checkpoint.bundle_size_used});
   s.evaluations = checkpoint.evaluations;
   IterationSummary st = checkpoint;
   st.f = checkpoint.f / checkpoint.objective_scale;  // callbacks see unscaled f

@@ -89,6 +89,15 @@ class BundleTrust {
     /// Variable metric of the proximal term (Options::variable_metric; identity otherwise).
     DiagonalMetric metric;
     int null_streak = 0;        ///< null steps since the last serious step (metric reset)
+    /// The run's own safeguards, so that `resume` continues exactly where the run stopped:
+    /// bundle restarts and tightenings of the stopping test so far (at most kMaxRestarts and
+    /// kMaxTightenings per run), the factor of ε they left, whether the oracle's resolution was
+    /// reached, and j_max as grown by piece cuts (0: not recorded; resume takes the automatic size).
+    int restarts = 0;
+    int tightenings = 0;
+    double test_factor = 1.0;
+    bool resolution_reached = false;
+    int bundle_size_used = 0;
   };
   using IterationCallback = std::function<CallbackResult(const IterationSummary&)>;
 
