@@ -188,10 +188,15 @@ def read_case_copy(path):
         return {}
 
 
-def case_name(run_dir, summary):
-    """The case's name for titles: the case file's folder (cases2d/NAME/case.toml) or stem."""
+def case_name(run_dir, summary, case_copy=None):
+    """The case's name for titles: the case file's folder (cases2d/NAME/case.toml) or stem;
+    for the run's own copy RUN_DIR/case.toml (an optimize run reads that), its [output] name."""
     case = summary.get("case", "") if summary else ""
-    if case:
+    in_run = case and os.path.abspath(os.path.dirname(case)) == os.path.abspath(run_dir)
+    output_name = (case_copy or {}).get("output", {}).get("name")
+    if in_run and isinstance(output_name, str) and output_name:
+        return output_name
+    if case and not in_run:
         stem = os.path.splitext(os.path.basename(case))[0]
         folder = os.path.basename(os.path.dirname(case))
         return folder if stem == "case" and folder else stem
@@ -206,13 +211,17 @@ class Run:
         summary_path = os.path.join(run_dir, "summary.json")
         history_path = os.path.join(run_dir, "history.csv")
         self.summary = read_json(summary_path) if os.path.isfile(summary_path) else {}
-        self.name = case_name(run_dir, self.summary)
+        # The run's copy of the case file (optimize), else the case file the summary names
+        # (solve writes no copy).
+        self.case = read_case_copy(os.path.join(run_dir, "case.toml"))
+        if not self.case and isinstance(self.summary.get("case"), str):
+            self.case = read_case_copy(self.summary["case"])
+        self.name = case_name(run_dir, self.summary, self.case)
         # The cost's kind as the case file spells it ([cost] kind); older summaries name the
         # functional only.
         self.cost_name = self.summary.get("cost_kind") or self.summary.get("cost")
         # Θ's unit as frictopt states it (summary.json "cost_unit"); "" when not stated.
         self.cost_unit = self.summary.get("cost_unit", "")
-        self.case = read_case_copy(os.path.join(run_dir, "case.toml"))
         self.history = None
         series = series_files(run_dir)
         if os.path.isfile(history_path) or series or self.summary.get("command") == "optimize":
@@ -742,7 +751,7 @@ def lift_data(run):
         return None, "the run records no design vector α"
     shape = run.control_points(len(designs[0].alpha))
     if shape is None:
-        return None, "the run's case.toml gives no [design] control_points [m1, m2]"
+        return None, "the case file gives no [design] control_points [m1, m2]"
     facets = contact_facets(designs[0].grid)
     if not facets:
         return None, "the .vtu file has no contact facets"
