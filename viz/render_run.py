@@ -190,16 +190,19 @@ def read_case_copy(path):
 
 def case_name(run_dir, summary, case_copy=None):
     """The case's name for titles: the case file's folder (cases2d/NAME/case.toml) or stem;
-    for the run's own copy RUN_DIR/case.toml (an optimize run reads that), its [output] name."""
+    for the run's own copy RUN_DIR/case.toml (an optimize run reads that), or a case.toml
+    named without its folder, the case's [output] name; else the run directory's name."""
     case = summary.get("case", "") if summary else ""
-    in_run = case and os.path.abspath(os.path.dirname(case)) == os.path.abspath(run_dir)
-    output_name = (case_copy or {}).get("output", {}).get("name")
-    if in_run and isinstance(output_name, str) and output_name:
-        return output_name
-    if case and not in_run:
+    if case and os.path.abspath(os.path.dirname(case)) != os.path.abspath(run_dir):
         stem = os.path.splitext(os.path.basename(case))[0]
         folder = os.path.basename(os.path.dirname(case))
-        return folder if stem == "case" and folder else stem
+        if stem != "case":
+            return stem
+        if folder:
+            return folder
+    output_name = (case_copy or {}).get("output", {}).get("name")
+    if isinstance(output_name, str) and output_name:
+        return output_name
     return os.path.basename(os.path.abspath(run_dir))
 
 
@@ -651,8 +654,10 @@ def picture_contact_3d(run, out_dir):
     resolution = 1e-9 * float(np.max(hi - lo))
     arrow_text = ""
     n = len(designs)
-    fig, axes = plt.subplots(2, n, figsize=(5.2 * n + 1.6, 10.4), squeeze=False,
-                             constrained_layout=True)
+    # Panels 5.2 in wide, as high as the surface's aspect ratio asks (within limits).
+    panel_height = min(max(5.2 * (hi[1] - lo[1]) / max(hi[0] - lo[0], 1e-300), 1.8), 6.0)
+    fig, axes = plt.subplots(2, n, figsize=(5.2 * n + 1.6, 2.0 * panel_height + 3.2),
+                             squeeze=False, constrained_layout=True)
     pressure_mappable = None
     status_cmap = ListedColormap([STATUS_COLOURS[c] for c in (0, 1, 2)])
     status_norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5], status_cmap.N)
