@@ -656,7 +656,7 @@ def picture_contact_3d(run, out_dir):
     n = len(designs)
     # Panels 5.2 in wide, as high as the surface's aspect ratio asks (within limits).
     panel_height = min(max(5.2 * (hi[1] - lo[1]) / max(hi[0] - lo[0], 1e-300), 1.8), 6.0)
-    fig, axes = plt.subplots(2, n, figsize=(5.2 * n + 1.6, 2.0 * panel_height + 3.2),
+    fig, axes = plt.subplots(2, n, figsize=(5.2 * n + 1.6, 2.0 * panel_height + 2.0),
                              squeeze=False, constrained_layout=True)
     pressure_mappable = None
     status_cmap = ListedColormap([STATUS_COLOURS[c] for c in (0, 1, 2)])
