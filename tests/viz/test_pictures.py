@@ -206,3 +206,21 @@ def test_three_dimensional_run_gets_the_lift_and_the_body_from_below(tmp_path, f
     for ax in images:
         image = ax.get_images()[0].get_array()
         assert np.ptp(np.asarray(image, dtype=float)) > 50
+
+
+def test_render_vtu_contact_map_keeps_the_slot_empty(tmp_path, monkeypatch):
+    """viz/render_vtu.py draws its 3D contact maps on the same contact facets."""
+    import matplotlib.pyplot as plt
+    import render_vtu
+    run = synthetic_runs.write_solve_run(str(tmp_path / "bracket"), synthetic_runs.bracket())
+    kept = []
+    monkeypatch.setattr(plt, "close", kept.append)
+    render_vtu.render_contact(read_grid(f"{run}/synthetic.vtu"), str(tmp_path / "map.png"))
+    (fig,) = [f for f in kept if hasattr(f, "canvas")]
+    fig.canvas.draw()
+    image = pixels(fig)
+    for title in ("contact_pressure", "contact_status"):
+        (ax,) = panels(fig, title)
+        for x in (1.1, 1.5, 1.9):
+            assert is_background(pixel_at(fig, ax, x, 0.3, image)), (title, x)
+        assert not is_background(pixel_at(fig, ax, 0.6, 0.3, image)), title
