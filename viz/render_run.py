@@ -11,21 +11,26 @@ pictures of the initial design (iteration 0) next to the final one (last iterate
                            magnification for both designs.
       contact_maps.png     on the contact surface Γ_c, seen from above: contact pressure
                            (top row, same colour scale) and stick/slip/separated status with
-                           the tangential traction as arrows (bottom row).
+                           the tangential traction as arrows (bottom row), each node's value
+                           over its share of the contact facets.
+      shape.png            the lift F_α (Bézier surface over the chart, control net, mesh
+                           nodes) of both designs, and the deformed bodies seen from below
+                           coloured by the von Mises stress.
   2D  shape.png            the bottom F_α (Bézier curve from α, control polygon, mesh nodes)
                            of both designs, and the deformed meshes coloured by von Mises
                            over the undeformed outline and the foundation x2 = 0.
       contact_stress.png   normal (solid) and tangential (dashed) contact stress along Γ_c,
                            like the thesis' figures 5.2.x, with the stick/slip status below.
-  both history.png         Θ per iteration (log scale when positive; serious steps filled,
-                           null steps open) and the stationarity measure on a second axis.
+  both history.png         Θ per iteration with its unit (log scale when positive; serious
+                           steps filled, null steps open, squares after a line search; the
+                           counts add up to summary.json's) and the stationarity measure.
 
 A `solve` directory (NAME.vtu, summary.json) gives the same body and contact pictures for its
 single design, and no history.
 
 Usage (VTK needs an X display even off screen with Debian's VTK; run_headless provides one):
     viz/run_headless.sh /usr/bin/python3 viz/render_run.py RUN_DIR [--no-cut]
-Reads only files frictopt wrote (STYLE §9). Exits non-zero with a message naming the missing
+Reads only files frictopt wrote (STYLE §9), and the case file for the shape of the 3D net. Exits non-zero with a message naming the missing
 file when RUN_DIR is not a run directory or a picture could not be written.
 """
 
@@ -888,7 +893,7 @@ def picture_shape_3d(run, out_dir):
 # 2D: shape and deformed mesh; contact stress along Γ_c.
 
 def bezier(alpha, a, samples=400):
-    """(x1, F_α(x1)) of the Bézier curve with control points ((i a/(d−1)), α_i) (spec 01 §4)."""
+    """(x1, F_α(x1)) of the Bézier curve with control points ((i a/(d−1)), α_i) (docs/theory/problem.md §2)."""
     alpha = np.asarray(alpha, dtype=float)
     degree = alpha.size - 1
     t = np.linspace(0.0, 1.0, samples)
