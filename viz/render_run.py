@@ -1182,15 +1182,20 @@ def picture_history(run, out_dir):
               if first is not None and last is not None else "")
     serious = s.get("serious_steps", counters[0] if counters else "?")
     null = s.get("null_steps", counters[1] if counters else "?")
-    summary_counts = (f"{s.get('iterations', len(rows))} iterations ({serious} serious, "
-                      f"{null} null steps), {s.get('evaluations', '?')} evaluations (oracle "
+    summary_counts = (f"{s.get('iterations', len(rows))} iterations, {serious} serious + "
+                      f"{null} null steps, {s.get('evaluations', '?')} evaluations (oracle "
                       f"calls, line-search trials included), status {s.get('status', '?')}")
     note = ""
-    if counters is not None and (counters[0], counters[1]) != (serious, null):
-        # The runs that confirm a stop in the point's units (docs/optim.md) add steps to the
-        # summary's counters but no rows to history.csv.
-        note = (f"\nhistory.csv records {counters[0]} serious + {counters[1]} null steps; the "
-                "others are the confirmation runs in the point's units, which add no rows")
+    recorded = int(rows[-1]["iteration"])
+    total = s.get("iterations", recorded)
+    if (isinstance(total, int) and total > recorded) or (
+            counters is not None and (counters[0], counters[1]) != (serious, null)):
+        # The runs that confirm a stop in the point's units (docs/optim.md) add iterations to
+        # the summary but no rows to history.csv.
+        note = (f"\nhistory.csv records iterations 1–{recorded}"
+                + (f" ({counters[0]} serious, {counters[1]} null steps)" if counters else "")
+                + f"; the other {total - recorded} iterations confirm the stop in the point's "
+                "units and add no rows" if isinstance(total, int) else "")
     ax.set_title(f"{run.headline()}: convergence of the bundle trust method\n"
                  f"{change}; {summary_counts}{note}", fontsize=11)
     ax.set_xlim(-0.5, max(iterations.max(), 1) + 0.5)

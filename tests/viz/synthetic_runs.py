@@ -145,10 +145,12 @@ HISTORY_COLUMNS = ["iteration", "evaluations", "step", "theta", "t", "stationari
 
 
 def write_optimize_run(directory, body_of_lift, steps, name="synthetic", control_points=(3, 2),
-                       cost_unit="N²", case_path=None):
+                       cost_unit="N²", case_path=None, confirmation_iterations=0):
     """An `frictopt optimize`-like directory: NAME_iter0000.vtu and the final iterate (the
     body at a flat lift α = const), NAME.pvd, history.csv with one row per entry of `steps`
-    (optim::StepKind spellings), summary.json and case.toml."""
+    (optim::StepKind spellings), summary.json and case.toml. `confirmation_iterations` more
+    iterations are counted in the summary only, as the confirmation runs in the point's units
+    do (docs/optim.md)."""
     os.makedirs(directory, exist_ok=True)
     m1, m2 = control_points
     alphas = [np.full(m1 * m2, 1e-3), np.full(m1 * m2, 2e-3)]
@@ -183,7 +185,8 @@ def write_optimize_run(directory, body_of_lift, steps, name="synthetic", control
                "cost": "target_normal_force", "cost_kind": "target_pressure",
                "status": "converged", "initial_cost": 4.0e9, "final_cost": theta,
                "alpha": alphas[1].tolist(), "initial_alpha": alphas[0].tolist(),
-               "iterations": len(steps), "serious_steps": serious, "null_steps": null,
+               "iterations": len(steps) + confirmation_iterations, "serious_steps": serious,
+               "null_steps": null,
                "evaluations": evaluations}
     if cost_unit is not None:
         summary["cost_unit"] = cost_unit

@@ -176,6 +176,18 @@ def test_history_legend_counts_the_steps_of_the_summary(tmp_path, figures):
     assert legend_counts(figures["history.png"]) == {"serious": 8, "null": 8}
 
 
+def test_history_says_which_iterations_it_does_not_record(tmp_path, figures):
+    run = synthetic_runs.write_optimize_run(str(tmp_path / "confirmed"), synthetic_runs.bracket,
+                                            STEPS, confirmation_iterations=12)
+    draw(run, "history")
+    fig = figures["history.png"]
+    assert legend_counts(fig) == {"serious": 8, "null": 8}
+    (ax,) = [ax for ax in fig.axes if ax.get_legend() is not None]
+    title = ax.get_title().replace("\n", " ")
+    assert "28 iterations, 8 serious + 8 null steps" in title, title
+    assert "records iterations 1–16 (8 serious, 8 null steps); the other 12 iterations" in title
+
+
 def test_cost_unit_is_on_the_axis_and_in_the_titles(tmp_path, figures):
     run = synthetic_runs.write_optimize_run(str(tmp_path / "unit"), synthetic_runs.bracket,
                                             ["serious", "null"], cost_unit="N²")
