@@ -208,6 +208,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   json["objective_scale"] = summary.objective_scale;  // |Θ(α⁰)|: history.csv's columns are relative to it
   json["stationarity_relative"] = summary.stationarity / summary.objective_scale;
   json["cost_kind"] = std::string(to_string(description.required_cost().kind));
+  json["cost_unit"] = cost_unit(description.required_cost(), body.mesh().dim());  // Θ's unit
   // The method's state solves over all resumes, as history.csv (pictures' solves not counted).
   json["state_solves"] = solves_offset + oracle.num_state_solves() - solves_before - output_solves;
   json["time_seconds"] = summary.time_seconds;                      // this process's optimizer

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/io/summary_json.hpp"
 
+#include <fmt/format.h>
+
+#include <cmath>
 #include <string>
 
 #include "frictopt/linalg/blas_threads.hpp"
@@ -37,6 +40,28 @@ JsonValue integers(const std::vector<int>& list) {
 
 void add_members(JsonValue& into, const JsonValue& members) {
   for (const auto& [key, value] : members.as_object()) into[key] = value;
+}
+
+std::string cost_unit(const study::CostDefinition& cost, int dim) {
+  const bool plane = dim == 2;
+  // x^p: superscript digits for an integer exponent, "^p" otherwise.
+  const auto power = [](const std::string& base, double p) {
+    static const char* const digits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+    if (p != std::floor(p) || p < 0.0 || p > 99.0) return fmt::format("{}^{:g}", base, p);
+    const int n = static_cast<int>(p);
+    return base + (n >= 10 ? std::string(digits[n / 10]) : std::string()) + digits[n % 10];
+  };
+  switch (cost.kind) {
+    case cost::CostKind::kTargetPressure: return plane ? "N²/m²" : "N²";  // Σ(λ̄ − λ)²
+    case cost::CostKind::kNormalForcePower: return power(plane ? "(N/m)" : "N", cost.exponent);
+    case cost::CostKind::kCompliance:
+    case cost::CostKind::kDissipation: return plane ? "J/m" : "J";  // work
+    case cost::CostKind::kPressureNorm:  // (Σ a_i p_i^p)^{1/p}, a_i in m^{dim−1}
+      return fmt::format("Pa·m^{:g}", (dim - 1) / cost.exponent);
+    case cost::CostKind::kTotalSlip: return "m";
+    case cost::CostKind::kTractionUniformity: return plane ? "Pa²·m" : "Pa²·m²";  // Σ a_i ‖t_i − t̄‖²
+  }
+  return "";
 }
 
 JsonValue to_json(const study::StateSummary& s) {

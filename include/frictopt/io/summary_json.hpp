@@ -21,6 +21,10 @@ namespace frictopt::io {
 /// Adds (or replaces) every member of the object `members` in the object `into`.
 void add_members(JsonValue& into, const JsonValue& members);
 
+/// The SI unit of the cost Θ of `cost` on a body of dimension `dim` (docs/theory/costs.md; in 2D
+/// forces are per metre of thickness and tributary areas are lengths), e.g. "N²", "J/m".
+[[nodiscard]] std::string cost_unit(const study::CostDefinition& cost, int dim);
+
 [[nodiscard]] JsonValue to_json(const study::StateSummary& summary);
 /// The conditions a run's numbers were produced under, for every command's summary (CLI and
 /// Python alike): {"blas_threads": the BLAS thread policy}. A run is bit-reproducible only for a
