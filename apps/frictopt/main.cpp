@@ -12,6 +12,8 @@
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/mesh/gmsh_mesh.hpp"
+#include "frictopt/study/build_mesh.hpp"
 #ifdef FRICTOPT_HAVE_PETSC
 #include <unistd.h>
 
@@ -108,6 +110,19 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   experiment->add_option("-o,--output", out_dir, "output directory (tribometer_*.csv, summary.json)");
+  // Every command that reads a case: the restricted reading of .geo files and the memory limit
+  // (docs/meshes.md, "A .geo file runs no code"; docs/case-format.md, "Size limits").
+  bool trust_geo = false;
+  double max_memory_gb = 0.0;
+  for (CLI::App* command : {solve, export_fclib, check_gradient, optimize, certify, identify, experiment}) {
+    command->add_flag("--trust-geo", trust_geo,
+                      "run the case's .geo file with every Gmsh command (System, file writes, ...); only for a "
+                      "file you have read and trust");
+    command->add_option("--max-memory", max_memory_gb, "refuse a body whose solve would need more memory [GB] "
+                                                       "(default: the memory available)")
+        ->check(kFiniteNumber)
+        ->check(CLI::Range(0.001, 1e6));
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -141,6 +156,8 @@ int main(int argc, char** argv) {
     }
   } scratch_removal{scratch};
 #endif
+  frictopt::mesh::set_trust_geo_by_default(trust_geo);
+  if (max_memory_gb > 0) frictopt::study::set_memory_limit(static_cast<std::uint64_t>(max_memory_gb * 1e9));
   return run_guarded([&] {
     if (*solve) return run_solve(case_path, out_dir);
     if (*optimize) {

@@ -12,6 +12,7 @@
 #include <charconv>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "atomic_file.hpp"
@@ -509,6 +510,22 @@ CaseFingerprint fingerprint_of(const CaseDescription& description, const study::
   const Eigen::MatrixXd reference = body.mesh().positions(Eigen::VectorXd::Zero(body.definition().shape.num_controls()));
   f.num_nodes = reference.rows();
   f.mesh_hash = fnv1a64(reference.data(), static_cast<std::size_t>(reference.size()) * sizeof(double));
+  // The rest of the mesh definition: the cells, every boundary group (name and facets) and the
+  // bytes of the files an imported body was made from (the .msh, or the .geo and the files it
+  // includes) — a .geo that swaps which curve is clamped leaves every node where it was.
+  const mesh::Mesh& mesh = body.mesh();
+  f.mesh_hash = fnv1a64(mesh.elements().data(), static_cast<std::size_t>(mesh.elements().size()) * sizeof(int), f.mesh_hash);
+  for (const std::string& name : mesh.boundary_names()) {
+    const mesh::BoundarySet& set = mesh.boundary(name);
+    f.mesh_hash = fnv1a64(name.data(), name.size() + 1, f.mesh_hash);  // with its '\0': names stay apart
+    f.mesh_hash = fnv1a64(set.facets.data(), static_cast<std::size_t>(set.facets.size()) * sizeof(int), f.mesh_hash);
+  }
+  if (const auto& imported = body.definition().imported_mesh)
+    for (const std::filesystem::path& source : imported->sources) {
+      std::ifstream in(source, std::ios::binary);
+      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      f.mesh_hash = fnv1a64(bytes.data(), bytes.size(), f.mesh_hash);
+    }
   return f;
 }
 
