@@ -9,6 +9,7 @@
 #include <set>
 
 #include "atomic_file.hpp"
+#include "input_file.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/file_error.hpp"
 
@@ -72,7 +73,7 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string>
       throw InvalidInput(
           fmt::format("CsvWriter({}): existing header '{}'; expected '{}' to "
                       "append",
-                      path_.string(), existing, header_line));
+                      path_.string(), detail::printable_excerpt(existing, 200), header_line));
     write_header = false;
   }
   out_.open(path_, mode == Mode::kAppend ? std::ios::app : std::ios::trunc);

@@ -48,7 +48,7 @@ std::string read_input_file(const std::filesystem::path& path, std::string_view 
   if (fd.get() < 0) {
     const int error = errno;
     if (error == ENOENT || error == ENOTDIR)
-      throw InvalidInput(fmt::format("{}: {} does not exist", path.string(), what));
+      throw InvalidInput(fmt::format("{}: {} not found (no such file)", path.string(), what));
     throw FileSystemError(fmt::format("{}: cannot read {}: {}", path.string(), what, std::strerror(error)), path,
                           error);
   }

@@ -72,7 +72,8 @@ def judge(damaged, code, output):
     if code in (0, 3):
         return None
     if code == 2:
-        errors = [l for l in output.splitlines() if l.startswith("error: ")]
+        # "error: ..." from frictopt, or CLI11's usage message naming the option's file.
+        errors = [l for l in output.splitlines() if l.startswith("error: ") or l.startswith("--design: ")]
         if not errors:
             return "exit 2 without an 'error:' line"
         # The file, or (a damaged design that still parses) the field and its expectation.
