@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/linalg/blas_threads.hpp"
 #ifdef FRICTOPT_HAVE_PETSC
 #include <unistd.h>
 
@@ -42,6 +43,12 @@ const CLI::Validator kFiniteNumber(
 int main(int argc, char** argv) {
   CLI::App app{"frictopt: shape optimization of elastic bodies in contact with (anisotropic) Coulomb friction"};
   app.require_subcommand(1);
+  // The version and the BLAS this binary actually calls (the library dgemm_ binds to; a slow
+  // reference BLAS or ATLAS shows here, docs/benchmarks.md "Which BLAS").
+  app.set_version_flag("--version", [] {
+    return std::string("frictopt ") + FRICTOPT_VERSION + "\nBLAS: " + frictopt::linalg::describe_loaded_blas() + "\n" +
+           frictopt::linalg::describe_blas_threads();
+  });
   std::filesystem::path case_path, out_dir = "out";
   CLI::App* solve = app.add_subcommand("solve", "Solve the state problem of a case at its initial design and write VTK");
   solve->add_option("case", case_path, "case file (TOML), see docs/case-format.md")->required()->check(CLI::ExistingFile);

@@ -298,6 +298,8 @@ JsonValue run_environment() {
   // With the default (automatic) BLAS thread count the summation order follows the machine's
   // load, so a record says which policy its round-off was produced under.
   j["blas_threads"] = linalg::describe_blas_threads();
+  // The BLAS CHOLMOD and LAPACK actually reach: its speed, and its round-off, are the run's.
+  j["blas"] = linalg::describe_loaded_blas();
   return j;
 }
 

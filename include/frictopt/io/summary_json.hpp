@@ -23,7 +23,8 @@ void add_members(JsonValue& into, const JsonValue& members);
 
 [[nodiscard]] JsonValue to_json(const study::StateSummary& summary);
 /// The conditions a run's numbers were produced under, for every command's summary (CLI and
-/// Python alike): {"blas_threads": the BLAS thread policy}. A run is bit-reproducible only for a
+/// Python alike): {"blas_threads": the BLAS thread policy, "blas": the BLAS loaded (implementation
+/// and the library dgemm_ resolves to)}. A run is bit-reproducible only for a
 /// fixed thread count (README, "Reproducibility").
 [[nodiscard]] JsonValue run_environment();
 /// summary.json of `solve` (CLI and Python alike): the case, the state's summary, mesh sizes, the
