@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   check_gradient->add_option("--design", design_path, "design file (JSON with \"alpha\", or numbers); default: the case's initial design")
       ->check(CLI::ExistingFile);
-  check_gradient->add_option("--step", relative_step, "finite-difference step relative to max|α|")
+  check_gradient->add_option("--step", relative_step, "finite-difference step relative to the width of each design variable's bounds (C0 for a control height)")
       ->check(kFiniteNumber & CLI::Range(1e-10, 1e-1));
   bool resume = false, force = false;
   CLI::App* optimize = app.add_subcommand("optimize", "Minimize the case's cost over the admissible designs (bundle trust method)");

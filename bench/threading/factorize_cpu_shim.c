@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // LD_PRELOAD shim: the CPU and wall time of CHOLMOD's numeric factorizations (cholmod_factorize)
-// in any process — the frictopt CLI, a benchmark, an older build — printed to stderr at exit:
+// in any process — the frictopt CLI, a benchmark, an older build — printed to stderr per call
+// and at exit:
+//   factorize_cpu_shim: call K: cpu CPU s, wall WALL s
 //   factorize_cpu_shim: CALLS call(s), cpu CPU s, wall WALL s
 // Build and use (bench/threading/run_blas_check.sh does both):
 //   gcc -O2 -shared -fPIC -o /tmp/factorize_cpu_shim.so bench/threading/factorize_cpu_shim.c -ldl
@@ -28,9 +30,11 @@ int cholmod_factorize(void* A, void* L, void* common) {
   if (!real) real = (factorize_fn)dlsym(RTLD_NEXT, "cholmod_factorize");
   const double c0 = seconds(CLOCK_PROCESS_CPUTIME_ID), w0 = seconds(CLOCK_MONOTONIC);
   const int ok = real(A, L, common);
-  cpu_total += seconds(CLOCK_PROCESS_CPUTIME_ID) - c0;
-  wall_total += seconds(CLOCK_MONOTONIC) - w0;
+  const double cpu = seconds(CLOCK_PROCESS_CPUTIME_ID) - c0, wall = seconds(CLOCK_MONOTONIC) - w0;
+  cpu_total += cpu;
+  wall_total += wall;
   ++calls;
+  fprintf(stderr, "factorize_cpu_shim: call %ld: cpu %.3f s, wall %.3f s\n", calls, cpu, wall);
   return ok;
 }
 
