@@ -115,7 +115,7 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
         if (a.steady_sliding && description.experiment->drive == study::TribometerDrive::kForce)
           fmt::print(
               "θ = {:7.2f}°: no static equilibrium beyond Q = {:.9e} N (ramp step {}); limit state: |T|/P = "
-              "{:.9f}, law μ(φ) = {:.9f} (rel. error {:.1e}), force at φ = {:.3f}°, slip at {:.3f}°, normality "
+              "{:.9f}, law radial μ(φ) = {:.9f} (rel. error {:.1e}), force at φ = {:.3f}°, slip at {:.3f}°, normality "
               "{:.1e}, stick fraction {:.3f}\n",
               a.angle_degrees, a.onset_force, a.onset_step + 1, a.measured_coefficient, a.law_coefficient,
               a.coefficient_error, a.force_angle_degrees, a.slip_angle_degrees, a.normality_residual,
@@ -123,7 +123,7 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
         else if (a.steady_sliding)
           fmt::print(
               "θ = {:7.2f}°: sliding from step {} (|T| = {:.4e} N); sliding: |T|/P = {:.9f}, law "
-              "μ(φ) = {:.9f} "
+              "radial μ(φ) = {:.9f} "
               "(rel. error {:.1e}), force at φ = {:.3f}°, slip at {:.3f}°, normality {:.1e}\n",
               a.angle_degrees, a.onset_step + 1, a.onset_force, a.measured_coefficient,
               a.law_coefficient, a.coefficient_error, a.force_angle_degrees, a.slip_angle_degrees,
@@ -143,6 +143,10 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
               a.angle_degrees, a.ramp.empty() ? 1.0 : a.ramp.back().stick_fraction);
       });
   fmt::print("{}\n", summary.brief_report());
+  // Two coefficients are called μ(θ) (docs/contact.md, "Two meanings of μ(θ)").
+  fmt::print("radial μ(φ): the friction set's boundary in the force's direction φ, |T| = μ(φ)·P at sliding "
+             "(law_mu, radial_mu); the resistance to sliding along θ is the support function N_W(θ) "
+             "(law_resistance, support_mu; Python's FrictionLaw.mu)\n");
   io::JsonValue json = io::JsonValue::object();
   json["case"] = case_path.string();
   json["command"] = "experiment";

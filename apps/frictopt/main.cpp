@@ -14,6 +14,7 @@
 #include "frictopt/core/error.hpp"
 #include "frictopt/mesh/gmsh_mesh.hpp"
 #include "frictopt/study/build_mesh.hpp"
+#include "frictopt/linalg/blas_threads.hpp"
 #ifdef FRICTOPT_HAVE_PETSC
 #include <unistd.h>
 
@@ -44,6 +45,12 @@ const CLI::Validator kFiniteNumber(
 int main(int argc, char** argv) {
   CLI::App app{"frictopt: shape optimization of elastic bodies in contact with (anisotropic) Coulomb friction"};
   app.require_subcommand(1);
+  // The version and the BLAS this binary actually calls (the library dgemm_ binds to; a slow
+  // reference BLAS or ATLAS shows here, docs/benchmarks.md "Which BLAS").
+  app.set_version_flag("--version", [] {
+    return std::string("frictopt ") + FRICTOPT_VERSION + "\nBLAS: " + frictopt::linalg::describe_loaded_blas() + "\n" +
+           frictopt::linalg::describe_blas_threads();
+  });
   std::filesystem::path case_path, out_dir = "out";
   CLI::App* solve = app.add_subcommand("solve", "Solve the state problem of a case at its initial design and write VTK");
   solve->add_option("case", case_path, "case file (TOML), see docs/case-format.md")->required()->check(CLI::ExistingFile);
@@ -71,7 +78,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   check_gradient->add_option("--design", design_path, "design file (JSON with \"alpha\", or numbers); default: the case's initial design")
       ->check(CLI::ExistingFile);
-  check_gradient->add_option("--step", relative_step, "finite-difference step relative to max|α|")
+  check_gradient->add_option("--step", relative_step, "finite-difference step relative to the width of each design variable's bounds (C0 for a control height)")
       ->check(kFiniteNumber & CLI::Range(1e-10, 1e-1));
   bool resume = false, force = false;
   CLI::App* optimize = app.add_subcommand("optimize", "Minimize the case's cost over the admissible designs (bundle trust method)");

@@ -187,12 +187,20 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   add_members(json, run_environment());
   json["cost"] = oracle.cost().name();
   json["status"] = std::string(to_string(summary.status));
+  // What the status means for the user (README "Exit codes"): certified, limit_reached,
+  // needs_attention (with the reasons) or failed.
+  const study::OptimizationOutcome outcome = study::assess_outcome(summary, final);
+  json["outcome"] = std::string(study::to_string(outcome.kind));
+  JsonValue attention = JsonValue::array();
+  for (const std::string& reason : outcome.attention) attention.push_back(reason);
+  json["attention"] = attention;
   json["message"] = summary.message;
   json["stopped_by"] = to_json(summary).at("stopped_by");
   json["initial_cost"] = initial_value;
   json["final_cost"] = final.value;
   json["alpha"] = summary.x;
   json["initial_alpha"] = definition.initial_design;
+  json["design_chart"] = design_chart(body);  // rebuilds the surface from alpha
   if (body.orientation_design()) {
     json["initial_friction_orientation_deg"] = orientation_deg(body.initial_design());
     json["friction_orientation_deg"] = orientation_deg(summary.x);
@@ -225,6 +233,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     run->write_json_file(RunDirectory::kSummary, json);
   }
   result.summary = summary;
+  result.outcome = outcome;
   result.initial_cost = initial_value;
   result.final_cost = final.value;
   result.summary_json = std::move(json);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "frictopt/linalg/blas_threads.hpp"
+#include "frictopt/mesh/design_extension.hpp"
 
 namespace frictopt::io {
 namespace {
@@ -323,6 +324,47 @@ JsonValue run_environment() {
   // With the default (automatic) BLAS thread count the summation order follows the machine's
   // load, so a record says which policy its round-off was produced under.
   j["blas_threads"] = linalg::describe_blas_threads();
+  // The BLAS CHOLMOD and LAPACK actually reach: its speed, and its round-off, are the run's.
+  j["blas"] = linalg::describe_loaded_blas();
+  return j;
+}
+
+JsonValue design_chart(const study::ElasticBody& body) {
+  const study::BodyDefinition& d = body.definition();
+  const shape::BezierShape& shape = d.shape;
+  const int dim = shape.dim();
+  // The chart's frame: the foundation frame of an imported body's patch, else the box's own axes
+  // (x1, x2 in-plane, the height x_dim; the Bézier surface is the box's bottom).
+  mesh::PlaneFrame frame = mesh::PlaneFrame::standard(dim);
+  Eigen::VectorXd origin = Eigen::VectorXd::Zero(dim - 1);
+  JsonValue j = JsonValue::object();
+  if (d.imported_mesh) {
+    const mesh::DesignMotion& motion = d.imported_mesh->motion;
+    if (motion.frame.normal.size() == dim) frame = motion.frame;
+    origin = mesh::patch_chart(*d.imported_mesh->reference, motion.patch, frame).origin;
+    j["patch"] = motion.patch;
+  } else {
+    j["patch"] = d.contact_surface;
+  }
+  const auto [m1, m2] = shape.control_net();
+  const auto [a, b] = shape.extents();
+  j["origin"] = origin;                                                      // [m], in the plane coordinates
+  j["extents"] = dim == 3 ? Eigen::VectorXd(Eigen::Vector2d(a, b)) : Eigen::VectorXd::Constant(1, a);  // [m]
+  JsonValue controls = JsonValue::array(), degree = JsonValue::array(), tangents = JsonValue::array();
+  for (int c = 0; c < dim - 1; ++c) {
+    const int m = c == 0 ? m1 : m2;
+    controls.push_back(m);
+    degree.push_back(m - 1);
+    tangents.push_back(Eigen::VectorXd(frame.tangents.col(c)));
+  }
+  j["control_points"] = controls;
+  j["degree"] = degree;
+  j["normal"] = frame.normal;
+  j["tangents"] = tangents;
+  j["formula"] = dim == 3 ? "G(x') = sum_{i,j} alpha[i + m1*j] B_i^{m1-1}((x'_1 - origin_1)/a) "
+                            "B_j^{m2-1}((x'_2 - origin_2)/b), x'_c = tangents[c] . x; the patch moves by G along normal"
+                          : "G(x') = sum_i alpha[i] B_i^{m1-1}((x'_1 - origin_1)/a), x'_1 = tangents[0] . x; the patch "
+                            "moves by G along normal";
   return j;
 }
 

@@ -51,3 +51,22 @@ TEST(BlasThreads, ACallSiteChoosesWithinTheLimits) {
   }
   EXPECT_FALSE(fl::describe_blas_threads().empty());
 }
+
+// The BLAS behind CHOLMOD's supernodal factorization and the LAPACK wrappers is OpenBLAS, not
+// the reference BLAS or ATLAS that another dependency may bring (cmake/FrictoptModule.cmake,
+// docs/benchmarks.md "Which BLAS"): the loaded implementation names itself, and the symbols
+// CHOLMOD and LAPACK call resolve into an OpenBLAS library file.
+TEST(LoadedBlas, IsOpenBlas) {
+  const fl::LoadedBlas blas = fl::loaded_blas();
+  EXPECT_TRUE(blas.is_openblas()) << fl::describe_loaded_blas();
+  EXPECT_EQ(blas.implementation.rfind("OpenBLAS", 0), 0U) << blas.implementation;
+  for (const char* symbol : {"dgemm_", "dsyrk_", "dtrsm_", "dgemv_", "dpotrf_", "dgesdd_"}) {
+    const std::string library = fl::library_of_symbol(symbol);
+    EXPECT_NE(library.find("openblas"), std::string::npos) << symbol << " resolves to '" << library << "'";
+  }
+  EXPECT_NE(fl::describe_loaded_blas().find(blas.dgemm_library), std::string::npos);
+}
+
+TEST(LoadedBlas, AnUnknownSymbolResolvesNowhere) {
+  EXPECT_EQ(fl::library_of_symbol("frictopt_no_such_blas_routine_"), "");
+}
