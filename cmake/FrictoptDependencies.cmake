@@ -23,6 +23,24 @@ if(NOT DEFINED BLA_VENDOR)
 endif()
 find_package(BLAS REQUIRED)
 find_package(LAPACK REQUIRED)
+# OpenBLAS itself, linked as the first needed library of every executable and module
+# (frictopt_link_openblas_first in cmake/FrictoptModule.cmake). Debian's libceres.so needs
+# ATLAS' libf77blas.so.3 (and libatlas.so.3) besides liblapack.so.3; in the dynamic linker's
+# breadth-first lookup order ATLAS' dgemm_/dsyrk_/dtrsm_ came before OpenBLAS', and CHOLMOD's
+# supernodal factorization ran on them 2-2.6x slower (docs/benchmarks.md, "Which BLAS").
+# libopenblas.so.0 is the runtime name (package libopenblas0-pthread; no -dev package needed).
+option(FRICTOPT_REQUIRE_OPENBLAS "Refuse to configure without OpenBLAS (libopenblas.so.0)" ON)
+find_library(FRICTOPT_OPENBLAS_LIBRARY NAMES libopenblas.so.0 openblas
+             DOC "OpenBLAS, linked first into every frictopt executable and module")
+if(NOT FRICTOPT_OPENBLAS_LIBRARY)
+  if(FRICTOPT_REQUIRE_OPENBLAS)
+    message(FATAL_ERROR "frictopt: OpenBLAS (libopenblas.so.0) not found; install libopenblas0-pthread "
+                        "(scripts/install-deps.sh), give -DFRICTOPT_OPENBLAS_LIBRARY=/path/libopenblas.so.0, "
+                        "or -DFRICTOPT_REQUIRE_OPENBLAS=OFF to build on whatever BLAS the system resolves "
+                        "(the test LoadedBlas.IsOpenBlas then fails)")
+  endif()
+  message(WARNING "frictopt: OpenBLAS not found; CHOLMOD and LAPACK use whatever BLAS the loader finds first")
+endif()
 # study: identification (least squares, covariance; issue 7).
 find_package(Ceres REQUIRED)
 # io: case files (TOML), VTK XML output, JSON.

@@ -4,8 +4,23 @@ include(GNUInstallDirs)
 # One helper per kind of target, so each module's CMake is a few lines and the layering of
 # DESIGN.md (a module links only modules above it) is a link-time fact.
 
-# Flags every frictopt target gets: C++20, warnings, sanitizers, the portable -march.
+# OpenBLAS (FRICTOPT_OPENBLAS_LIBRARY) as the first DT_NEEDED entry of an executable or module,
+# ahead of every library the link line names (link options precede the objects and libraries):
+# the dynamic linker then binds every BLAS/LAPACK symbol of the process or of the module's
+# dependencies (CHOLMOD's, LAPACK's, Ceres') to OpenBLAS, whatever ATLAS a dependency also
+# needs. --no-as-needed keeps the entry although the target itself may call no BLAS routine.
+function(frictopt_link_openblas_first target)
+  get_target_property(type ${target} TYPE)
+  if(FRICTOPT_OPENBLAS_LIBRARY AND type MATCHES "^(EXECUTABLE|MODULE_LIBRARY|SHARED_LIBRARY)$")
+    target_link_options(${target} BEFORE PRIVATE "LINKER:--push-state,--no-as-needed"
+                        "${FRICTOPT_OPENBLAS_LIBRARY}" "LINKER:--pop-state")
+  endif()
+endfunction()
+
+# Flags every frictopt target gets: C++20, warnings, sanitizers, the portable -march, and for
+# executables and modules OpenBLAS first (above).
 function(frictopt_target_defaults target)
+  frictopt_link_openblas_first(${target})
   target_compile_features(${target} PUBLIC cxx_std_20)
   set_target_properties(${target} PROPERTIES CXX_EXTENSIONS OFF)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor

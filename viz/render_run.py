@@ -11,21 +11,26 @@ pictures of the initial design (iteration 0) next to the final one (last iterate
                            magnification for both designs.
       contact_maps.png     on the contact surface Γ_c, seen from above: contact pressure
                            (top row, same colour scale) and stick/slip/separated status with
-                           the tangential traction as arrows (bottom row).
+                           the tangential traction as arrows (bottom row), each node's value
+                           over its share of the contact facets.
+      shape.png            the lift F_α (Bézier surface over the chart, control net, mesh
+                           nodes) of both designs, and the deformed bodies seen from below
+                           coloured by the von Mises stress.
   2D  shape.png            the bottom F_α (Bézier curve from α, control polygon, mesh nodes)
                            of both designs, and the deformed meshes coloured by von Mises
                            over the undeformed outline and the foundation x2 = 0.
       contact_stress.png   normal (solid) and tangential (dashed) contact stress along Γ_c,
                            like the thesis' figures 5.2.x, with the stick/slip status below.
-  both history.png         Θ per iteration (log scale when positive; serious steps filled,
-                           null steps open) and the stationarity measure on a second axis.
+  both history.png         Θ per iteration with its unit (log scale when positive; serious
+                           steps filled, null steps open, squares after a line search; the
+                           counts add up to summary.json's) and the stationarity measure.
 
 A `solve` directory (NAME.vtu, summary.json) gives the same body and contact pictures for its
 single design, and no history.
 
 Usage (VTK needs an X display even off screen with Debian's VTK; run_headless provides one):
     viz/run_headless.sh /usr/bin/python3 viz/render_run.py RUN_DIR [--no-cut]
-Reads only files frictopt wrote (STYLE §9). Exits non-zero with a message naming the missing
+Reads only files frictopt wrote (STYLE §9), and the case file for the shape of the 3D net. Exits non-zero with a message naming the missing
 file when RUN_DIR is not a run directory or a picture could not be written.
 """
 
@@ -38,6 +43,7 @@ import math
 import os
 import re
 import sys
+import tomllib
 import xml.etree.ElementTree as ElementTree
 
 try:
@@ -53,8 +59,12 @@ try:
     from matplotlib.patches import Patch
     from matplotlib.lines import Line2D
     from matplotlib.ticker import MaxNLocator
+    from matplotlib.tri import Triangulation
+    from matplotlib.path import Path
     from PIL import Image
-    from frictopt_vtu import STATUS_COLOURS, STATUS_NAMES, VtuError, read_grid
+    from frictopt_vtu import (STATUS_COLOURS, STATUS_NAMES, VtuError, arrow_subset,
+                              contact_facets, format_number, format_quantity, node_pieces,
+                              read_grid)
 except ImportError as error:  # the usual cause: a pyenv/venv python3 on PATH
     sys.exit(f"render_run: {error}; run it with /usr/bin/python3 (Debian's python3-vtk9, "
              "matplotlib, numpy)")
@@ -112,13 +122,16 @@ class Design:
         status = self.point_array("contact_status")
         return None if status is None else status >= 0
 
-    def title(self, digits=4):
+    def title(self, unit="", digits=4):
         parts = [self.label]
         if self.iteration is not None:
             parts[0] += f" (iteration {self.iteration})"
         if self.cost is not None:
-            parts.append(f"Θ = {self.cost:.{digits}g}")
+            parts.append(f"Θ = {format_quantity(self.cost, unit, digits)}")
         return ", ".join(parts)
+
+    def size(self):
+        return float(np.max(self.points.max(axis=0) - self.points.min(axis=0)))
 
 
 def is_planar(points):
@@ -170,13 +183,31 @@ def series_files(run_dir):
     return files
 
 
-def case_name(run_dir, summary):
-    """The case's name for titles: the case file's folder (cases2d/NAME/case.toml) or stem."""
+def read_case_copy(path):
+    """The run's copy of its case file as a dict ({} when absent or unreadable: the pictures
+    only use it for the shape of the control net)."""
+    try:
+        with open(path, "rb") as stream:
+            return tomllib.load(stream)
+    except (OSError, tomllib.TOMLDecodeError):
+        return {}
+
+
+def case_name(run_dir, summary, case_copy=None):
+    """The case's name for titles: the case file's folder (cases2d/NAME/case.toml) or stem;
+    for the run's own copy RUN_DIR/case.toml (an optimize run reads that), or a case.toml
+    named without its folder, the case's [output] name; else the run directory's name."""
     case = summary.get("case", "") if summary else ""
-    if case:
+    if case and os.path.abspath(os.path.dirname(case)) != os.path.abspath(run_dir):
         stem = os.path.splitext(os.path.basename(case))[0]
         folder = os.path.basename(os.path.dirname(case))
-        return folder if stem == "case" and folder else stem
+        if stem != "case":
+            return stem
+        if folder:
+            return folder
+    output_name = (case_copy or {}).get("output", {}).get("name")
+    if isinstance(output_name, str) and output_name:
+        return output_name
     return os.path.basename(os.path.abspath(run_dir))
 
 
@@ -188,8 +219,17 @@ class Run:
         summary_path = os.path.join(run_dir, "summary.json")
         history_path = os.path.join(run_dir, "history.csv")
         self.summary = read_json(summary_path) if os.path.isfile(summary_path) else {}
-        self.name = case_name(run_dir, self.summary)
-        self.cost_name = self.summary.get("cost")
+        # The run's copy of the case file (optimize), else the case file the summary names
+        # (solve writes no copy).
+        self.case = read_case_copy(os.path.join(run_dir, "case.toml"))
+        if not self.case and isinstance(self.summary.get("case"), str):
+            self.case = read_case_copy(self.summary["case"])
+        self.name = case_name(run_dir, self.summary, self.case)
+        # The cost's kind as the case file spells it ([cost] kind); older summaries name the
+        # functional only.
+        self.cost_name = self.summary.get("cost_kind") or self.summary.get("cost")
+        # Θ's unit as frictopt states it (summary.json "cost_unit"); "" when not stated.
+        self.cost_unit = self.summary.get("cost_unit", "")
         self.history = None
         series = series_files(run_dir)
         if os.path.isfile(history_path) or series or self.summary.get("command") == "optimize":
@@ -235,15 +275,115 @@ class Run:
         text = f"{self.name}"
         if self.cost_name:
             text += f" — cost {self.cost_name}"
+            if self.cost_unit:
+                text += f" [{self.cost_unit}]"
         return text
+
+    def control_points(self, count):
+        """(m1, m2) of the 3D control net with `count` = m1·m2 entries: [design]
+        control_points of the run's copy of the case file; None when it is not there."""
+        design = self.case.get("design", {}) if self.case else {}
+        shape = design.get("control_points")
+        if (isinstance(shape, list) and len(shape) == 2
+                and all(isinstance(m, int) for m in shape) and shape[0] * shape[1] == count):
+            return int(shape[0]), int(shape[1])
+        return None
+
+    def chart(self):
+        """((origin), (extents)) of the Bézier chart when the run states it (summary.json or
+        final_design.json "chart" with "origin" and "extents"), else None."""
+        sources = [self.summary]
+        final_design = os.path.join(self.dir, "final_design.json")
+        if os.path.isfile(final_design):
+            sources.append(read_json(final_design))
+        for source in sources:
+            chart = source.get("chart") if isinstance(source, dict) else None
+            if isinstance(chart, dict) and "origin" in chart and "extents" in chart:
+                return (np.asarray(chart["origin"], dtype=float),
+                        np.asarray(chart["extents"], dtype=float))
+        return None
 
 
 # ----------------------------------------------------------------------------------------
 # Shared helpers.
 
+TEXT_MARGIN = 4  # pixels between a title and the figure's edge
+
+
+def figure_titles(fig):
+    """(text artist, widest allowed extent in pixels) of the titles of a figure: the
+    figure's suptitle and supxlabel (its width), and every axes title (its axes' width, a
+    little more, never beyond the figure)."""
+    width = fig.bbox.width - 2 * TEXT_MARGIN
+    titles = [(text, width) for text in (getattr(fig, "_suptitle", None),
+                                         getattr(fig, "_supxlabel", None))
+              if text is not None and text.get_text()]
+    for ax in fig.axes:
+        for text in (ax.title, getattr(ax, "_left_title", None),
+                     getattr(ax, "_right_title", None)):
+            if text is not None and text.get_text():
+                titles.append((text, min(width, 1.15 * ax.bbox.width)))
+    return titles
+
+
+def wrap_text(text, renderer, allowed):
+    """Breaks the lines of `text` (a matplotlib Text) so that none is wider than `allowed`
+    pixels: after a ";" where that is enough, else between words (a single word wider
+    than that stays on its own line)."""
+    def width(candidate):
+        text.set_text(candidate)
+        return text.get_window_extent(renderer).width
+
+    def greedy(pieces):
+        lines, current = [], ""
+        for piece in pieces:
+            candidate = f"{current} {piece}" if current else piece
+            if current and width(candidate) > allowed:
+                lines.append(current)
+                current = piece
+            else:
+                current = candidate
+        return lines + [current]
+
+    lines = []
+    for line in text.get_text().split("\n"):
+        if width(line) <= allowed:
+            lines.append(line)
+            continue
+        for part in greedy(re.split(r"(?<=;) ", line)):
+            lines.extend([part] if width(part) <= allowed else greedy(part.split(" ")))
+    text.set_text("\n".join(lines))
+
+
+def fit_texts(fig):
+    """Lays out the figure so that every title lies inside it: a title wider than it may be
+    (figure_titles) is wrapped, and, where the figure is not laid out by constrained layout,
+    the subplots move down until the suptitle clears them."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    for text, allowed in figure_titles(fig):
+        if text.get_window_extent(renderer).width > allowed:
+            wrap_text(text, renderer, allowed)
+    fig.canvas.draw()
+    suptitle = getattr(fig, "_suptitle", None)
+    if suptitle is not None and suptitle.get_text() and not fig.get_constrained_layout():
+        bottom = suptitle.get_window_extent(renderer).y0 - TEXT_MARGIN
+        top = max((ax.get_tightbbox(renderer).y1 for ax in fig.axes if ax.get_visible()),
+                  default=bottom)
+        if top > bottom:
+            shift = (top - bottom) / fig.bbox.height
+            for spec in {id(ax.get_subplotspec().get_gridspec()): ax.get_subplotspec()
+                         .get_gridspec() for ax in fig.axes
+                         if ax.get_subplotspec() is not None}.values():
+                spec.update(top=spec.top - shift, bottom=min(spec.bottom, spec.top - shift - 0.3))
+            fig.canvas.draw()
+
+
 def save(fig, path):
     """Writes the figure as an RGB PNG, or as a 256-colour palette PNG when the RGB file
-    would exceed MAX_PNG_BYTES (a palette can band smooth colour maps slightly)."""
+    would exceed MAX_PNG_BYTES (a palette can band smooth colour maps slightly). Titles are
+    fitted inside the figure first (fit_texts)."""
+    fit_texts(fig)
     buffer = io.BytesIO()
     fig.savefig(buffer, dpi=DPI, metadata=PNG_METADATA, format="png")
     plt.close(fig)
@@ -271,7 +411,7 @@ def displacement_scale(designs):
     if u_max == 0.0 or not math.isfinite(u_max):
         return 1.0, "undeformed (displacement zero)"
     if u_max >= 0.02 * size:
-        return 1.0, f"displacement at true scale (largest {u_max:.3g} m)"
+        return 1.0, f"displacement at true scale (largest {format_quantity(u_max, 'm')})"
     factor = 0.05 * size / u_max
     # A round factor reads better: 1, 2, 5 × 10^k not above the exact one.
     exponent = math.floor(math.log10(factor))
@@ -279,7 +419,8 @@ def displacement_scale(designs):
         if mantissa * 10 ** exponent <= factor:
             factor = mantissa * 10 ** exponent
             break
-    return factor, f"displacement × {factor:g} (largest {u_max:.3g} m)"
+    return factor, (f"displacement × {format_number(factor, 6)} (largest "
+                    f"{format_quantity(u_max, 'm')})")
 
 
 def von_mises_range(designs, where="point"):
@@ -323,7 +464,14 @@ def cut_plane_x2(points):
     return float(levels[np.argmin(np.abs(levels - middle))])
 
 
-def render_body_image(design, scale, value_range, cut, bounds, width, height):
+# Camera directions (from the focal point, x3 up): the front view shows the cut face, the right
+# side and the top; the view from below shows the contact face Γ_c, the front and the right.
+VIEW_FRONT = (0.7, -1.9, 0.9)
+VIEW_BELOW = (0.8, -1.5, -1.3)
+
+
+def render_body_image(design, scale, value_range, cut, bounds, width, height,
+                      view=VIEW_FRONT, zoom=1.6):
     """RGB image (height × width × 3) of one design's deformed body."""
     grid = design.grid
     source = vtk.vtkPassThrough()
@@ -396,10 +544,11 @@ def render_body_image(design, scale, value_range, cut, bounds, width, height):
     # From the front (−x2 side), a little to the right and above: the cut face, the right
     # side and the top show.
     camera.SetFocalPoint(*centre)
-    camera.SetPosition(centre[0] + 0.7, centre[1] - 1.9, centre[2] + 0.9)
+    extent = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-300)
+    camera.SetPosition(*(c + extent * v for c, v in zip(centre, view)))
     camera.SetViewUp(0.0, 0.0, 1.0)
     renderer.ResetCamera(bounds)  # the same bounds for every design: comparable pictures
-    camera.Zoom(1.6)
+    camera.Zoom(zoom)
     window.Render()
     image = vtk.vtkWindowToImageFilter()
     image.SetInput(window)
@@ -438,7 +587,7 @@ def picture_body_3d(run, out_dir, cut=True):
                                   int(round(box.width)), int(round(box.height)))
         ax.imshow(image, interpolation="none")
         ax.set_axis_off()
-        ax.set_title(d.title(), fontsize=12)
+        ax.set_title(d.title(run.cost_unit), fontsize=12)
     if value_range is not None:
         divisor, unit = stress_unit(value_range[1])
         bar_ax = fig.add_subplot(grid_spec[0, n])
@@ -446,8 +595,9 @@ def picture_body_3d(run, out_dir, cut=True):
         mappable = plt.cm.ScalarMappable(norm=norm, cmap=cmap)
         fig.colorbar(mappable, cax=bar_ax, ticks=levels[::2],
                      label=f"von Mises stress [{unit}] (nodal values, interpolated)")
-    cut_text = (f"cut at x2 = {cut_plane_x2(designs[0].points):.3g} m, back half shown"
-                if cut else "whole body")
+    cut_text = ("cut at x2 = " + format_quantity(cut_plane_x2(designs[0].points), "m",
+                                                 resolution=1e-9 * designs[0].size())
+                + ", back half shown" if cut else "whole body")
     fig.suptitle(f"{run.headline()}: deformed body coloured by von Mises stress\n"
                  f"{scale_text}; {cut_text}; view from the front (−x2), x3 up",
                  fontsize=13)
@@ -457,113 +607,102 @@ def picture_body_3d(run, out_dir, cut=True):
 # ----------------------------------------------------------------------------------------
 # 3D: contact surface maps.
 
-def structured_surface(x, y):
-    """Index arrays (rows, cols, n_rows, n_cols) when the points form a full tensor grid."""
-    size = max(np.ptp(x), np.ptp(y), 1e-300)
-    xs, col = np.unique(np.round(x / size, 9), return_inverse=True)
-    ys, row = np.unique(np.round(y / size, 9), return_inverse=True)
-    if xs.size * ys.size != x.size:
+def contact_surface(design):
+    """What the contact maps draw of one 3D design: the pieces of the contact facets per node
+    (frictopt_vtu.node_pieces) in the plane (x1, x2) of the undeformed design, the node of each
+    piece, and the nodal arrays of Γ_c. None without contact arrays or contact facets."""
+    status = design.point_array("contact_status")
+    if status is None:
         return None
-    return row, col, ys.size, xs.size
+    facets = contact_facets(design.grid)
+    if not facets:
+        return None
+    polygons, nodes = node_pieces(design.points[:, :2], facets)
+    traction = design.point_array("contact_traction")
+    on_surface = np.unique(nodes)
+    return {"polygons": polygons, "nodes": nodes, "surface_nodes": on_surface,
+            "xy": design.points[:, :2],
+            "p": design.point_array("contact_pressure"),
+            "status": np.nan_to_num(status, nan=-1.0).astype(int),
+            "traction": None if traction is None else np.nan_to_num(traction[:, :2])}
+
+
+def piece_collection(surface, values, cmap, norm):
+    """A PolyCollection of the surface's node pieces coloured by the nodal `values`. Pieces
+    are drawn unsmoothed with their edges in their own colour, so that neighbouring pieces
+    leave no hairline of background between them."""
+    collection = PolyCollection(surface["polygons"], cmap=cmap, norm=norm,
+                                edgecolors="face", linewidths=0.4, antialiaseds=False,
+                                rasterized=True)
+    collection.set_array(values[surface["nodes"]])
+    return collection
 
 
 def picture_contact_3d(run, out_dir):
-    designs = [d for d in run.designs if d.point_array("contact_status") is not None]
-    if not designs:
+    pairs = [(d, contact_surface(d)) for d in run.designs]
+    pairs = [(d, s) for d, s in pairs if s is not None]
+    if not pairs:
         return None
-    surfaces = []
-    for d in designs:
-        mask = d.contact_mask()
-        p = d.point_array("contact_pressure")
-        status = d.point_array("contact_status")
-        traction = d.point_array("contact_traction")
-        surfaces.append({
-            "x": d.points[mask, 0], "y": d.points[mask, 1],
-            "p": None if p is None else p[mask],
-            "status": status[mask].astype(int),
-            "traction": None if traction is None else traction[mask, :2]})
-    p_max = max((float(np.nanmax(s["p"])) for s in surfaces if s["p"] is not None
-                 and s["p"].size), default=0.0)
+    designs = [d for d, _ in pairs]
+    surfaces = [s for _, s in pairs]
+    p_max = max((float(np.nanmax(s["p"][s["surface_nodes"]])) for s in surfaces
+                 if s["p"] is not None), default=0.0)
     divisor, unit = stress_unit(p_max if p_max > 0 else 1.0)
-    t_max = max((float(np.nanmax(np.linalg.norm(s["traction"], axis=1)))
-                 for s in surfaces if s["traction"] is not None and s["traction"].size),
-                default=0.0)
+    t_max = max((float(np.max(np.linalg.norm(s["traction"][s["surface_nodes"]], axis=1)))
+                 for s in surfaces if s["traction"] is not None), default=0.0)
 
-    # Every panel shows the same window: the surface plus half a node spacing (the status
-    # cells are centred on the nodes).
-    limits = []
-    for k in range(2):
-        lo = min(float(s["xy"[k]].min()) for s in surfaces)
-        hi = max(float(s["xy"[k]].max()) for s in surfaces)
-        levels = np.unique(np.round(np.concatenate([s["xy"[k]] for s in surfaces]), 9))
-        half = 0.5 * float(np.min(np.diff(levels))) if levels.size > 1 else 0.05 * (hi - lo)
-        limits.append((lo - half, hi + half))
+    # Every panel shows the same window: the contact facets of all designs.
+    corners = np.concatenate([s["polygons"].reshape(-1, 2) for s in surfaces])
+    lo, hi = corners.min(axis=0), corners.max(axis=0)
+    pad = 0.02 * float(np.max(hi - lo))
+    limits = [(lo[k] - pad, hi[k] + pad) for k in range(2)]
+    resolution = 1e-9 * float(np.max(hi - lo))
     arrow_text = ""
     n = len(designs)
-    fig, axes = plt.subplots(2, n, figsize=(5.2 * n + 1.6, 10.4), squeeze=False,
-                             constrained_layout=True)
-    codes_seen = set()
+    # Panels 5.2 in wide, as high as the surface's aspect ratio asks (within limits).
+    panel_height = min(max(5.2 * (hi[1] - lo[1]) / max(hi[0] - lo[0], 1e-300), 1.8), 6.0)
+    fig, axes = plt.subplots(2, n, figsize=(5.2 * n + 1.6, 2.0 * panel_height + 2.0),
+                             squeeze=False, constrained_layout=True)
     pressure_mappable = None
+    status_cmap = ListedColormap([STATUS_COLOURS[c] for c in (0, 1, 2)])
+    status_norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5], status_cmap.N)
     for k, (d, s) in enumerate(zip(designs, surfaces)):
-        x, y = s["x"], s["y"]
-        layout = structured_surface(x, y)
         ax = axes[0, k]
+        nodes = s["surface_nodes"]
         if s["p"] is not None:
-            values = s["p"] / divisor
+            # Each node's value over its own pieces of the contact facets: what the solver
+            # computed, without interpolation, and nothing where there is no contact facet.
             norm = Normalize(0.0, p_max / divisor if p_max > 0 else 1.0)
-            if layout is not None:
-                row, col, n_rows, n_cols = layout
-                grid_values = np.full((n_rows, n_cols), np.nan)
-                grid_x = np.full((n_rows, n_cols), np.nan)
-                grid_y = np.full((n_rows, n_cols), np.nan)
-                grid_values[row, col], grid_x[row, col], grid_y[row, col] = values, x, y
-                # One flat cell per node (its nodal value over about its tributary area):
-                # what the solver computed, without interpolation artefacts.
-                pressure_mappable = ax.pcolormesh(grid_x, grid_y, grid_values,
-                                                  shading="nearest", cmap=PRESSURE_CMAP,
-                                                  norm=norm, rasterized=True)
-            else:
-                pressure_mappable = ax.tripcolor(x, y, values, shading="flat",
-                                                 cmap=PRESSURE_CMAP, norm=norm)
-            mean = float(np.nanmean(s["p"])) / divisor
-            ax.set_title(f"{d.title()}\ncontact pressure (nodal mean {mean:.3g} {unit}, "
-                         f"max {np.nanmax(values):.3g} {unit})", fontsize=10)
+            pressure_mappable = piece_collection(s, s["p"] / divisor, PRESSURE_CMAP, norm)
+            ax.add_collection(pressure_mappable)
+            values = s["p"][nodes] / divisor
+            ax.set_title(f"{d.title(run.cost_unit)}\ncontact pressure (nodal mean "
+                         f"{format_quantity(np.nanmean(values), unit)}, max "
+                         f"{format_quantity(np.nanmax(values), unit)})", fontsize=10)
         ax = axes[1, k]
-        codes = sorted(set(int(c) for c in s["status"]))
-        codes_seen.update(codes)
-        cmap = ListedColormap([STATUS_COLOURS[c] for c in (0, 1, 2)])
-        norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5], cmap.N)
-        if layout is not None:
-            row, col, n_rows, n_cols = layout
-            grid_status = np.full((n_rows, n_cols), np.nan)
-            grid_x = np.full((n_rows, n_cols), np.nan)
-            grid_y = np.full((n_rows, n_cols), np.nan)
-            grid_status[row, col], grid_x[row, col], grid_y[row, col] = s["status"], x, y
-            ax.pcolormesh(grid_x, grid_y, grid_status, shading="nearest", cmap=cmap, norm=norm,
-                          edgecolors="white", linewidth=0.3, rasterized=True)
-            stride = max(1, int(math.ceil(max(n_rows, n_cols) / 16)))
-            keep = (row % stride == 0) & (col % stride == 0)
-        else:
-            ax.scatter(x, y, c=s["status"], cmap=cmap, norm=norm, s=25, marker="s")
-            keep = np.ones_like(x, dtype=bool)
-        counts = ", ".join(f"{STATUS_NAMES[c]} {int(np.sum(s['status'] == c))}" for c in codes)
-        ax.set_title(f"{d.title()}\nnodes: {counts}", fontsize=10)
+        status = s["status"]
+        ax.add_collection(piece_collection(s, status.astype(float), status_cmap, status_norm))
+        codes = sorted(set(int(c) for c in status[nodes]))
+        counts = ", ".join(f"{STATUS_NAMES[c]} {int(np.sum(status[nodes] == c))}"
+                           for c in codes if c in STATUS_NAMES)
+        ax.set_title(f"{d.title(run.cost_unit)}\nnodes: {counts}", fontsize=10)
         if s["traction"] is not None and t_max > 0:
-            keep &= s["status"] > 0  # no arrows on separated nodes (zero traction)
-            spacing = max(np.ptp(x), np.ptp(y)) / 16
-            ax.quiver(x[keep], y[keep], s["traction"][keep, 0], s["traction"][keep, 1],
-                      angles="xy", scale_units="xy", scale=t_max / spacing, width=0.004,
-                      color="black")
-            arrow_text = (f"arrows: tangential traction on the body (longest "
-                          f"{t_max / divisor:.3g} {unit})")
-        ax.set_xlim(*limits[0])
-        ax.set_ylim(*limits[1])
+            # No arrows on separated nodes (zero traction).
+            keep = arrow_subset(s["xy"], nodes[status[nodes] > 0])
+            spacing = float(np.max(hi - lo)) / 16
+            ax.quiver(s["xy"][keep, 0], s["xy"][keep, 1], s["traction"][keep, 0],
+                      s["traction"][keep, 1], angles="xy", scale_units="xy",
+                      scale=t_max / spacing, width=0.004, color="black")
+            arrow_text = ("arrows: tangential traction on the body (longest "
+                          f"{format_quantity(t_max / divisor, unit)})")
     for ax in axes.ravel():
         ax.set_xlim(*limits[0])
         ax.set_ylim(*limits[1])
         ax.set_aspect("equal")
         ax.set_xlabel("x1 [m]")
         ax.set_ylabel("x2 [m]")
+        ax.xaxis.set_major_formatter(lambda v, _: format_number(v, 6, resolution))
+        ax.yaxis.set_major_formatter(lambda v, _: format_number(v, 6, resolution))
     if pressure_mappable is not None:
         fig.colorbar(pressure_mappable, ax=list(axes[0, :]), shrink=0.9,
                      label=f"contact pressure [{unit}]")
@@ -572,17 +711,189 @@ def picture_contact_3d(run, out_dir):
     axes[1, -1].legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0),
                        fontsize=9, frameon=False)
     fig.suptitle(f"{run.headline()}: contact surface Γ_c seen from above "
-                 "(positions of the undeformed design)", fontsize=13)
+                 "(positions of the undeformed design; each node's value over its share of "
+                 "the contact facets)", fontsize=13)
     if arrow_text:
         fig.supxlabel(f"bottom row: contact status per node; {arrow_text}", fontsize=10)
     return save(fig, os.path.join(out_dir, "contact_maps.png"))
 
 
 # ----------------------------------------------------------------------------------------
+# 3D: the design's lift F_α over the chart, and the deformed body seen from below.
+
+def bezier_surface(alpha, shape, s, t):
+    """F_α(s, t) of the tensor Bézier surface with control net α[i + m1·j] (x1 fastest,
+    docs/case-format.md [design]) at chart parameters s, t in [0, 1]
+    (docs/theory/problem.md §2)."""
+    m1, m2 = shape
+    net = np.asarray(alpha, dtype=float).reshape(m2, m1)
+    s, t = np.asarray(s, dtype=float), np.asarray(t, dtype=float)
+    basis_s = np.array([math.comb(m1 - 1, i) * s ** i * (1 - s) ** (m1 - 1 - i)
+                        for i in range(m1)])
+    basis_t = np.array([math.comb(m2 - 1, j) * t ** j * (1 - t) ** (m2 - 1 - j)
+                        for j in range(m2)])
+    return np.einsum("ji,i...,j...->...", net, basis_s, basis_t)
+
+
+def length_unit(value):
+    """(divisor, unit) giving readable lengths."""
+    for divisor, unit in ((1.0, "m"), (1e-3, "mm"), (1e-6, "µm")):
+        if abs(value) >= divisor:
+            return divisor, unit
+    return 1e-9, "nm"
+
+
+def inside_facets(points_2d, polygons):
+    """Mask of the points that lie in at least one of the polygons (the contact facets)."""
+    inside = np.zeros(len(points_2d), dtype=bool)
+    for polygon in polygons:
+        low, high = polygon.min(axis=0), polygon.max(axis=0)
+        near = np.flatnonzero(~inside & np.all((points_2d >= low) & (points_2d <= high), axis=1))
+        if near.size:
+            inside[near] = Path(polygon).contains_points(points_2d[near], radius=1e-12)
+    return inside
+
+
+def lift_data(run):
+    """What the lift panels draw, or (None, reason) when the run does not state enough."""
+    designs = [d for d in run.designs if d.alpha is not None and len(d.alpha) >= 4]
+    if not designs:
+        return None, "the run records no design vector α"
+    shape = run.control_points(len(designs[0].alpha))
+    if shape is None:
+        return None, "the case file gives no [design] control_points [m1, m2]"
+    facets = contact_facets(designs[0].grid)
+    if not facets:
+        return None, "the .vtu file has no contact facets"
+    chart = run.chart()
+    nodes = np.unique(np.concatenate(facets))
+    xy = designs[0].points[nodes, :2]
+    chart_text = "chart from the run"
+    if chart is None:
+        # The default patch is Γ_c and the chart its bounding rectangle (docs/case-format.md).
+        chart = (xy.min(axis=0), xy.max(axis=0) - xy.min(axis=0))
+        chart_text = "chart: bounding rectangle of Γ_c"
+    origin, extents = chart
+    samples = 41
+    s, t = np.meshgrid(np.linspace(0.0, 1.0, samples), np.linspace(0.0, 1.0, samples))
+    x, y = origin[0] + extents[0] * s.ravel(), origin[1] + extents[1] * t.ravel()
+    triangulation = Triangulation(x, y)
+    polygons = [designs[0].points[f, :2] for f in facets]
+    centroids = np.column_stack([x[triangulation.triangles].mean(axis=1),
+                                 y[triangulation.triangles].mean(axis=1)])
+    triangulation.set_mask(~inside_facets(centroids, polygons))
+    lifts = [bezier_surface(d.alpha, shape, s.ravel(), t.ravel()) for d in designs]
+    # The mesh's own patch nodes: their height above the foundation is F_α at their place when
+    # the chart is right (the cross-check of the picture).
+    deviation = 0.0
+    for d in designs:
+        node_xy = d.points[nodes, :2]
+        predicted = bezier_surface(d.alpha, shape, (node_xy[:, 0] - origin[0]) / extents[0],
+                                   (node_xy[:, 1] - origin[1]) / extents[1])
+        deviation = max(deviation, float(np.max(np.abs(d.points[nodes, 2] - predicted))))
+    return {"designs": designs, "shape": shape, "origin": origin, "extents": extents,
+            "triangulation": triangulation, "lifts": lifts, "nodes": nodes,
+            "chart_text": chart_text, "deviation": deviation}, None
+
+
+def picture_shape_3d(run, out_dir):
+    """shape.png of a 3D run: top, the lift F_α (the Bézier surface's height over the chart,
+    vertical scale exaggerated) of each design with its control net and the patch nodes of the
+    mesh; bottom, the deformed body seen from below, coloured by the von Mises stress."""
+    lift, reason = lift_data(run)
+    designs = run.designs
+    n = len(designs)
+    scale, scale_text = displacement_scale(designs)
+    value_range = von_mises_range(designs)
+    bounds = [math.inf, -math.inf] * 3
+    for d in designs:
+        u = d.point_array("displacement")
+        moved = d.points + (scale * np.nan_to_num(u) if u is not None else 0.0)
+        for k in range(3):
+            bounds[2 * k] = min(bounds[2 * k], float(moved[:, k].min()))
+            bounds[2 * k + 1] = max(bounds[2 * k + 1], float(moved[:, k].max()))
+    width = max(6.8 * n + 1.4, 10.0)
+    fig = plt.figure(figsize=(width, 12.0), dpi=DPI)
+    grid_spec = fig.add_gridspec(2, n + 1, width_ratios=[6.8] * n + [0.22],
+                                 height_ratios=[1.0, 1.0], left=0.02,
+                                 right=1.0 - 1.1 / width, top=0.86, bottom=0.03,
+                                 wspace=0.06, hspace=0.14)
+    colours = [INITIAL_COLOUR, FINAL_COLOUR] if n == 2 else [FINAL_COLOUR] * n
+    if lift is not None:
+        everything = np.concatenate([f[~np.isnan(f)] for f in lift["lifts"]] +
+                                    [np.asarray(d.alpha, dtype=float) for d in lift["designs"]])
+        z_low, z_high = float(everything.min()), float(everything.max())
+        divisor, unit = length_unit(max(abs(z_low), abs(z_high), 1e-300))
+        if z_high <= z_low:
+            z_high = z_low + max(abs(z_low), 1e-9)
+        height_norm = Normalize(z_low / divisor, z_high / divisor)
+        # Round-off on the nodes' heights (a body of size L: about 1e-16 L) reads as 0.
+        resolution = 1e-9 * float(np.max(lift["extents"])) / divisor
+        m1, m2 = lift["shape"]
+        origin, extents = lift["origin"], lift["extents"]
+        for k, d in enumerate(lift["designs"]):
+            ax = fig.add_subplot(grid_spec[0, run.designs.index(d)], projection="3d")
+            triangulation = lift["triangulation"]
+            ax.plot_trisurf(triangulation, lift["lifts"][k] / divisor, cmap="cividis",
+                            norm=height_norm, linewidth=0.0, antialiased=False, alpha=0.9)
+            net = np.asarray(d.alpha, dtype=float).reshape(m2, m1) / divisor
+            net_x, net_y = np.meshgrid(origin[0] + extents[0] * np.linspace(0, 1, m1),
+                                       origin[1] + extents[1] * np.linspace(0, 1, m2))
+            ax.plot_wireframe(net_x, net_y, net, color="black", lw=0.6, alpha=0.7)
+            ax.scatter(net_x.ravel(), net_y.ravel(), net.ravel(), s=14, facecolors="white",
+                       edgecolors="black", depthshade=False)
+            ax.scatter(d.points[lift["nodes"], 0], d.points[lift["nodes"], 1],
+                       d.points[lift["nodes"], 2] / divisor, s=1.5, color=colours[k],
+                       depthshade=False)
+            ax.set_zlim(z_low / divisor, z_high / divisor)
+            ax.set_box_aspect((extents[0], extents[1], 0.45 * max(extents)))
+            ax.view_init(elev=24, azim=-58)
+            ax.set_xlabel("x1 [m]", fontsize=9)
+            ax.set_ylabel("x2 [m]", fontsize=9)
+            ax.set_zlabel(f"F_α [{unit}]", fontsize=9)
+            ax.tick_params(labelsize=8)
+            ax.set_title(f"{d.title(run.cost_unit)}\nlift F_α (surface), control net (○), "
+                         "patch nodes of the mesh (•)", fontsize=10, color=colours[k])
+        bar = fig.add_subplot(grid_spec[0, n])
+        fig.colorbar(plt.cm.ScalarMappable(norm=height_norm, cmap="cividis"), cax=bar,
+                     label=f"lift F_α [{unit}] (height above the foundation plane)")
+        lift_text = (f"top: lift F_α over the chart ({lift['chart_text']}; {m1} × {m2} control "
+                     "points; vertical scale exaggerated; mesh nodes off F_α by at most "
+                     f"{format_quantity(lift['deviation'] / divisor, unit, resolution=resolution)})")
+    else:
+        ax = fig.add_subplot(grid_spec[0, :n])
+        ax.set_axis_off()
+        ax.text(0.5, 0.5, f"no lift picture: {reason}", ha="center", va="center",
+                fontsize=12, transform=ax.transAxes)
+        lift_text = f"top: no lift ({reason})"
+    for k, d in enumerate(designs):
+        ax = fig.add_subplot(grid_spec[1, k])
+        box = ax.get_window_extent()
+        image = render_body_image(d, scale, value_range, False, bounds,
+                                  int(round(box.width)), int(round(box.height)),
+                                  view=VIEW_BELOW, zoom=1.25)
+        ax.imshow(image, interpolation="none")
+        ax.set_axis_off()
+        ax.set_title(f"{d.label}: deformed body seen from below", fontsize=10,
+                     color=colours[k])
+    if value_range is not None:
+        divisor, unit = stress_unit(value_range[1])
+        levels, cmap, norm = stress_levels(value_range, divisor)
+        fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap),
+                     cax=fig.add_subplot(grid_spec[1, n]), ticks=levels[::2],
+                     label=f"von Mises stress [{unit}] (nodal values, interpolated)")
+    fig.suptitle(f"{run.headline()}: shape of the contact surface and deformed body\n"
+                 f"{lift_text}\nbottom: the whole body, {scale_text}, coloured by the von "
+                 "Mises stress, seen from below (−x3), the contact face Γ_c in front",
+                 fontsize=12)
+    return save(fig, os.path.join(out_dir, "shape.png"))
+
+
+# ----------------------------------------------------------------------------------------
 # 2D: shape and deformed mesh; contact stress along Γ_c.
 
 def bezier(alpha, a, samples=400):
-    """(x1, F_α(x1)) of the Bézier curve with control points ((i a/(d−1)), α_i) (spec 01 §4)."""
+    """(x1, F_α(x1)) of the Bézier curve with control points ((i a/(d−1)), α_i) (docs/theory/problem.md §2)."""
     alpha = np.asarray(alpha, dtype=float)
     degree = alpha.size - 1
     t = np.linspace(0.0, 1.0, samples)
@@ -622,7 +933,8 @@ def picture_shape_2d(run, out_dir):
     ax = fig.add_subplot(grid_spec[0, :n])
     for d, colour in zip(designs, colours):
         style = "--" if (n == 2 and d is designs[0]) else "-"
-        label = d.label + (f" (Θ = {d.cost:.4g})" if d.cost is not None else "")
+        label = d.label + (f" (Θ = {format_quantity(d.cost, run.cost_unit, 4)})"
+                           if d.cost is not None else "")
         if d.alpha is not None and len(d.alpha) >= 2:
             x, f = bezier(d.alpha, a)
             ax.plot(x_min + x, f, style, color=colour, lw=2.0, label=f"{label}: F_α")
@@ -689,7 +1001,7 @@ def picture_shape_2d(run, out_dir):
         ax.set_xlabel("x1 [m]")
         if k == 0:
             ax.set_ylabel("x2 [m]")
-        ax.set_title(d.title(), fontsize=11, color=colours[k])
+        ax.set_title(d.title(run.cost_unit), fontsize=11, color=colours[k])
     if mappable is not None:
         fig.colorbar(mappable, cax=fig.add_subplot(grid_spec[1, n]), ticks=levels[::2],
                      label=f"von Mises stress [{unit}] (element centres)")
@@ -759,7 +1071,8 @@ def picture_contact_stress_2d(run, out_dir):
                                     gridspec_kw={"height_ratios": [1.0, 0.07 + 0.09 * n]},
                                     constrained_layout=True)
     for d, prof, colour in zip(designs, profiles, colours):
-        label = d.label + (f", Θ = {d.cost:.4g}" if d.cost is not None else "")
+        label = d.label + (f", Θ = {format_quantity(d.cost, run.cost_unit, 4)}"
+                           if d.cost is not None else "")
         ax.plot(prof["x"], prof["p"] / divisor, "-", marker="o", ms=3, color=colour, lw=1.8,
                 label=f"normal: pressure λ_ν ({label})")
         if prof["t"] is not None:
@@ -793,35 +1106,59 @@ def picture_contact_stress_2d(run, out_dir):
 # ----------------------------------------------------------------------------------------
 # Convergence history.
 
+# The steps of history.csv's "step" column (optim::StepKind): each iteration ends with one
+# step, a serious step (the centre moves) or a null step (it stays), either directly or after a
+# line search along the direction. summary.json's serious_steps and null_steps count both.
+STEP_KINDS = (("serious", "serious step", "o", True), ("line_search_serious",
+              "serious step after a line search", "s", True), ("null", "null step", "o", False),
+              ("line_search_null", "null step after a line search", "s", False))
+
+
+def step_counts(rows):
+    """{kind: number of iterations that ended with that step} over the history's rows, and the
+    method's own counters at its last row ((serious, null) from the columns serious_steps and
+    null_steps, which are the counters summary.json reports; None when absent)."""
+    counts = {kind: sum(1 for r in rows if r.get("step") == kind) for kind, *_ in STEP_KINDS}
+    last = rows[-1] if rows else {}
+    counters = None
+    if "serious_steps" in last and "null_steps" in last:
+        counters = (int(last["serious_steps"]), int(last["null_steps"]))
+    return counts, counters
+
+
 def picture_history(run, out_dir):
     rows = run.history
     if not rows:
         raise RunError(f"{os.path.join(run.dir, 'history.csv')}: no iterations recorded")
     iterations = [0] + [int(r["iteration"]) for r in rows]
     theta = [run.summary.get("initial_cost", float("nan"))] + [r["theta"] for r in rows]
-    steps = [""] + [r.get("step", "") for r in rows]
+    steps = np.array([""] + [r.get("step", "") for r in rows])
     stationarity = [float("nan")] + [r.get("stationarity_relative", float("nan")) for r in rows]
     iterations, theta, stationarity = (np.array(iterations), np.array(theta, dtype=float),
                                        np.array(stationarity, dtype=float))
+    unit = run.cost_unit
 
     fig, ax = plt.subplots(figsize=(9.5, 5.6), constrained_layout=True)
     finite = np.isfinite(theta)
     # Θ at the centre holds until the next serious step: a staircase.
     ax.plot(iterations[finite], theta[finite], "-", color=FINAL_COLOUR, lw=1.4, zorder=2,
             drawstyle="steps-post")
-    serious = np.array([s == "serious" for s in steps])
-    null = np.array([s == "null" for s in steps])
-    ax.plot(iterations[serious], theta[serious], "o", color=FINAL_COLOUR, ms=5, zorder=3,
-            label=f"Θ at the centre, serious step ({int(serious.sum())})")
-    ax.plot(iterations[null], theta[null], "o", mfc="white", mec=FINAL_COLOUR, ms=4.5,
-            zorder=3, label=f"Θ at the centre, null step ({int(null.sum())})")
+    counts, counters = step_counts(rows)
+    for kind, name, marker, filled in STEP_KINDS:
+        which = steps == kind
+        if not np.any(which) and kind.startswith("line_search"):
+            continue
+        ax.plot(iterations[which], theta[which], marker, ls="none", ms=5 if filled else 4.5,
+                color=FINAL_COLOUR, mfc=FINAL_COLOUR if filled else "white", mec=FINAL_COLOUR,
+                zorder=3, label=f"{name}: {int(which.sum())}")
     if finite[0]:
         ax.plot([0], [theta[0]], "D", color=INITIAL_COLOUR, ms=6, zorder=4,
                 label="Θ at the initial design")
     if np.all(theta[finite] > 0):
         ax.set_yscale("log")
     ax.set_xlabel("iteration")
-    ax.set_ylabel(f"Θ(α)  (cost {run.cost_name or '?'})", color=FINAL_COLOUR)
+    ax.set_ylabel(f"Θ at the centre [{unit or 'unit not stated'}]  (cost {run.cost_name or '?'})",
+                  color=FINAL_COLOUR)
     ax.tick_params(axis="y", colors=FINAL_COLOUR)
     ax.grid(alpha=0.3, which="both")
 
@@ -836,15 +1173,31 @@ def picture_history(run, out_dir):
         right.tick_params(axis="y", colors="#2171b5")
         handles.append(Line2D([], [], ls="--", color="#2171b5", lw=1.2))
         labels.append("stationarity measure (right axis)")
-    ax.legend(handles, labels, fontsize=9, loc="upper right", framealpha=0.9)
+    ax.legend(handles, labels, fontsize=9, loc="upper right", framealpha=0.9,
+              title="iterations of history.csv by the step that ended them",
+              title_fontsize=9)
     s = run.summary
     first, last = s.get("initial_cost"), s.get("final_cost")
-    change = (f"Θ {first:.4g} → {last:.4g}" if first is not None and last is not None else "")
-    counts = (f"{s.get('iterations', len(rows))} iterations ({s.get('serious_steps', '?')} "
-              f"serious, {s.get('null_steps', '?')} null), {s.get('evaluations', '?')} "
-              f"evaluations, status {s.get('status', '?')}")
+    change = (f"Θ {format_quantity(first, unit, 4)} → {format_quantity(last, unit, 4)}"
+              if first is not None and last is not None else "")
+    serious = s.get("serious_steps", counters[0] if counters else "?")
+    null = s.get("null_steps", counters[1] if counters else "?")
+    summary_counts = (f"{s.get('iterations', len(rows))} iterations, {serious} serious + "
+                      f"{null} null steps, {s.get('evaluations', '?')} evaluations (oracle "
+                      f"calls, line-search trials included), status {s.get('status', '?')}")
+    note = ""
+    recorded = int(rows[-1]["iteration"])
+    total = s.get("iterations", recorded)
+    if (isinstance(total, int) and total > recorded) or (
+            counters is not None and (counters[0], counters[1]) != (serious, null)):
+        # The runs that confirm a stop in the point's units (docs/optim.md) add iterations to
+        # the summary but no rows to history.csv.
+        note = (f"\nhistory.csv records iterations 1–{recorded}"
+                + (f" ({counters[0]} serious, {counters[1]} null steps)" if counters else "")
+                + f"; the other {total - recorded} iterations confirm the stop in the point's "
+                "units and add no rows" if isinstance(total, int) else "")
     ax.set_title(f"{run.headline()}: convergence of the bundle trust method\n"
-                 f"{change}; {counts}", fontsize=11)
+                 f"{change}; {summary_counts}{note}", fontsize=11)
     ax.set_xlim(-0.5, max(iterations.max(), 1) + 0.5)
     return save(fig, os.path.join(out_dir, "history.png"))
 
@@ -859,6 +1212,7 @@ def render(run_dir, cut=True):
     if run.dim == 3:
         written.append(picture_body_3d(run, out_dir, cut=cut))
         written.append(picture_contact_3d(run, out_dir))
+        written.append(picture_shape_3d(run, out_dir))
     else:
         written.append(picture_shape_2d(run, out_dir))
         written.append(picture_contact_stress_2d(run, out_dir))

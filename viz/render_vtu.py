@@ -31,7 +31,8 @@ try:
     import numpy as np
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
-    from frictopt_vtu import STATUS_COLOURS, STATUS_NAMES, read_grid
+    from frictopt_vtu import (STATUS_COLOURS, STATUS_NAMES, contact_facets, format_quantity,
+                              node_pieces, read_grid)
 except ImportError as error:  # the usual cause: a pyenv/venv python3 on PATH
     sys.exit(f"render_vtu: {error}; run it with /usr/bin/python3 (Debian's python3-vtk9)")
 
@@ -187,7 +188,8 @@ def render_body(grid, png_path, width, height, cut=True):
     else:
         warp_text = (f"displacement x {scale:.3g} "
                      f"(largest warp = {WARP_FRACTION:.0%} of body size)")
-    cut_text = f", cut at x2 = {y_cut:.3g} (back half)" if cut else ""
+    cut_text = (f", cut at x2 = {format_quantity(y_cut, 'm', resolution=1e-9 * body_size(grid))}"
+                " (back half)" if cut else "")
     title = vtk.vtkTextActor()
     title.SetInput(f"{name}: coloured by {colour_name}{cut_text}\n{warp_text}")
     title.GetTextProperty().SetFontSize(20)
@@ -260,7 +262,8 @@ def render_contact(grid, png_path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from matplotlib.colors import ListedColormap, BoundaryNorm
+    from matplotlib.collections import PolyCollection
+    from matplotlib.colors import ListedColormap, BoundaryNorm, Normalize
     from matplotlib.patches import Patch
 
     p_pos, pressure = contact_values(grid, "contact_pressure")
@@ -269,6 +272,24 @@ def render_contact(grid, png_path):
                                                 ("contact_status", s_pos, status))
               if val is not None]
     planar = is_planar(grid)
+    # In 3D each node's value is drawn over its pieces of the contact facets (node_pieces):
+    # nothing over an empty slot between two contact faces, no holes on unstructured meshes.
+    pieces = None
+    if not planar and p_pos is not None and len(p_pos) == grid.GetNumberOfPoints():
+        facets = contact_facets(grid)
+        if facets:
+            pieces = node_pieces(vtk_to_numpy(grid.GetPoints().GetData())[:, :2], facets)
+
+    def draw_pieces(ax, values, cmap, norm):
+        collection = PolyCollection(pieces[0], cmap=cmap, norm=norm, edgecolors="face",
+                                    linewidths=0.4, antialiaseds=False, rasterized=True)
+        collection.set_array(values[pieces[1]])
+        ax.add_collection(collection)
+        corners = pieces[0].reshape(-1, 2)
+        ax.set_xlim(corners[:, 0].min(), corners[:, 0].max())
+        ax.set_ylim(corners[:, 1].min(), corners[:, 1].max())
+        return collection
+
     # In 2D the status is a single row of markers: give it a thin panel.
     ratios = [0.35 if (planar and n == "contact_status") else 1.0 for n, _, _ in panels]
     fig, axes = plt.subplots(len(panels), 1, squeeze=False,
@@ -294,11 +315,11 @@ def render_contact(grid, png_path):
                 ax.set_xlabel("x1 [m]")
                 ax.set_ylabel("contact pressure [Pa]")
                 ax.grid(alpha=0.3)
+            elif pieces is not None:
+                mappable = draw_pieces(ax, values, "viridis", Normalize(v.min(), v.max()))
+                fig.colorbar(mappable, ax=ax, label="contact pressure [Pa]")
             else:
-                try:
-                    mappable = ax.tricontourf(x, y, v, levels=20, cmap="viridis")
-                except (ValueError, RuntimeError):  # degenerate triangulation
-                    mappable = ax.scatter(x, y, c=v, s=12, cmap="viridis")
+                mappable = ax.scatter(x, y, c=v, s=12, cmap="viridis")
                 fig.colorbar(mappable, ax=ax, label="contact pressure [Pa]")
         else:
             codes = sorted(set(int(c) for c in v))
@@ -309,6 +330,8 @@ def render_contact(grid, png_path):
                 ax.scatter(x, np.zeros_like(x), c=v, cmap=cmap, norm=norm, s=40, marker="s")
                 ax.set_yticks([])
                 ax.set_xlabel("x1 [m]")
+            elif pieces is not None:
+                draw_pieces(ax, values, cmap, norm)
             else:
                 ax.scatter(x, y, c=v, cmap=cmap, norm=norm, s=18, marker="s")
             ax.legend(handles=[Patch(color=STATUS_COLOURS.get(c, "#000000"),

@@ -33,6 +33,7 @@ int run_certify(const std::filesystem::path& run_dir, int cap, double sample_rad
   const study::BodyDefinition definition = description.body;
   if (!definition.contact) throw InvalidInput(case_path.string() + ": certify needs a [contact] table");
   study::ElasticBody body(definition);
+  run.check_run_fingerprint(io::fingerprint_of(description, body));  // case.toml edited after the run: refused
   const Eigen::VectorXd alpha = io::read_design_file(design_path, body.num_design_variables());
   study::ShapeOracle oracle(body, description.required_cost());
   study::CertifyOptions options;

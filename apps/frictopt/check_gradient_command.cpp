@@ -20,8 +20,9 @@
 namespace frictopt::app {
 
 // frictopt check-gradient: the adjoint subgradient ξ against central differences of Θ, per
-// component, with the index sets and |𝕃| at the design (spec 03 §17.1). Differences are only
-// meaningful where every index set is strict; the report says when it is not.
+// component, with the index sets and |𝕃| at the design (docs/sensitivity.md, "Verification").
+// Differences are only meaningful where no node changes piece within ±h: the report lists the
+// nodes that do, with both one-sided quotients, and warns when the check cannot mean anything.
 int run_check_gradient(const std::filesystem::path& case_path, const std::filesystem::path& design_path,
                        double relative_step) {
   using namespace frictopt;
@@ -65,12 +66,51 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
     fmt::print("note: {} weak node(s): Θ has a kink here and the difference quotients need not match ξ "
                "(compare one-sided quotients with the pieces of L instead)\n",
                weak_nodes);
-  fmt::print("central differences with h = {:.3e} (relative step {:.1e} of max|α|)\n", check.step, relative_step);
-  fmt::print("{:>4} {:>20} {:>20} {:>12}\n", "k", "finite difference", "adjoint", "rel. error");
+  const bool uniform = check.step_scale.size() == 0 || check.step_scale.minCoeff() == check.step_scale.maxCoeff();
+  if (uniform)
+    fmt::print("differences with h = {:.3e} (relative step {:.1e} of {:.3e}, the width of the design's bounds)\n",
+               check.step, relative_step, check.step_scale.size() ? check.step_scale(0) : 0.0);
+  else
+    fmt::print("differences with h_k = {:.1e} x the width of variable k's bounds (column h)\n", relative_step);
+  fmt::print("{:>4} {:>18} {:>18} {:>18} {:>18} {:>10} {:>7} {:>8}{}\n", "k", "central diff.", "forward diff.",
+             "backward diff.", "adjoint", "rel. error", "pieces", "verdict", uniform ? "" : "          h");
   for (std::size_t k = 0; k < check.components.size(); ++k) {
     const auto& c = check.components[k];
-    fmt::print("{:>4} {:>20.10e} {:>20.10e} {:>12.2e}\n", k, c.finite_difference, c.adjoint, c.relative_error);
+    fmt::print("{:>4} {:>18.10e} {:>18.10e} {:>18.10e} {:>18.10e} {:>10.2e} {:>7} {:>8}", k, c.finite_difference,
+               c.forward_difference, c.backward_difference, c.adjoint, c.relative_error,
+               c.piece_changes.size() + static_cast<std::size_t>(c.selected_case_changes),
+               study::to_string(c.verdict));
+    if (!uniform) fmt::print(" {:>10.3e}", c.step);
+    fmt::print("\n");
   }
+  // Which nodes change piece within ±h: at a kink the central quotient need not match ξ_k, which
+  // is then one of the one-sided quotients (docs/sensitivity.md, "Verification").
+  constexpr std::size_t kListed = 6;
+  for (std::size_t k = 0; k < check.components.size(); ++k) {
+    const auto& c = check.components[k];
+    if (c.piece_changes.empty() && c.selected_case_changes == 0) continue;
+    std::string nodes;
+    for (std::size_t i = 0; i < std::min(kListed, c.piece_changes.size()); ++i) {
+      const auto& p = c.piece_changes[i];
+      nodes += fmt::format("{}node {}{} {} -> {} at {}h", i ? "; " : "", p.node,
+                           p.step >= 0 ? fmt::format(" (step {})", p.step + 1) : std::string(), p.before, p.after,
+                           p.side > 0 ? "+" : "-");
+    }
+    if (c.piece_changes.size() > kListed) nodes += fmt::format("; {} more", c.piece_changes.size() - kListed);
+    if (c.selected_case_changes > 0)
+      nodes += fmt::format("{}another load case attains the max on {} side(s)", nodes.empty() ? "" : "; ",
+                           c.selected_case_changes);
+    fmt::print("component {}: pieces change within ±h: {}\n", k, nodes);
+  }
+  std::size_t kinks = 0, mismatches = 0;
+  for (const auto& c : check.components) {
+    kinks += c.verdict == study::GradientCheck::Verdict::kKink;
+    mismatches += c.verdict == study::GradientCheck::Verdict::kMismatch;
+  }
+  fmt::print("verdicts: {} match (error <= {:.0e} of max|ξ|), {} kink (a node changes piece within ±h and ξ_k is a "
+             "one-sided quotient), {} MISMATCH (no piece change explains it)\n",
+             check.components.size() - kinks - mismatches, study::kGradientCheckAgreement, kinks, mismatches);
+  for (const std::string& warning : check.warnings) fmt::print("warning: {}\n", warning);
   fmt::print("largest error relative to max|ξ|: {:.2e}\n", check.worst_relative_error);
   if (const study::OrientationDesign* o = body.orientation_design())  // issue 13 item 3: k = last
     fmt::print("component {} is the friction orientation s = k φ (k = {:.6e} m/rad, φ = {:.6f} deg): dΘ/dφ = "
@@ -81,6 +121,12 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
     const auto params = sensitivity::friction_parameters(body.definition().contact->law);
     for (Eigen::Index k = 0; k < e.friction_gradient.size(); ++k)
       fmt::print("dΘ/d{} = {:.10e}\n", params.names[static_cast<std::size_t>(k)], e.friction_gradient(k));
+  }
+  // A component no kink explains, or a check that cannot mean anything here: the user must look.
+  if (mismatches > 0 || !check.warnings.empty()) {
+    fmt::print("the check needs attention (exit {}): {}\n", kExitNeedsAttention,
+               mismatches > 0 ? "a difference no piece change explains" : "see the warnings above");
+    return kExitNeedsAttention;
   }
   return kExitOk;
 }

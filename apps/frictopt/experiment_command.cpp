@@ -87,13 +87,15 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
     // The law itself, for the polar plot: the radial function μ(φ) of W (the friction force's
     // magnitude per unit P in direction φ) and the support function N_W(θ) (the resistance to
     // sliding along θ).
-    io::CsvWriter law(run.file("tribometer_law.csv"), {"angle_degrees", "radial_mu", "support_mu"});
+    io::CsvWriter law(run.file("tribometer_law.csv"), {"angle_degrees", "radial_mu", "support_mu"},
+                      io::CsvWriter::Mode::kReplace);
     const contact::FrictionLaw& w = description.body.contact->law;
     for (int k = 0; k <= 720; ++k) {
       const double phi = k * 0.5 * std::numbers::pi / 180.0;
       const Eigen::Vector2d d(std::cos(phi), std::sin(phi));
       law.write_row({k * 0.5, w.max_step(Eigen::Vector2d::Zero(), 1.0, d), w.support(d)});
     }
+    law.finish();
   }
   const study::Tribometer::Summary summary =
       tribometer.run([&](const study::TribometerAngleResult& a) {
@@ -113,7 +115,7 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
         if (a.steady_sliding && description.experiment->drive == study::TribometerDrive::kForce)
           fmt::print(
               "θ = {:7.2f}°: no static equilibrium beyond Q = {:.9e} N (ramp step {}); limit state: |T|/P = "
-              "{:.9f}, law μ(φ) = {:.9f} (rel. error {:.1e}), force at φ = {:.3f}°, slip at {:.3f}°, normality "
+              "{:.9f}, law radial μ(φ) = {:.9f} (rel. error {:.1e}), force at φ = {:.3f}°, slip at {:.3f}°, normality "
               "{:.1e}, stick fraction {:.3f}\n",
               a.angle_degrees, a.onset_force, a.onset_step + 1, a.measured_coefficient, a.law_coefficient,
               a.coefficient_error, a.force_angle_degrees, a.slip_angle_degrees, a.normality_residual,
@@ -121,7 +123,7 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
         else if (a.steady_sliding)
           fmt::print(
               "θ = {:7.2f}°: sliding from step {} (|T| = {:.4e} N); sliding: |T|/P = {:.9f}, law "
-              "μ(φ) = {:.9f} "
+              "radial μ(φ) = {:.9f} "
               "(rel. error {:.1e}), force at φ = {:.3f}°, slip at {:.3f}°, normality {:.1e}\n",
               a.angle_degrees, a.onset_step + 1, a.onset_force, a.measured_coefficient,
               a.law_coefficient, a.coefficient_error, a.force_angle_degrees, a.slip_angle_degrees,
@@ -141,6 +143,10 @@ int run_experiment(const std::filesystem::path& case_path, const std::filesystem
               a.angle_degrees, a.ramp.empty() ? 1.0 : a.ramp.back().stick_fraction);
       });
   fmt::print("{}\n", summary.brief_report());
+  // Two coefficients are called μ(θ) (docs/contact.md, "Two meanings of μ(θ)").
+  fmt::print("radial μ(φ): the friction set's boundary in the force's direction φ, |T| = μ(φ)·P at sliding "
+             "(law_mu, radial_mu); the resistance to sliding along θ is the support function N_W(θ) "
+             "(law_resistance, support_mu; Python's FrictionLaw.mu)\n");
   io::JsonValue json = io::JsonValue::object();
   json["case"] = case_path.string();
   json["command"] = "experiment";

@@ -12,6 +12,9 @@
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/mesh/gmsh_mesh.hpp"
+#include "frictopt/study/build_mesh.hpp"
+#include "frictopt/linalg/blas_threads.hpp"
 #ifdef FRICTOPT_HAVE_PETSC
 #include <unistd.h>
 
@@ -42,6 +45,12 @@ const CLI::Validator kFiniteNumber(
 int main(int argc, char** argv) {
   CLI::App app{"frictopt: shape optimization of elastic bodies in contact with (anisotropic) Coulomb friction"};
   app.require_subcommand(1);
+  // The version and the BLAS this binary actually calls (the library dgemm_ binds to; a slow
+  // reference BLAS or ATLAS shows here, docs/benchmarks.md "Which BLAS").
+  app.set_version_flag("--version", [] {
+    return std::string("frictopt ") + FRICTOPT_VERSION + "\nBLAS: " + frictopt::linalg::describe_loaded_blas() + "\n" +
+           frictopt::linalg::describe_blas_threads();
+  });
   std::filesystem::path case_path, out_dir = "out";
   CLI::App* solve = app.add_subcommand("solve", "Solve the state problem of a case at its initial design and write VTK");
   solve->add_option("case", case_path, "case file (TOML), see docs/case-format.md")->required()->check(CLI::ExistingFile);
@@ -69,7 +78,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   check_gradient->add_option("--design", design_path, "design file (JSON with \"alpha\", or numbers); default: the case's initial design")
       ->check(CLI::ExistingFile);
-  check_gradient->add_option("--step", relative_step, "finite-difference step relative to max|α|")
+  check_gradient->add_option("--step", relative_step, "finite-difference step relative to the width of each design variable's bounds (C0 for a control height)")
       ->check(kFiniteNumber & CLI::Range(1e-10, 1e-1));
   bool resume = false, force = false;
   CLI::App* optimize = app.add_subcommand("optimize", "Minimize the case's cost over the admissible designs (bundle trust method)");
@@ -108,6 +117,19 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   experiment->add_option("-o,--output", out_dir, "output directory (tribometer_*.csv, summary.json)");
+  // Every command that reads a case: the restricted reading of .geo files and the memory limit
+  // (docs/meshes.md, "A .geo file runs no code"; docs/case-format.md, "Size limits").
+  bool trust_geo = false;
+  double max_memory_gb = 0.0;
+  for (CLI::App* command : {solve, export_fclib, check_gradient, optimize, certify, identify, experiment}) {
+    command->add_flag("--trust-geo", trust_geo,
+                      "run the case's .geo file with every Gmsh command (System, file writes, ...); only for a "
+                      "file you have read and trust");
+    command->add_option("--max-memory", max_memory_gb, "refuse a body whose solve would need more memory [GB] "
+                                                       "(default: the memory available)")
+        ->check(kFiniteNumber)
+        ->check(CLI::Range(0.001, 1e6));
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -141,6 +163,8 @@ int main(int argc, char** argv) {
     }
   } scratch_removal{scratch};
 #endif
+  frictopt::mesh::set_trust_geo_by_default(trust_geo);
+  if (max_memory_gb > 0) frictopt::study::set_memory_limit(static_cast<std::uint64_t>(max_memory_gb * 1e9));
   return run_guarded([&] {
     if (*solve) return run_solve(case_path, out_dir);
     if (*optimize) {

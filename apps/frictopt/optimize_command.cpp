@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <string_view>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/io/file_error.hpp"
 #include "frictopt/io/optimization_run.hpp"
 #include "frictopt/io/run_directory.hpp"
 #ifdef FRICTOPT_HAVE_PETSC
@@ -36,8 +38,19 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
     std::fflush(stdout);
   });
   fmt::print("Θ: {:.6e} -> {:.6e}; outputs in {}\n", result.initial_cost, result.final_cost, out_dir.string());
-  const Status status = result.summary.status;
-  return status == Status::kConverged || status == Status::kMaxIterations ? kExitOk : kExitNumericalFailure;
+  // Exit codes (README): 0 certified or at the case's iteration limit, 6 a written result that
+  // needs attention (not certified, or no contact at the final design), 3 a failure.
+  switch (result.outcome.kind) {
+    case study::OptimizationOutcome::Kind::kCertified:
+    case study::OptimizationOutcome::Kind::kLimitReached: return kExitOk;
+    case study::OptimizationOutcome::Kind::kNeedsAttention:
+      for (const std::string& reason : result.outcome.attention) fmt::print("attention: {}\n", reason);
+      fmt::print("the result is written ({}) but needs attention before it is used (exit {})\n",
+                 out_dir.string(), kExitNeedsAttention);
+      return kExitNeedsAttention;
+    case study::OptimizationOutcome::Kind::kFailed: break;
+  }
+  return kExitNumericalFailure;
 }
 
 #ifdef FRICTOPT_HAVE_PETSC
@@ -56,7 +69,9 @@ void mirror_run_for_resume(const std::filesystem::path& out_dir) {
     if (!root && message[0] == '1') {
       std::ofstream out(out_dir / name, std::ios::binary);
       out << std::string_view(message).substr(1);
-      if (!out) throw InvalidInput(fmt::format("{}: could not write a rank's copy of {}", (out_dir / name).string(), name));
+      if (!out)
+        throw io::FileSystemError(fmt::format("{}: could not write a rank's copy of {}", (out_dir / name).string(), name),
+                                  out_dir / name, errno);
     }
   }
 }

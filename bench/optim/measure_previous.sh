@@ -12,12 +12,10 @@ out="${2:-${TMPDIR:-/tmp}/frictopt-previous-optim}"
 mkdir -p "$out"
 rm -rf "$out/src" "$out/include"
 git -C "$root" archive "$commit" src/optim src/core include/frictopt/optim include/frictopt/core | tar -x -C "$out"
-cp "$root"/include/frictopt/optim/luksan_vlcek.hpp "$out/include/frictopt/optim/"
-cp "$root"/src/optim/luksan_vlcek.cpp "$root"/src/optim/luksan_vlcek_test19.cpp \
-   "$root"/src/optim/luksan_vlcek_test22.cpp "$root"/src/optim/luksan_vlcek_pieces.hpp \
-   "$root"/src/optim/luksan_vlcek_tr48_data.cpp "$root"/src/optim/luksan_vlcek_tr48_data.hpp "$out/src/optim/"
-g++ -std=c++20 -O2 -DNDEBUG -I "$out/include" -I /usr/include/eigen3 "$root/bench/optim/previous_table.cpp" \
-  "$out"/src/optim/{bundle_trust,dense_qp,linear_constraints,stationarity,luksan_vlcek,luksan_vlcek_test19,luksan_vlcek_test22,luksan_vlcek_tr48_data}.cpp \
+mkdir -p "$out/testset"
+cp "$root"/tests/support/testset/* "$out/testset/"
+g++ -std=c++20 -O2 -DNDEBUG -I "$out/include" -I "$out" -I /usr/include/eigen3 "$root/bench/optim/previous_table.cpp" \
+  "$out"/src/optim/{bundle_trust,dense_qp,linear_constraints,stationarity}.cpp "$out"/testset/*.cpp \
   "$out"/src/core/*.cpp -o "$out/previous_table"
 "$out/previous_table" > "$out/defaults.txt"
 "$out/previous_table" raised > "$out/raised.txt"

@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "frictopt/optim/bundle_trust.hpp"
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 #include "frictopt/optim/point_units_check.hpp"
 #include "frictopt/optim/projected_subgradient.hpp"
 #include "frictopt/optim/stationarity.hpp"

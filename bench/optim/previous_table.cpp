@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 #include "frictopt/optim/bundle_trust.hpp"
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 namespace fo = frictopt::optim;
 int main(int argc, char** argv) {
   fo::BundleTrust::Options bt;

@@ -12,19 +12,34 @@
 #include "frictopt/core/error.hpp"
 #include "frictopt/cost/cost_kind.hpp"
 #include "frictopt/io/case_file.hpp"
+#include "frictopt/mesh/gmsh_mesh.hpp"
 
 namespace frictopt::python {
 
 namespace {
 
-std::shared_ptr<Case> case_from_text(const std::string& text, const std::string& origin) {
+// trust_geo = True for the duration of one case read (docs/meshes.md, "A .geo file runs no code").
+class TrustGeo {
+ public:
+  explicit TrustGeo(bool trust) : before_(mesh::trust_geo_by_default()) { mesh::set_trust_geo_by_default(trust); }
+  TrustGeo(const TrustGeo&) = delete;
+  TrustGeo& operator=(const TrustGeo&) = delete;
+  ~TrustGeo() { mesh::set_trust_geo_by_default(before_); }
+
+ private:
+  bool before_;
+};
+
+std::shared_ptr<Case> case_from_text(const std::string& text, const std::string& origin, bool trust_geo) {
+  const TrustGeo trust(trust_geo);
   auto c = std::make_shared<Case>();
   c->description = io::parse_case(text, origin);
   c->toml = text;
   return c;
 }
 
-std::shared_ptr<Case> case_from_file(const std::filesystem::path& path) {
+std::shared_ptr<Case> case_from_file(const std::filesystem::path& path, bool trust_geo) {
+  const TrustGeo trust(trust_geo);
   auto c = std::make_shared<Case>();
   c->description = io::load_case(path);  // throws InvalidInput naming the file if unreadable
   std::ifstream in(path);
@@ -47,9 +62,10 @@ route goes through the case-file parser, so an invalid field raises ValueError w
 message as the CLI, e.g. ``"case.toml:7: material.poisson = 0.6; expected 0 <= poisson < 0.5"``.
 All quantities are SI: lengths in m, Young's modulus in Pa, displacements in m.
 )doc")
-      .def_static("from_file", &case_from_file, py::arg("path"),
+      .def_static("from_file", &case_from_file, py::arg("path"), py::arg("trust_geo") = false,
                   "Reads and validates a TOML case file (same as ``frictopt.load_case``).")
       .def_static("from_toml", &case_from_text, py::arg("text"), py::arg("origin") = "<python>",
+                  py::arg("trust_geo") = false,
                   "Parses and validates TOML text; ``origin`` prefixes every error message and its stem is\n"
                   "the default output name; relative paths in the case resolve against its directory.")
       .def_property_readonly("origin", [](const Case& c) { return c.description.origin; },
@@ -98,10 +114,12 @@ All quantities are SI: lengths in m, Young's modulus in Pa, displacements in m.
                            c.description.cost ? std::string(cost::to_string(c.description.cost->kind)) : "none");
       });
 
-  m.def("load_case", &case_from_file, py::arg("path"),
+  m.def("load_case", &case_from_file, py::arg("path"), py::arg("trust_geo") = false,
         "Reads and validates a TOML case file; raises ValueError naming file, field, value and\n"
-        "expectation on bad input (the CLI's messages).");
-  m.def("parse_case", &case_from_text, py::arg("text"), py::arg("origin") = "<python>",
+        "expectation on bad input (the CLI's messages). A [mesh] file that is a .geo is read\n"
+        "restricted (no shell, no file writes, no Exit; docs/meshes.md); ``trust_geo=True`` runs it\n"
+        "with every Gmsh command, only for a file you have read and trust.");
+  m.def("parse_case", &case_from_text, py::arg("text"), py::arg("origin") = "<python>", py::arg("trust_geo") = false,
         "Parses and validates the TOML text of a case; ``origin`` prefixes error messages\n"
         "(e.g. a path, so that relative paths in the case resolve against its directory).");
 }

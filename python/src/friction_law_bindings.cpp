@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// frictopt.FrictionLaw: the friction set W of contact::FrictionLaw (docs/contact.md): μ(θ) as
-// the support function N_W along a direction, vertices, projection onto s·W.
+// frictopt.FrictionLaw: the friction set W of contact::FrictionLaw (docs/contact.md): both μ(θ)
+// (the support function N_W along a direction and the radial function of W), vertices,
+// projection onto s·W.
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -33,6 +34,28 @@ Eigen::Vector2d tangential(const py::object& u) {
   if (!a || a.ndim() != 1 || a.shape(0) < 1 || a.shape(0) > 2)
     throw InvalidInput("expected a tangential vector: a float (2D) or a sequence of 2 floats");
   return {a.at(0), a.shape(0) == 2 ? a.at(1) : 0.0};
+}
+
+double support_mu(const FrictionLaw& l, double t) { return l.support(Eigen::Vector2d(std::cos(t), std::sin(t))); }
+
+double radial_mu(const FrictionLaw& l, double t) {
+  if (l.dim() == 2) {
+    const double d = std::cos(t);  // the sign picks the end of the interval
+    return d == 0.0 ? 0.0 : l.max_step(Eigen::Vector2d::Zero(), 1.0, Eigen::Vector2d(d, 0.0)) * std::abs(d);
+  }
+  return l.max_step(Eigen::Vector2d::Zero(), 1.0, Eigen::Vector2d(std::cos(t), std::sin(t)));
+}
+
+// f(law, θ) for a float θ or elementwise for an array of any shape.
+py::object along_angles(const FrictionLaw& l, const py::object& theta, const char* name,
+                        double (*f)(const FrictionLaw&, double)) {
+  if (py::isinstance<py::float_>(theta) || py::isinstance<py::int_>(theta)) return py::float_(f(l, theta.cast<double>()));
+  const auto in = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(theta);
+  if (!in) throw InvalidInput(fmt::format("{}: theta must be a float or an array of floats (rad)", name));
+  py::array_t<double> out(std::vector<py::ssize_t>(in.shape(), in.shape() + in.ndim()));
+  double* o = out.mutable_data();
+  for (py::ssize_t k = 0; k < in.size(); ++k) o[k] = f(l, in.data()[k]);
+  return out;
 }
 
 }  // namespace
@@ -79,21 +102,30 @@ Construct with the static methods: ``interval(mu_minus, mu_plus)`` (2D), ``disc(
           "Heights h_j = ⟨e_j, w_j⟩ of the edges (polygons only).")
       .def_property_readonly("semi_axes", [](const FrictionLaw& l) { return to_numpy(Eigen::VectorXd(l.semi_axes())); },
                              "Semi-axes (μ_x, μ_y) of an ellipse law; (μ, μ) for a disc.")
+      // Two coefficients are called μ(θ) (docs/contact.md, "Two meanings of μ(θ)"): the resistance
+      // to sliding along θ, N_W(e_θ) (support_mu; `mu` is this one), and the friction set's
+      // boundary in direction θ, max{s : s e_θ ∈ W} (radial_mu): the largest friction force per
+      // unit normal force that points along θ, which the tribometer's μ(θ)·P reads.
       .def(
-          "mu",
-          [](const FrictionLaw& l, const py::object& theta) -> py::object {
-            const auto mu = [&](double t) { return l.support(Eigen::Vector2d(std::cos(t), std::sin(t))); };
-            if (py::isinstance<py::float_>(theta) || py::isinstance<py::int_>(theta)) return py::float_(mu(theta.cast<double>()));
-            const auto in = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(theta);
-            if (!in) throw InvalidInput("mu: theta must be a float or an array of floats (rad)");
-            py::array_t<double> out(std::vector<py::ssize_t>(in.shape(), in.shape() + in.ndim()));
-            double* o = out.mutable_data();
-            for (py::ssize_t k = 0; k < in.size(); ++k) o[k] = mu(in.data()[k]);
-            return out;
-          },
+          "mu", [](const FrictionLaw& l, const py::object& theta) { return along_angles(l, theta, "mu", support_mu); },
           py::arg("theta"),
-          "Friction coefficient μ(θ) = N_W((cos θ, sin θ)) for the sliding direction θ [rad]; a float or an\n"
-          "array of any shape (2D laws: θ = 0 is +x₁, θ = π is −x₁).")
+          "Resistance to sliding along θ [rad]: μ(θ) = N_W((cos θ, sin θ)), the dissipation per unit\n"
+          "normal force of a unit slip along θ (the same as support_mu). Not the friction set's boundary\n"
+          "in direction θ (radial_mu): the two differ for an anisotropic law. A float or an array of any\n"
+          "shape (2D laws: θ = 0 is +x₁, θ = π is −x₁).")
+      .def(
+          "support_mu",
+          [](const FrictionLaw& l, const py::object& theta) { return along_angles(l, theta, "support_mu", support_mu); },
+          py::arg("theta"),
+          "Resistance to sliding along θ [rad]: N_W((cos θ, sin θ)) (= mu; tribometer_law.csv's support_mu).")
+      .def(
+          "radial_mu",
+          [](const FrictionLaw& l, const py::object& theta) { return along_angles(l, theta, "radial_mu", radial_mu); },
+          py::arg("theta"),
+          "The friction set's boundary in direction θ [rad]: max{s : s·(cos θ, sin θ) ∈ W}, the largest\n"
+          "friction force per unit normal force that points along θ — the tribometer's μ(θ) in |F_t| = μ(θ)·P\n"
+          "(tribometer_law.csv's radial_mu, tribometer_polar.csv's law_mu). Equals mu(θ) only where the\n"
+          "boundary's normal is along θ (isotropic laws, the axes of an ellipse).")
       .def(
           "support", [](const FrictionLaw& l, const py::object& u) { return l.support(tangential(u)); }, py::arg("u"),
           "Support function N_W(u) = max_{w∈W} ⟨w, u⟩: the dissipation per unit normal force for a\n"

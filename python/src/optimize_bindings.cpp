@@ -71,7 +71,9 @@ void bind_optimize(py::module_& m) {
           throw InvalidInput("optimize: pass a case (or a run_directory with resume=True)");
         } else {
           source = case_object.cast<std::shared_ptr<Case>>();
-          if (run) run->write_text_file(io::RunDirectory::kCaseCopy, source->toml);
+          // The CLI's copy (RunDirectory::store_case): relative file names made absolute, so
+          // that `frictopt optimize --resume` and `certify` read the same mesh.
+          if (run) run->store_case_text(source->toml, source->description.origin);
         }
         io::OptimizationRunRequest request;
         request.description = source->description;

@@ -18,6 +18,7 @@
 #include "frictopt/io/summary_json.hpp"
 #include "frictopt/sensitivity/friction_parameters.hpp"
 #include "frictopt/study/derivative_accuracy.hpp"
+#include "frictopt/study/gradient_check.hpp"
 #include "frictopt/study/shape_optimization.hpp"
 #include "frictopt/study/certificate.hpp"
 
@@ -145,7 +146,10 @@ Example::
         json["cost"] = o->oracle->cost().name();
         {
           py::gil_scoped_release release;
-          const study::Evaluation e = o->oracle->evaluate_design(alpha);
+          // The one check of `frictopt check-gradient` (study::check_gradient): steps relative to
+          // the bounds' widths, one-sided quotients, the nodes that change piece, the verdicts.
+          const study::GradientCheck check = study::check_gradient(*o->oracle, alpha, relative_step);
+          const study::Evaluation& e = check.evaluation;
           json["ok"] = e.ok;
           json["message"] = e.message;
           json["alpha"] = alpha;
@@ -155,25 +159,46 @@ Example::
           if (e.ok) {
             json["index_sets"] = e.index_sets.summary();
             json["weak_nodes"] = e.index_sets.num_weak_nodes();
-            json["cardinality_L"] = o->oracle->pieces(alpha, 1).cardinality;
-            const double h = relative_step * std::max(alpha.cwiseAbs().maxCoeff(), 1e-12);
-            const double scale = std::max(e.subgradient.cwiseAbs().maxCoeff(), 1e-300);
-            Eigen::VectorXd fd(alpha.size()), error(alpha.size());
-            for (Eigen::Index k = 0; k < alpha.size(); ++k) {
-              Eigen::VectorXd a = alpha;
-              a(k) += h;
-              const double plus = o->oracle->evaluate_design(a, false).value;
-              a(k) -= 2 * h;
-              const double minus = o->oracle->evaluate_design(a, false).value;
-              fd(k) = (plus - minus) / (2 * h);
-              error(k) = std::abs(fd(k) - e.subgradient(k)) / scale;  // relative to max|ξ|
+            json["cardinality_L"] = check.cardinality;
+            const auto n = static_cast<Eigen::Index>(check.components.size());
+            Eigen::VectorXd fd(n), forward(n), backward(n), error(n), steps(n);
+            io::JsonValue verdicts = io::JsonValue::array(), changes = io::JsonValue::array();
+            for (Eigen::Index k = 0; k < n; ++k) {
+              const auto& c = check.components[static_cast<std::size_t>(k)];
+              fd(k) = c.finite_difference;
+              forward(k) = c.forward_difference;
+              backward(k) = c.backward_difference;
+              error(k) = c.relative_error;  // relative to max|ξ|
+              steps(k) = c.step;
+              verdicts.push_back(std::string(study::to_string(c.verdict)));
+              io::JsonValue nodes = io::JsonValue::array();
+              for (const auto& p : c.piece_changes) {
+                io::JsonValue change = io::JsonValue::object();
+                change["node"] = p.node;
+                change["side"] = p.side;
+                change["step"] = p.step;
+                change["before"] = p.before;
+                change["after"] = p.after;
+                nodes.push_back(change);
+              }
+              changes.push_back(nodes);
             }
-            json["step"] = h;
+            json["step"] = check.step;
+            json["steps"] = steps;
+            json["step_scale"] = check.step_scale;
             json["relative_step"] = relative_step;
             json["subgradient"] = e.subgradient;
             json["finite_difference"] = fd;
+            json["forward_difference"] = forward;
+            json["backward_difference"] = backward;
             json["relative_error"] = error;
-            json["max_relative_error"] = error.maxCoeff();
+            json["max_relative_error"] = check.worst_relative_error;
+            json["verdicts"] = verdicts;
+            json["piece_changes"] = changes;
+            json["noise_relative"] = check.noise_relative;
+            io::JsonValue warnings = io::JsonValue::array();
+            for (const std::string& w : check.warnings) warnings.push_back(w);
+            json["warnings"] = warnings;
             io::JsonValue friction = io::JsonValue::object();
             const auto params = sensitivity::friction_parameters(definition.contact->law);
             for (Eigen::Index k = 0; k < e.friction_gradient.size(); ++k)
@@ -186,8 +211,12 @@ Example::
       py::arg("case"), py::arg("design") = py::none(), py::arg("relative_step") = 1e-6,
       R"doc(The adjoint subgradient ξ against central differences of Θ, per component (as the CLI's
 ``frictopt check-gradient``), with tightened contact tolerances. Returns a Summary: value, subgradient,
-finite_difference, relative_error (|fd − ξ_k| / max|ξ|), max_relative_error, step h [m] =
-relative_step·max|α|, index_sets, weak_nodes (differences need not match ξ at a kink),
+finite_difference (central), forward_difference, backward_difference, relative_error
+(|fd − ξ_k| / max|ξ|), max_relative_error, steps h_k = relative_step·step_scale_k (the width of
+variable k's bounds in Υ, C0 for a control height; ``step`` the largest), verdicts ("match",
+"kink": a node changes piece within ±h and ξ_k is a one-sided quotient, "MISMATCH"),
+piece_changes (per component the nodes whose index set differs at α ± h e_k: node, side ±1,
+step, before, after), warnings (why the check may mean nothing here), index_sets, weak_nodes,
 cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the solve failed.)doc");
 
   m.def(
@@ -211,6 +240,8 @@ cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the
           alpha = design_from_python(alpha_object, case_initial_design(source->description), "alpha");
         }
         auto o = make_oracle(source, source->description.body);
+        // The run's checkpoint names its problem: an edited case.toml is not the run's.
+        if (run) run->check_run_fingerprint(io::fingerprint_of(source->description, *o->body));
         study::CertifyOptions options;
         options.cap = cap;
         options.sample_radius = sample_radius;

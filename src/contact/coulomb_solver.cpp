@@ -11,6 +11,7 @@
 
 #include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/core/validation.hpp"
 
 namespace frictopt::contact {
 namespace {
@@ -25,13 +26,6 @@ constexpr frictopt::detail::EnumTable<CoulombMethod, 3> kMethodNames{{{
 // their QPs beyond 1e-6 is wasted work.
 constexpr double kLoosestInnerTolerance = 1e-6;
 
-std::string num(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
-
 CoulombSolver::Options validated(CoulombSolver::Options options) {
   options.validate();
   return options;
@@ -44,15 +38,14 @@ std::string_view to_string(CoulombMethod method) { return kMethodNames.name(meth
 CoulombMethod parse_coulomb_method(std::string_view text) { return kMethodNames.parse(text, "Coulomb method"); }
 
 void CoulombSolver::Options::validate() const {
-  auto fail = [](const char* field, const std::string& value, const char* expected) {
-    throw InvalidInput(std::string("CoulombSolver::Options::") + field + " = " + value +
-                       "; expected " + expected);
+  const auto fail = [](const char* field, const std::string& value, const char* expected) {
+    fail_field("CoulombSolver::Options", field, value, expected);
   };
   if (!(relative_tolerance > 0.0 && relative_tolerance < 1.0))
-    fail("relative_tolerance", num(relative_tolerance), "a value in (0, 1)");
+    fail("relative_tolerance", format_number(relative_tolerance), "a value in (0, 1)");
   if (max_iterations < 1) fail("max_iterations", std::to_string(max_iterations), ">= 1");
   if (!(relaxation > 0.0 && relaxation <= 1.0))
-    fail("relaxation", num(relaxation), "a value in (0, 1]");
+    fail("relaxation", format_number(relaxation), "a value in (0, 1]");
   if (divergence_window < 2)
     fail("divergence_window", std::to_string(divergence_window), ">= 2");
   if (method == CoulombMethod::kSemismoothNewton)
@@ -112,18 +105,18 @@ CoulombSolver::Summary CoulombSolver::solve(const Eigen::Ref<const Eigen::Vector
   classify_nodes(state, tresca_.laws(), options_.tresca.classification_tolerance, c_scale);
   switch (summary.status) {
     case Status::kConverged:
-      summary.message = "relative increment " + num(summary.last_relative_increment) + " <= " +
-                        num(options_.relative_tolerance) + " after " +
+      summary.message = "relative increment " + format_number(summary.last_relative_increment) + " <= " +
+                        format_number(options_.relative_tolerance) + " after " +
                         std::to_string(summary.iterations) + " iterations";
       break;
     case Status::kMaxIterations:
       summary.message = "max_iterations = " + std::to_string(options_.max_iterations) +
-                        " reached; last relative increment " + num(summary.last_relative_increment);
+                        " reached; last relative increment " + format_number(summary.last_relative_increment);
       break;
     case Status::kDiverged:
       summary.message = "the increment grew in " + std::to_string(options_.divergence_window) +
                         " consecutive iterations (or became non-finite); last relative increment " +
-                        num(summary.last_relative_increment) +
+                        format_number(summary.last_relative_increment) +
                         " (the fixed-point map is expansive: try relaxation < 1)";
       break;
     case Status::kStoppedByCallback:
@@ -240,7 +233,7 @@ CoulombSolver::Summary CoulombSolver::solve_split(const Eigen::VectorXd& c, Cont
   const bool warm = state.z.size() == c.size() && state.dim == dim;
   FixedPointMonitor monitor(options_, summary);
   if (!warm) {
-    // Frictionless start (spec 02, §8): τ⁰ = 0, λ⁰ = argmin_{λ>=0} K(0, λ).
+    // Frictionless start (docs/theory/state-problem.md §6): τ⁰ = 0, λ⁰ = argmin_{λ>=0} K(0, λ).
     state = ContactState(dim, p);
     const auto qp = tresca_.solve_block(TrescaSolver::Block::kNormal, c, Eigen::VectorXd::Zero(p),
                                         state, inner_tolerance(std::numeric_limits<double>::infinity()));

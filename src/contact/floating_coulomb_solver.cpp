@@ -12,6 +12,7 @@
 #include <Eigen/QR>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/core/validation.hpp"
 
 namespace frictopt::contact {
 namespace {
@@ -52,8 +53,7 @@ class AugmentedOperator final : public linalg::LinearOperator {
 
 void FloatingCoulombSolver::Options::validate() const {
   const auto fail = [](const char* field, double value, const char* expected) {
-    throw InvalidInput(fmt::format("FloatingCoulombSolver::Options::{} = {}; expected {}", field,
-                                   value, expected));
+    fail_field("FloatingCoulombSolver::Options", field, format_number(value), expected);
   };
   if (!(equality_tolerance > 0.0 && equality_tolerance < 1.0))
     fail("equality_tolerance", equality_tolerance, "a value in (0, 1)");

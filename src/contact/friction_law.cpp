@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 #include "frictopt/core/enum_table.hpp"
@@ -261,7 +262,20 @@ FrictionLaw FrictionLaw::rotated(double angle) const {
 // Geometry
 
 bool FrictionLaw::is_polygonal() const {
-  return kind_ != FrictionLawKind::kDisc && kind_ != FrictionLawKind::kEllipse;
+  switch (kind_) {
+    case FrictionLawKind::kInterval:
+    case FrictionLawKind::kRegularPolygon:
+    case FrictionLawKind::kPolygon:
+    case FrictionLawKind::kEllipsePolygon: return true;
+    case FrictionLawKind::kDisc:
+    case FrictionLawKind::kEllipse: return false;
+  }
+  unknown_kind(kind_, "is_polygonal");
+}
+
+void FrictionLaw::unknown_kind(FrictionLawKind kind, const char* where) {
+  throw std::logic_error("FrictionLaw::" + std::string(where) + ": unknown friction law kind " +
+                         std::to_string(static_cast<int>(kind)));
 }
 
 Eigen::Vector2d FrictionLaw::project(const Eigen::Vector2d& q, double s) const {
@@ -299,7 +313,9 @@ Eigen::Vector2d FrictionLaw::project(const Eigen::Vector2d& q, double s) const {
       const Eigen::Vector2d den = (a.cwiseProduct(a)).array() + t;
       return from_law_frame(a.cwiseProduct(aq).cwiseQuotient(den));
     }
-    default: {
+    case FrictionLawKind::kRegularPolygon:
+    case FrictionLawKind::kPolygon:
+    case FrictionLawKind::kEllipsePolygon: {
       const int n = static_cast<int>(vertices_.size());
       bool inside = true;
       for (int j = 0; j < n && inside; ++j)
@@ -319,6 +335,7 @@ Eigen::Vector2d FrictionLaw::project(const Eigen::Vector2d& q, double s) const {
       return best;
     }
   }
+  unknown_kind(kind_, "project");
 }
 
 double FrictionLaw::project(double q, double s) const {
@@ -334,12 +351,15 @@ double FrictionLaw::support(const Eigen::Vector2d& u) const {
       return semi_axes_.cwiseProduct(u).norm();
     case FrictionLawKind::kEllipse:
       return semi_axes_.cwiseProduct(to_law_frame(u)).norm();
-    default: {
+    case FrictionLawKind::kRegularPolygon:
+    case FrictionLawKind::kPolygon:
+    case FrictionLawKind::kEllipsePolygon: {
       double best = -std::numeric_limits<double>::infinity();
       for (const auto& w : vertices_) best = std::max(best, w.dot(u));
       return best;
     }
   }
+  unknown_kind(kind_, "support");
 }
 
 double FrictionLaw::support(double u) const { return support(Eigen::Vector2d(u, 0.0)); }
@@ -360,7 +380,9 @@ Eigen::Vector2d FrictionLaw::exposed_point(const Eigen::Vector2d& u) const {
       const Eigen::Vector2d w = semi_axes_.cwiseProduct(semi_axes_).cwiseProduct(ul) / nu;
       return kind_ == FrictionLawKind::kDisc ? w : from_law_frame(w);
     }
-    default: {
+    case FrictionLawKind::kRegularPolygon:
+    case FrictionLawKind::kPolygon:
+    case FrictionLawKind::kEllipsePolygon: {
       if (u.isZero(0.0)) return Eigen::Vector2d::Zero();
       std::size_t best = 0;
       for (std::size_t j = 1; j < vertices_.size(); ++j)
@@ -368,6 +390,7 @@ Eigen::Vector2d FrictionLaw::exposed_point(const Eigen::Vector2d& u) const {
       return vertices_[best];
     }
   }
+  unknown_kind(kind_, "exposed_point");
 }
 
 double FrictionLaw::max_step(const Eigen::Vector2d& q, double s, const Eigen::Vector2d& d) const {
@@ -386,7 +409,9 @@ double FrictionLaw::max_step(const Eigen::Vector2d& q, double s, const Eigen::Ve
       if (kind_ == FrictionLawKind::kDisc) return disc_max_step(q / a.x(), d / a.x());
       return disc_max_step(to_law_frame(q).cwiseQuotient(a), to_law_frame(d).cwiseQuotient(a));
     }
-    default: {
+    case FrictionLawKind::kRegularPolygon:
+    case FrictionLawKind::kPolygon:
+    case FrictionLawKind::kEllipsePolygon: {
       double alpha = kInf;
       for (std::size_t j = 0; j < normals_.size(); ++j) {
         const double rate = normals_[j].dot(d);
@@ -395,6 +420,7 @@ double FrictionLaw::max_step(const Eigen::Vector2d& q, double s, const Eigen::Ve
       return alpha;
     }
   }
+  unknown_kind(kind_, "max_step");
 }
 
 double FrictionLaw::boundary_offset(const Eigen::Vector2d& q, double s) const {
@@ -406,13 +432,16 @@ double FrictionLaw::boundary_offset(const Eigen::Vector2d& q, double s) const {
       return q.norm() - s * semi_axes_.x();
     case FrictionLawKind::kEllipse:
       return (to_law_frame(q).cwiseQuotient(semi_axes_).norm() - s) * min_coefficient_;
-    default: {
+    case FrictionLawKind::kRegularPolygon:
+    case FrictionLawKind::kPolygon:
+    case FrictionLawKind::kEllipsePolygon: {
       double offset = -std::numeric_limits<double>::infinity();
       for (std::size_t j = 0; j < normals_.size(); ++j)
         offset = std::max(offset, normals_[j].dot(q) - s * heights_[j]);
       return offset;
     }
   }
+  unknown_kind(kind_, "boundary_offset");
 }
 
 FaceLocation FrictionLaw::locate(const Eigen::Vector2d& q, double s, double tolerance) const {

@@ -11,6 +11,7 @@
 
 #include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/core/validation.hpp"
 
 namespace frictopt::contact {
 namespace {
@@ -251,13 +252,6 @@ class Engine {
   Eigen::VectorXd mx_;
 };
 
-std::string num(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
-
 }  // namespace
 
 std::string_view to_string(TrescaAlgorithm algorithm) { return kAlgorithmNames.name(algorithm); }
@@ -265,24 +259,23 @@ std::string_view to_string(TrescaAlgorithm algorithm) { return kAlgorithmNames.n
 TrescaAlgorithm parse_tresca_algorithm(std::string_view text) { return kAlgorithmNames.parse(text, "Tresca algorithm"); }
 
 void TrescaSolver::Options::validate() const {
-  auto fail = [](const char* field, const std::string& value, const char* expected) {
-    throw InvalidInput(std::string("TrescaSolver::Options::") + field + " = " + value +
-                       "; expected " + expected);
+  const auto fail = [](const char* field, const std::string& value, const char* expected) {
+    fail_field("TrescaSolver::Options", field, value, expected);
   };
   if (!(relative_tolerance > 0.0 && relative_tolerance < 1.0))
-    fail("relative_tolerance", num(relative_tolerance), "a value in (0, 1)");
+    fail("relative_tolerance", format_number(relative_tolerance), "a value in (0, 1)");
   if (max_iterations < 1) fail("max_iterations", std::to_string(max_iterations), ">= 1");
   if (!(proportioning_gamma > 0.0) || !std::isfinite(proportioning_gamma))
-    fail("proportioning_gamma", num(proportioning_gamma), "a finite value > 0");
+    fail("proportioning_gamma", format_number(proportioning_gamma), "a finite value > 0");
   if (!(step_length_factor > 0.0 && step_length_factor <= 2.0))
-    fail("step_length_factor", num(step_length_factor), "a value in (0, 2]");
+    fail("step_length_factor", format_number(step_length_factor), "a value in (0, 2]");
   if (norm_estimate_iterations < 1)
     fail("norm_estimate_iterations", std::to_string(norm_estimate_iterations), ">= 1");
   if (!(norm_safety_factor >= 1.0) || !std::isfinite(norm_safety_factor))
-    fail("norm_safety_factor", num(norm_safety_factor), "a finite value >= 1");
+    fail("norm_safety_factor", format_number(norm_safety_factor), "a finite value >= 1");
   if (max_split_sweeps < 1) fail("max_split_sweeps", std::to_string(max_split_sweeps), ">= 1");
   if (!(classification_tolerance > 0.0 && classification_tolerance < 1.0))
-    fail("classification_tolerance", num(classification_tolerance), "a value in (0, 1)");
+    fail("classification_tolerance", format_number(classification_tolerance), "a value in (0, 1)");
 }
 
 std::string TrescaSolver::Summary::brief_report() const {
@@ -339,7 +332,7 @@ TrescaSolver::TrescaSolver(const linalg::LinearOperator& delassus, std::vector<F
     estimate = w.norm();
     if (!(estimate > 0.0) || !std::isfinite(estimate))
       throw InvalidInput("TrescaSolver: power iteration on the Delassus operator gave ‖Mv‖ = " +
-                         num(estimate) + "; expected a finite SPD operator");
+                         format_number(estimate) + "; expected a finite SPD operator");
     v = w / estimate;
   }
   norm_estimate_ = options_.norm_safety_factor * estimate;
@@ -356,7 +349,7 @@ TrescaSolver::Summary TrescaSolver::solve_to(const Eigen::Ref<const Eigen::Vecto
                                              const Eigen::Ref<const Eigen::VectorXd>& slip_bound,
                                              ContactState& state, double relative_tolerance) const {
   if (!(relative_tolerance > 0.0 && relative_tolerance < 1.0))
-    throw InvalidInput("TrescaSolver::solve_to: relative_tolerance = " + num(relative_tolerance) +
+    throw InvalidInput("TrescaSolver::solve_to: relative_tolerance = " + format_number(relative_tolerance) +
                        "; expected a value in (0, 1)");
   return solve_impl(c, slip_bound, state, relative_tolerance, static_cast<int>(Part::kBoth));
 }
@@ -368,7 +361,7 @@ TrescaSolver::Summary TrescaSolver::solve_block(Block block,
                                                 double relative_tolerance) const {
   if (!(relative_tolerance > 0.0 && relative_tolerance < 1.0))
     throw InvalidInput("TrescaSolver::solve_block: relative_tolerance = " +
-                       num(relative_tolerance) + "; expected a value in (0, 1)");
+                       format_number(relative_tolerance) + "; expected a value in (0, 1)");
   if (state.z.size() != delassus_.size() || state.dim != dim_)
     throw InvalidInput("TrescaSolver::solve_block: state.z has size " +
                        std::to_string(state.z.size()) + "; expected " +
@@ -395,7 +388,7 @@ TrescaSolver::Summary TrescaSolver::solve_impl(const Eigen::Ref<const Eigen::Vec
   for (Eigen::Index i = 0; i < num_nodes_; ++i)
     if (!(slip_bound(i) >= 0.0) || !std::isfinite(slip_bound(i)))
       throw InvalidInput("TrescaSolver::solve: slip_bound[" + std::to_string(i) + "] = " +
-                         num(slip_bound(i)) + "; expected a finite value >= 0");
+                         format_number(slip_bound(i)) + "; expected a finite value >= 0");
 
   Summary summary;
   summary.algorithm_given = options_.algorithm;
@@ -426,10 +419,10 @@ TrescaSolver::Summary TrescaSolver::solve_impl(const Eigen::Ref<const Eigen::Vec
     } else if (summary.algorithm_used == TrescaAlgorithm::kJointMpgp) {
       summary.status = engine.run(z, g, cc, Part::kBoth, eps, budget);
     } else {
-      // Block Gauss–Seidel (spec 02, §8, steps I/II): each block is solved to a tolerance a
-      // tenth of the current joint residual (but not below half the final one), so that inner
-      // accuracy follows the outer progress. The joint reduced gradient is the concatenation of
-      // the two blocks', so at least one block has work in every sweep.
+      // Block Gauss–Seidel (docs/theory/state-problem.md §6, steps I/II): each block is solved to a
+      // tolerance a tenth of the current joint residual (but not below half the final one), so that
+      // inner accuracy follows the outer progress. The joint reduced gradient is the concatenation
+      // of the two blocks', so at least one block has work in every sweep.
       summary.status = Status::kMaxIterations;
       while (true) {
         const double r = engine.reduced_gradient_norm(z, g);
@@ -459,8 +452,8 @@ TrescaSolver::Summary TrescaSolver::solve_impl(const Eigen::Ref<const Eigen::Vec
   }
   switch (summary.status) {
     case Status::kConverged:
-      summary.message = "relative projected gradient " + num(summary.relative_projected_gradient) +
-                        " <= " + num(relative_tolerance);
+      summary.message = "relative projected gradient " + format_number(summary.relative_projected_gradient) +
+                        " <= " + format_number(relative_tolerance);
       break;
     case Status::kMaxIterations:
       summary.message = "iteration limit reached (max_iterations = " +

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/cost/cost_kind.hpp"
 
 namespace frictopt::cost {
 namespace {
@@ -21,11 +22,11 @@ sensitivity::CostPartials zero_partials(const CostInput& in) {
 class TargetNormalForce final : public CostFunctional {
  public:
   explicit TargetNormalForce(Eigen::VectorXd target) : target_(std::move(target)) {}
-  std::string name() const override { return "target_normal_force"; }
+  std::string name() const override { return std::string(to_string(CostKind::kTargetPressure)); }
   sensitivity::CostPartials evaluate(const CostInput& in) const override {
     const Eigen::VectorXd lambda = in.contact.normal_forces();
     if (lambda.size() != target_.size())
-      throw InvalidInput(fmt::format("cost target_normal_force: target has {} entries; expected {} (contact nodes)",
+      throw InvalidInput(fmt::format("cost target_pressure: target has {} entries; expected {} (contact nodes)",
                                      target_.size(), lambda.size()));
     sensitivity::CostPartials out = zero_partials(in);
     const Eigen::VectorXd r = lambda - target_;
@@ -44,7 +45,7 @@ class NormalForcePower final : public CostFunctional {
   explicit NormalForcePower(double p) : p_(p) {
     if (!(p >= 2.0)) throw InvalidInput(fmt::format("cost normal_force_power: exponent = {}; expected >= 2", p));
   }
-  std::string name() const override { return "normal_force_power"; }
+  std::string name() const override { return std::string(to_string(CostKind::kNormalForcePower)); }
   sensitivity::CostPartials evaluate(const CostInput& in) const override {
     sensitivity::CostPartials out = zero_partials(in);
     const int dim = in.contact.dim;
@@ -63,7 +64,7 @@ class NormalForcePower final : public CostFunctional {
 
 class Compliance final : public CostFunctional {
  public:
-  std::string name() const override { return "compliance"; }
+  std::string name() const override { return std::string(to_string(CostKind::kCompliance)); }
   sensitivity::CostPartials evaluate(const CostInput& in) const override {
     sensitivity::CostPartials out = zero_partials(in);
     const Eigen::VectorXd& u = in.displacement;
@@ -82,7 +83,7 @@ class PressureNorm final : public CostFunctional {
   explicit PressureNorm(double p) : p_(p) {
     if (!(p >= 2.0)) throw InvalidInput(fmt::format("cost pressure_norm: exponent = {}; expected >= 2", p));
   }
-  std::string name() const override { return "pressure_norm"; }
+  std::string name() const override { return std::string(to_string(CostKind::kPressureNorm)); }
   sensitivity::CostPartials evaluate(const CostInput& in) const override {
     sensitivity::CostPartials out = zero_partials(in);
     const int dim = in.contact.dim;
@@ -110,7 +111,7 @@ class TotalSlip final : public CostFunctional {
   explicit TotalSlip(double delta) : delta_(delta) {
     if (!(delta > 0)) throw InvalidInput(fmt::format("cost total_slip: smoothing = {}; expected > 0", delta));
   }
-  std::string name() const override { return "total_slip"; }
+  std::string name() const override { return std::string(to_string(CostKind::kTotalSlip)); }
   sensitivity::CostPartials evaluate(const CostInput& in) const override {
     sensitivity::CostPartials out = zero_partials(in);
     const int dim = in.contact.dim;
@@ -139,7 +140,7 @@ class TractionUniformity final : public CostFunctional {
                                      "2 (3D) finite components, or none for the mean traction",
                                      target_.size(), target_.allFinite()));
   }
-  std::string name() const override { return "traction_uniformity"; }
+  std::string name() const override { return std::string(to_string(CostKind::kTractionUniformity)); }
   sensitivity::CostPartials evaluate(const CostInput& in) const override {
     sensitivity::CostPartials out = zero_partials(in);
     const int dim = in.contact.dim, nt = dim - 1;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/io/file_error.hpp"
 
 namespace frictopt::io::detail {
 namespace {
@@ -50,9 +51,12 @@ std::filesystem::path make_sibling_temporary(const std::filesystem::path& path) 
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
   const int fd = ::mkstemps(name.data(), 4);  // O_EXCL: never an existing file
-  if (fd < 0)
-    throw InvalidInput(fmt::format("cannot write '{}': {} (does its directory exist and is it writable?)",
-                                   path.string(), std::strerror(errno)));
+  if (fd < 0) {
+    const int error = errno;
+    throw FileSystemError(fmt::format("cannot write '{}': {} (does its directory exist and is it writable?)",
+                                      path.string(), std::strerror(error)),
+                          path, error);
+  }
   // mkstemp creates mode 0600; an output file gets the usual 0666 minus the umask (umask has
   // no read-only query, hence set and restore).
   const mode_t mask = ::umask(0);
@@ -73,28 +77,53 @@ void publish_file(const std::filesystem::path& temporary, const std::filesystem:
   std::filesystem::rename(temporary, path, ec);
   if (ec) {
     const std::string reason = ec.message();
+    const int error = ec.value();
     std::filesystem::remove(temporary, ec);
-    throw InvalidInput(fmt::format("cannot replace '{}': {}", path.string(), reason));
+    throw FileSystemError(fmt::format("cannot replace '{}': {}; the previous file is kept", path.string(), reason),
+                          path, error);
+  }
+}
+
+void write_all(int fd, std::string_view content, const std::filesystem::path& target) {
+  std::size_t written = 0;
+  while (written < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      // n == 0 with bytes left: a short write the system gave no reason for (a full device).
+      const int error = n < 0 ? errno : ENOSPC;
+      throw FileSystemError(fmt::format("writing '{}' failed after {} of {} bytes: {}", target.string(), written,
+                                        content.size(), std::strerror(error)),
+                            target, error);
+    }
+    written += static_cast<std::size_t>(n);
   }
 }
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
   const std::filesystem::path temporary = make_sibling_temporary(path);
+  std::error_code ec;
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
-  bool ok = fd >= 0;
-  std::size_t written = 0;
-  while (ok && written < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    ok = n > 0;
-    if (ok) written += static_cast<std::size_t>(n);
-  }
-  const std::string reason = ok ? std::string() : std::strerror(errno);
-  if (fd >= 0 && ::close(fd) != 0 && ok) ok = false;
-  if (!ok) {
-    std::error_code ec;
+  if (fd < 0) {
+    const int error = errno;
     std::filesystem::remove(temporary, ec);
-    throw InvalidInput(fmt::format("writing '{}' failed: {}", path.string(), reason.empty() ? "close failed" : reason));
+    throw FileSystemError(fmt::format("writing '{}' failed: {}", path.string(), std::strerror(error)), path, error);
+  }
+  try {
+    write_all(fd, content, path);
+  } catch (...) {
+    ::close(fd);
+    std::filesystem::remove(temporary, ec);  // the previous file at `path` is untouched
+    throw;
+  }
+  // close reports the errors of a write the system deferred (NFS, quotas): the file is then
+  // incomplete and is not published.
+  if (::close(fd) != 0) {
+    const int error = errno;
+    std::filesystem::remove(temporary, ec);
+    throw FileSystemError(fmt::format("writing '{}' failed when closing it: {}; the previous file is kept",
+                                      path.string(), std::strerror(error)),
+                          path, error);
   }
   publish_file(temporary, path);
 }

@@ -23,11 +23,17 @@ void require_regular_output(const std::filesystem::path& path);
 [[nodiscard]] std::filesystem::path make_sibling_temporary(const std::filesystem::path& path);
 
 /// Renames `temporary` over `path` (after require_regular_output); removes `temporary` and
-/// throws InvalidInput on failure.
+/// throws (InvalidInput for a target that is not a regular file, FileSystemError when the
+/// rename fails) on failure.
 void publish_file(const std::filesystem::path& temporary, const std::filesystem::path& path);
 
-/// Replaces `path` by `content` as above. Throws InvalidInput naming the path if it cannot be
-/// written.
+/// Replaces `path` by `content` as above. A short write or a failed close (a full disk, a
+/// read-only file system) throws FileSystemError naming the path, removes the temporary and
+/// leaves the previous file at `path` as it was.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
+
+/// Writes all of `content` to the open descriptor `fd` (retrying interrupted and partial
+/// writes); throws FileSystemError naming `target` when the system accepts less than all of it.
+void write_all(int fd, std::string_view content, const std::filesystem::path& target);
 
 }  // namespace frictopt::io::detail

@@ -753,6 +753,9 @@ void read_optimization(const TableReader& r, optim::BundleTrust::Options& o) {
   }
 }
 
+// 255 − len(".") − len("_iter") − 10 digits − len(".vtu") − len(".XXXXXX.tmp").
+constexpr std::size_t kMaxOutputNameBytes = 255 - 1 - 5 - 10 - 4 - 11;
+
 OutputSpec read_output(const TableReader& r, std::string default_name) {
   OutputSpec o;
   o.vtk = r.optional_bool("vtk").value_or(true);
@@ -765,6 +768,12 @@ OutputSpec read_output(const TableReader& r, std::string default_name) {
   if (o.name.empty() || control || o.name.find_first_of("/\\") != std::string::npos || o.name == "." ||
       o.name == "..")
     r.fail_value("name", "a non-empty file name without '/', '\\' or control characters (NUL, newline, ...)");
+  // The longest file made of the name must fit a file name (NAME_MAX = 255 bytes on Linux):
+  // the temporary of a series file, "." + name + "_iter" + 10 digits + ".vtu" + ".XXXXXX.tmp".
+  if (o.name.size() > kMaxOutputNameBytes)
+    r.fail_value("name", fmt::format("at most {} bytes (it has {}), so that its longest output file name "
+                                     "(\".NAME_iterK.vtu.XXXXXX.tmp\") fits the file system's 255",
+                                     kMaxOutputNameBytes, o.name.size()));
   return o;
 }
 

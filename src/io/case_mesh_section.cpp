@@ -77,6 +77,11 @@ bool names_mesh_file(const toml::table& root) {
 ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view case_origin,
                                 const mesh::PlaneFrame& design_frame) {
   const std::string file_text = r.required_string("file", "a Gmsh .msh or .geo file, relative to the case file");
+  // The name Gmsh would open ends at a NUL: "m.msh\0.geo" would pass the extension check as a
+  // .geo and open the .msh.
+  if (file_text.find('\0') != std::string::npos)
+    r.fail("file", fmt::format("{} = \"{}\\u0000…\" has a NUL byte; expected a file name without NUL bytes", r.field("file"),
+                               std::string(file_text.c_str())));
   std::filesystem::path file(file_text);
   if (file.is_relative()) file = std::filesystem::path(case_origin).parent_path() / file;
   // One name per file: the run directory's copy of the case names it absolutely
@@ -93,8 +98,11 @@ ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view 
     options.size = *size;
   }
   std::shared_ptr<const mesh::Mesh> reference;
+  std::vector<std::filesystem::path> sources;
   try {
-    reference = std::make_shared<const mesh::Mesh>(mesh::GmshMesh(file, options).take_mesh());
+    mesh::GmshMesh gmsh(file, options);
+    sources = gmsh.source_files();
+    reference = std::make_shared<const mesh::Mesh>(std::move(gmsh).take_mesh());
   } catch (const InvalidInput& e) {
     r.fail("file", fmt::format("{}: {}", r.field("file"), e.what()));
   }
@@ -106,6 +114,7 @@ ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view 
   body.contact_surface = read_group(r, "contact", *reference, "the contact surface Γ_c", file_text);
   study::ImportedMeshDefinition& definition = body.definition;
   definition.file = file;
+  definition.sources = std::move(sources);
   definition.motion.patch = r.has("patch") ? read_group(r, "patch", *reference, "the design patch", file_text)
                                            : body.contact_surface;
   definition.motion.frame = design_frame;

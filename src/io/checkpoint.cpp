@@ -10,11 +10,15 @@
 
 #include "frictopt/core/error.hpp"
 #include "frictopt/core/validation.hpp"
+#include "input_file.hpp"
 
 namespace frictopt::io {
 namespace {
 
-constexpr std::string_view kFormat = "frictopt-run-checkpoint-2";
+// Format 3 adds the checksum and the method's safeguards (IterationSummary::restarts, ...);
+// format 2 (no checksum) is still read.
+constexpr std::string_view kFormat = "frictopt-run-checkpoint-3";
+constexpr std::string_view kFormat2 = "frictopt-run-checkpoint-2";
 // Counters of a run (iterations, evaluations, solves): a billion is far beyond any run and
 // keeps every counter inside int.
 constexpr std::int64_t kMaxCount = 1'000'000'000;
@@ -103,6 +107,19 @@ optim::StepKind parse_step(const std::string& text, const std::string& origin) {
 
 std::string hex(std::uint64_t h) { return fmt::format("{:016x}", h); }
 
+// FNV-1a 64 of the compact JSON text of every member of `j` but "checksum": the same text for
+// the object written and the object read back (doubles are printed in their shortest
+// round-trip form, members in their order). It detects an edited or damaged checkpoint whose
+// edit still parses (a falsified centre value); it is no protection against a deliberate
+// forgery, which would recompute it.
+std::string checksum_of(const JsonValue& j) {
+  JsonValue body = JsonValue::object();
+  for (const auto& [key, value] : j.as_object())
+    if (key != "checksum") body[key] = value;
+  const std::string text = to_json_string(body, -1);
+  return hex(fnv1a64(text.data(), text.size()));
+}
+
 }  // namespace
 
 std::uint64_t fnv1a64(const void* data, std::size_t size, std::uint64_t seed) {
@@ -179,6 +196,12 @@ JsonValue checkpoint_to_json(const RunCheckpoint& c) {
   // and its secant pairs (column-major, `pairs` columns of n), so that a resume continues it.
   if (s.g_start.size() > 0) j["g_start"] = s.g_start;
   j["null_streak"] = s.null_streak;
+  // The method's safeguards (IterationSummary), so that the resumed run continues them.
+  j["restarts"] = s.restarts;
+  j["tightenings"] = s.tightenings;
+  j["test_factor"] = s.test_factor;
+  j["resolution_reached"] = s.resolution_reached;
+  j["bundle_size_used"] = s.bundle_size_used;
   const optim::DiagonalMetric& m = s.metric;
   if (!m.is_identity() || m.steps.size() > 0 || m.resets > 0) {
     JsonValue metric = JsonValue::object();
@@ -209,6 +232,11 @@ JsonValue checkpoint_to_json(const RunCheckpoint& c) {
   run["state_solves"] = c.state_solves;
   run["warm_start_dim"] = c.warm_start_dim;
   run["warm_start"] = c.warm_start;
+  if (!c.history_warm_starts.empty()) {
+    JsonValue states = JsonValue::array();
+    for (const Eigen::VectorXd& z : c.history_warm_starts) states.push_back(JsonValue(z));
+    run["history_warm_starts"] = std::move(states);
+  }
   JsonValue center = JsonValue::object();
   center["coulomb_iterations"] = c.center.coulomb_iterations;
   center["qp_iterations"] = c.center.qp_iterations;
@@ -226,15 +254,20 @@ JsonValue checkpoint_to_json(const RunCheckpoint& c) {
   for (const auto& [key, value] : c.fingerprint.settings) settings[key] = value;
   fingerprint["settings"] = std::move(settings);
   j["fingerprint"] = std::move(fingerprint);
+  j["checksum"] = checksum_of(j);
   return j;
 }
 
 RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin) {
   const Fields top(j, origin);
-  if (!j.is_object() || !j.contains("format") || !j.at("format").is_string() || j.at("format").as_string() != kFormat)
+  const bool format2 = j.is_object() && j.contains("format") && j.at("format").is_string() &&
+                       j.at("format").as_string() == kFormat2;
+  if (!format2 &&
+      (!j.is_object() || !j.contains("format") || !j.at("format").is_string() || j.at("format").as_string() != kFormat))
     throw InvalidInput(fmt::format("{}: format is not {} (a checkpoint of an older frictopt or another file); "
                                    "start the run again with --force",
                                    origin, kFormat));
+
   RunCheckpoint c;
   optim::BundleTrust::IterationSummary& s = c.method;
   s.iteration = static_cast<int>(top.count("iteration"));
@@ -267,6 +300,19 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
   // Variable metric state (absent: identity, as before the option existed).
   if (j.contains("g_start")) s.g_start = top.vector("g_start", n);
   if (j.contains("null_streak")) s.null_streak = static_cast<int>(top.count("null_streak"));
+  // The method's safeguards (absent in format 2: a fresh run's values).
+  if (j.contains("restarts")) s.restarts = static_cast<int>(top.count("restarts"));
+  if (j.contains("tightenings")) s.tightenings = static_cast<int>(top.count("tightenings"));
+  if (j.contains("test_factor")) {
+    s.test_factor = top.positive("test_factor");
+    if (s.test_factor > 1.0) fail_field(origin, "test_factor", format_number(s.test_factor), "0 < test_factor <= 1");
+  }
+  if (j.contains("resolution_reached")) {
+    const JsonValue& v = top.at("resolution_reached");
+    if (!v.is_bool()) fail_field(origin, "resolution_reached", "not a boolean", "true or false");
+    s.resolution_reached = v.as_bool();
+  }
+  if (j.contains("bundle_size_used")) s.bundle_size_used = static_cast<int>(top.count("bundle_size_used", 0, 1'000'000));
   if (j.contains("metric")) {
     const Fields m(top.at("metric"), origin, "metric.");
     optim::DiagonalMetric& metric = s.metric;
@@ -291,10 +337,20 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
     element.lin_err = e.number("lin_err", true);
     element.distance = e.number("distance", true);
     element.locality = e.number("locality", true);
-    element.y = e.vector("y", n);
+    // y: the trial point (n numbers), or [] for the aggregate element (BundleElement::is_aggregate).
+    element.y = e.vector("y");
+    if (element.y.size() != 0 && element.y.size() != n)
+      fail_field(origin, e.name("y"), fmt::format("a list of {} numbers", element.y.size()),
+                 fmt::format("{} numbers (a trial point) or [] (the aggregate)", n));
     const JsonValue& center = e.at("is_center");
     if (!center.is_bool()) fail_field(origin, e.name("is_center"), "not a boolean", "true or false");
     element.is_center = center.as_bool();
+    // The centre's element is the cut taken at x itself (lin_err 0); anything else is a
+    // checkpoint that disagrees with itself.
+    if (element.is_center && (element.y.size() != n || element.y != s.x || element.lin_err != 0.0))
+      throw InvalidInput(fmt::format("{}: bundle[{}] is the centre's element but its y or lin_err disagrees with x "
+                                     "(expected y = x, lin_err = 0); the checkpoint was edited or damaged",
+                                     origin, i));
     // Absent in checkpoints written before piece gaps were kept: those bundles held cuts of f.
     if (bundle.as_array()[i].contains("piece_gap")) element.piece_gap = e.number("piece_gap", true);
     s.bundle.push_back(std::move(element));
@@ -309,6 +365,16 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
     fail_field(origin, "run.warm_start", fmt::format("a list of {} numbers", c.warm_start.size()),
                fmt::format("a multiple of run.warm_start_dim = {} (2 or 3)", c.warm_start_dim));
   const Fields center(run.at("center"), origin, "run.center.");
+  if (top.at("run").contains("history_warm_starts")) {
+    const JsonValue& states = run.at("history_warm_starts");
+    if (!states.is_array()) fail_field(origin, "run.history_warm_starts", "not a list", "a list of lists of numbers");
+    for (std::size_t k = 0; k < states.as_array().size(); ++k) {
+      JsonValue holder = JsonValue::object();
+      holder["z"] = states.as_array()[k];
+      const Fields state(holder, origin, fmt::format("run.history_warm_starts[{}].", k));
+      c.history_warm_starts.push_back(state.vector("z"));
+    }
+  }
   c.center.coulomb_iterations = center.count("coulomb_iterations");
   c.center.qp_iterations = center.count("qp_iterations", 0, std::numeric_limits<std::int64_t>::max());
   c.center.weak_nodes = center.count("weak_nodes", 0, std::numeric_limits<std::int64_t>::max());
@@ -316,6 +382,11 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
   c.center.subgradient_seconds = center.number("subgradient_seconds", true);
   const Fields f(top.at("fingerprint"), origin, "fingerprint.");
   c.fingerprint.dim = static_cast<int>(f.count("dim", 2, 3));
+  for (std::size_t k = 0; k < c.history_warm_starts.size(); ++k)
+    if (c.history_warm_starts[k].size() % c.fingerprint.dim != 0)
+      fail_field(origin, fmt::format("run.history_warm_starts[{}]", k),
+                 fmt::format("a list of {} numbers", c.history_warm_starts[k].size()),
+                 fmt::format("a multiple of fingerprint.dim = {}", c.fingerprint.dim));
   c.fingerprint.case_hash = f.hash("case_hash");
   c.fingerprint.num_nodes = f.count("num_nodes", 1, std::numeric_limits<std::int64_t>::max());
   c.fingerprint.mesh_hash = f.hash("mesh_hash");
@@ -329,21 +400,21 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
     throw InvalidInput(fmt::format("{}: fingerprint.case_hash does not match fingerprint.settings; the checkpoint "
                                    "was edited or damaged",
                                    origin));
+  // Last, so that a field out of range is reported by name first: any other edit.
+  if (!format2) {
+    const std::string stored = top.text("checksum");
+    if (stored != checksum_of(j))
+      throw InvalidInput(fmt::format("{}: checksum {} does not match the content ({}): the checkpoint was edited or "
+                                     "damaged after frictopt wrote it; a run resumes only from its own checkpoint "
+                                     "(start it again with --force)",
+                                     origin, detail::printable_excerpt(stored, 20), checksum_of(j)));
+  }
   return c;
 }
 
 RunCheckpoint read_checkpoint(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidInput(fmt::format("{}: cannot read the checkpoint", path.string()));
-  std::stringstream text;
-  text << in.rdbuf();
-  JsonValue json;
-  try {
-    json = parse_json(text.str());
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(fmt::format("{}: the checkpoint is not valid JSON ({})", path.string(), e.what()));
-  }
-  return checkpoint_from_json(json, path.string());
+  // A regular file only (a FIFO in its place would block the resume forever), bounded in size.
+  return checkpoint_from_json(read_json_file(path, "the checkpoint"), path.string());
 }
 
 }  // namespace frictopt::io

@@ -3,11 +3,15 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <set>
 
 #include "atomic_file.hpp"
+#include "input_file.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/io/file_error.hpp"
 
 namespace frictopt::io {
 namespace {
@@ -40,7 +44,7 @@ std::string join(std::span<const std::string> fields) {
 }  // namespace
 
 CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> header, Mode mode)
-    : path_(path), header_(std::move(header)) {
+    : path_(path), header_(std::move(header)), mode_(mode) {
   if (header_.empty())
     throw InvalidInput(fmt::format("CsvWriter({}): the header is empty", path_.string()));
   std::set<std::string> seen;
@@ -53,6 +57,10 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string>
   // Rows are appended in place (a history grows while the run goes), so this writer cannot
   // replace the file atomically; it still writes regular files only (atomic_file.hpp).
   detail::require_regular_output(path_);
+  if (mode == Mode::kReplace) {
+    write_line(header_line);
+    return;
+  }
   bool write_header = true;
   std::error_code ec;
   if (mode == Mode::kAppend && std::filesystem::exists(path_, ec) &&
@@ -65,12 +73,16 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string>
       throw InvalidInput(
           fmt::format("CsvWriter({}): existing header '{}'; expected '{}' to "
                       "append",
-                      path_.string(), existing, header_line));
+                      path_.string(), detail::printable_excerpt(existing, 200), header_line));
     write_header = false;
   }
   out_.open(path_, mode == Mode::kAppend ? std::ios::app : std::ios::trunc);
-  if (!out_)
-    throw InvalidInput(fmt::format("CsvWriter: cannot open '{}' for writing", path_.string()));
+  if (!out_) {
+    const int error = errno;
+    throw FileSystemError(fmt::format("CsvWriter: cannot open '{}' for writing: {}", path_.string(),
+                                      std::strerror(error)),
+                          path_, error);
+  }
   if (write_header) write_line(header_line);
 }
 
@@ -97,12 +109,28 @@ void CsvWriter::write_row(std::span<const double> row) {
   write_row(std::span<const CsvValue>(values));
 }
 
+void CsvWriter::finish() {
+  if (mode_ == Mode::kReplace) detail::write_file_atomically(path_, buffer_);
+}
+
 void CsvWriter::write_line(const std::string& line) {
+  if (mode_ == Mode::kReplace) {
+    buffer_ += line;
+    buffer_ += '\n';
+    return;
+  }
   // Flushing each line hands it to the OS, so a crash or kill of the run loses at most the
   // line being written (STYLE.md §4, "Observation").
   out_ << line << '\n';
   out_.flush();
-  if (!out_) throw InvalidInput(fmt::format("CsvWriter: writing '{}' failed", path_.string()));
+  if (!out_) {
+    // A full disk or a read-only remount: the row is lost (a resume drops an incomplete last
+    // row), and the run must not go on as if it were recorded.
+    const int error = errno;
+    throw FileSystemError(fmt::format("CsvWriter: writing '{}' failed: {}", path_.string(),
+                                      error != 0 ? std::strerror(error) : "the stream reported an error"),
+                          path_, error);
+  }
 }
 
 }  // namespace frictopt::io

@@ -9,21 +9,30 @@
 
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/json.hpp"
+#include "input_file.hpp"
 
 namespace frictopt::io {
 
 Eigen::VectorXd read_design_file(const std::filesystem::path& path, Eigen::Index expected_size) {
-  std::ifstream in(path);
-  if (!in) throw InvalidInput(fmt::format("{}: cannot read the design file", path.string()));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  // A design is a few hundred numbers; 64 MiB is far beyond any and bounds what is read.
+  const std::string text = detail::read_input_file(path, "the design file", std::size_t{64} << 20);
   std::vector<double> values;
   if (path.extension() == ".json") {
-    const JsonValue json = parse_json(text);
-    if (!json.is_object() || !json.contains("alpha"))
+    JsonValue json;
+    try {
+      json = parse_json(text);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("{}: the design file is not valid JSON ({})", path.string(), e.what()));
+    }
+    if (!json.is_object() || !json.contains("alpha") || !json.at("alpha").is_array())
       throw InvalidInput(fmt::format("{}: expected a JSON object with an \"alpha\" array", path.string()));
-    for (const JsonValue& v : json.at("alpha").as_array()) values.push_back(v.as_number());
+    const JsonValue::Array& alpha = json.at("alpha").as_array();
+    for (std::size_t i = 0; i < alpha.size(); ++i) {
+      if (!alpha[i].is_integer() && !alpha[i].is_real())
+        throw InvalidInput(fmt::format("{}: alpha[{}] is not a number; expected control heights in metres",
+                                       path.string(), i));
+      values.push_back(alpha[i].as_number());
+    }
   } else {
     std::istringstream lines(text);
     std::string line;
@@ -42,7 +51,7 @@ Eigen::VectorXd read_design_file(const std::filesystem::path& path, Eigen::Index
           if (used != word.size()) throw std::invalid_argument(word);
         } catch (const std::exception&) {
           throw InvalidInput(fmt::format("{}:{}: '{}' is not a number; expected control heights in metres",
-                                         path.string(), line_number, word));
+                                         path.string(), line_number, detail::printable_excerpt(word, 40)));
         }
       }
     }

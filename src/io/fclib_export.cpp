@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -18,6 +19,8 @@ extern "C" {
 }
 
 #include "atomic_file.hpp"
+#include "child_process.hpp"
+#include "frictopt/io/file_error.hpp"
 #include "frictopt/contact/delassus.hpp"
 #include "frictopt/contact/friction_law.hpp"
 #include "frictopt/core/error.hpp"
@@ -312,19 +315,31 @@ void write_fclib_local(const std::filesystem::path& path, const FclibLocalProble
   local.spacedim = problem.spacedim;
   local.info = &info;
 
-  const auto fail = [&](const char* what) {
-    std::filesystem::remove(partial, ignored);
-    return InvalidInput(fmt::format("{}: fclib could not write the {} (HDF5 file {})",
-                                    path.string(), what, partial.string()));
-  };
-  if (fclib_write_local(&local, partial.c_str()) != 1) throw fail("local problem");
-  if (include_solution) {
-    fclib_solution solution{nullptr, u.data(), r.data(), nullptr};
-    if (problem.solution_is_exact) {
-      if (fclib_write_solution(&solution, partial.c_str()) != 1) throw fail("solution");
-    } else if (fclib_write_guesses(1, &solution, partial.c_str()) != 1) {
-      throw fail("initial guess");
+  // fclib ends the process (exit(1), after HDF5's error stack) when an HDF5 call fails — on a
+  // full disk or a read-only file system — so the file is written by a child process: its
+  // failure is then an answer (FileSystemError, the previous file kept), not the end of the
+  // caller (the command line, or the Python interpreter).
+  fclib_solution solution{nullptr, u.data(), r.data(), nullptr};
+  const auto write_all_parts = [&]() -> int {
+    if (fclib_write_local(&local, partial.c_str()) != 1) return 2;
+    if (include_solution) {
+      if (problem.solution_is_exact) {
+        if (fclib_write_solution(&solution, partial.c_str()) != 1) return 3;
+      } else if (fclib_write_guesses(1, &solution, partial.c_str()) != 1) {
+        return 4;
+      }
     }
+    return 0;
+  };
+  const detail::ChildResult child = detail::run_in_child(write_all_parts);
+  if (child.exit_code != 0) {
+    std::filesystem::remove(partial, ignored);
+    const char* part = child.exit_code == 3 ? "solution" : child.exit_code == 4 ? "initial guess" : "local problem";
+    throw FileSystemError(fmt::format("{}: fclib/HDF5 could not write the {} (a full disk or a read-only file "
+                                      "system?); the previous file is kept{}{}",
+                                      path.string(), part, child.diagnostics.empty() ? "" : ". HDF5 said: ",
+                                      child.diagnostics),
+                          path, child.exit_code == 0 ? 0 : EIO);
   }
   detail::publish_file(partial, path);
 }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "atomic_file.hpp"
+#include "input_file.hpp"
 #include "frictopt/core/error.hpp"
 
 namespace frictopt::io {
@@ -155,11 +156,53 @@ std::string to_json_string(const JsonValue& value, int indent) {
   }
 }
 
+namespace {
+
+// The deepest nesting of arrays and objects in `text`, counted outside strings, stopping as
+// soon as it exceeds `limit`.
+int nesting_depth(std::string_view text, int limit) {
+  int depth = 0;
+  int deepest = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (in_string) {
+      if (ch == '\\') ++i;  // the escaped character cannot end the string
+      else if (ch == '"') in_string = false;
+      continue;
+    }
+    if (ch == '"') {
+      in_string = true;
+    } else if (ch == '[' || ch == '{') {
+      deepest = std::max(deepest, ++depth);
+      if (deepest > limit) return deepest;
+    } else if (ch == ']' || ch == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+}  // namespace
+
 JsonValue parse_json(std::string_view text) {
+  if (nesting_depth(text, kMaxJsonDepth) > kMaxJsonDepth)
+    throw InvalidInput(fmt::format("parse_json: arrays and objects nested deeper than {} levels; expected a "
+                                   "file of frictopt's (a few levels)",
+                                   kMaxJsonDepth));
   try {
     return from_nlohmann(Json::parse(text));
   } catch (const nlohmann::json::parse_error& e) {
     throw InvalidInput(fmt::format("parse_json: {}", e.what()));
+  }
+}
+
+JsonValue read_json_file(const std::filesystem::path& path, std::string_view what, std::size_t max_bytes) {
+  const std::string text = detail::read_input_file(path, what, max_bytes);
+  try {
+    return parse_json(text);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("{}: {} is not valid JSON ({})", path.string(), what, e.what()));
   }
 }
 

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "atomic_file.hpp"
+#include "input_file.hpp"
 #include "text_input.hpp"
 #include "frictopt/core/error.hpp"
 
@@ -57,11 +58,10 @@ constexpr std::string_view kHeader = "quantity,location,value,sigma";
 }  // namespace
 
 std::vector<study::Measurement> read_measurements(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InvalidInput(fmt::format("{}: measurement file not found (or not a regular file)", path.string()));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidInput(fmt::format("{}: measurement file could not be opened", path.string()));
+  // A regular file only (a FIFO is refused without waiting), of at most 256 MiB (millions of
+  // rows; more would not fit the identification's dense Jacobian anyway).
+  const std::string content = detail::read_input_file(path, "the measurement file", std::size_t{256} << 20);
+  std::istringstream in(content);
   std::vector<study::Measurement> out;
   std::string line;
   int number = 0;
@@ -75,8 +75,10 @@ std::vector<study::Measurement> read_measurements(const std::filesystem::path& p
     if (!header_seen) {
       std::string joined;
       for (std::string_view f : fields) joined += (joined.empty() ? "" : ",") + std::string(f);
+      // The line is echoed only as a bounded, printable excerpt: the file may be anything.
       if (joined != kHeader)
-        throw InvalidInput(fmt::format("{}: header \"{}\"; expected \"{}\"", where, joined, kHeader));
+        throw InvalidInput(fmt::format("{}: header \"{}\"; expected \"{}\"", where,
+                                       detail::printable_excerpt(joined, 60), kHeader));
       header_seen = true;
       continue;
     }
@@ -105,23 +107,23 @@ std::vector<study::Measurement> read_measurements(const std::filesystem::path& p
         x(static_cast<Eigen::Index>(k)) = *v;
       }
       if (x.size() < 1 || x.size() > 2)
-        throw InvalidInput(fmt::format("{}: location = \"{}\"; expected x=x1 (2D) or x=x1;x2 (3D)", where, location));
+        throw InvalidInput(fmt::format("{}: location = \"{}\"; expected x=x1 (2D) or x=x1;x2 (3D)", where, detail::printable_excerpt(location, 40)));
       m.point = x;
     } else {
       const auto node = to_int(location);
       if (!node || *node < 0)
         throw InvalidInput(fmt::format("{}: location = \"{}\"; expected a contact-node index >= 0 or a point "
                                        "x=x1;x2 on the contact surface",
-                                       where, location));
+                                       where, detail::printable_excerpt(location, 40)));
       m.node = *node;
     }
     const auto value = to_double(fields[2]);
     if (!value || !std::isfinite(*value))
-      throw InvalidInput(fmt::format("{}: value = \"{}\"; expected a finite number", where, fields[2]));
+      throw InvalidInput(fmt::format("{}: value = \"{}\"; expected a finite number", where, detail::printable_excerpt(fields[2], 40)));
     m.value = *value;
     const auto sigma = to_double(fields[3]);
     if (!sigma || !(*sigma > 0) || !std::isfinite(*sigma))
-      throw InvalidInput(fmt::format("{}: sigma = \"{}\"; expected a standard deviation > 0", where, fields[3]));
+      throw InvalidInput(fmt::format("{}: sigma = \"{}\"; expected a standard deviation > 0", where, detail::printable_excerpt(fields[3], 40)));
     m.sigma = *sigma;
     out.push_back(std::move(m));
   }

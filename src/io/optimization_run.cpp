@@ -49,6 +49,26 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     run->check_resume(description, *checkpoint, fingerprint);
   }
   study::ShapeOracle oracle(body, description.required_cost());
+  // The loading programs' warm starts (load cases, a cost along a program): with the body's,
+  // what makes the resumed run repeat the uninterrupted one.
+  if (checkpoint && !checkpoint->history_warm_starts.empty()) {
+    std::vector<std::optional<contact::ContactState>> states;
+    for (const Eigen::VectorXd& z : checkpoint->history_warm_starts) {
+      if (z.size() == 0) {
+        states.emplace_back();
+        continue;
+      }
+      contact::ContactState warm(fingerprint.dim, z.size() / fingerprint.dim);
+      warm.z = z;
+      states.emplace_back(std::move(warm));
+    }
+    try {
+      oracle.set_history_warm_starts(states);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(fmt::format("{}: run.history_warm_starts does not fit the run's loading programs ({})",
+                                     run->file(RunDirectory::kCheckpoint).string(), e.what()));
+    }
+  }
   // Before the first evaluation (Θ(α⁰) for the summary): with case_cuts off, the other load
   // cases' adjoints are not paid for even once.
   oracle.set_case_cuts(options.use_piece_cuts);
@@ -64,7 +84,8 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     // friction_orientation (issue 13 item 3): one more column, φ of x_k in degrees.
     std::vector<std::string> columns = optimization_history_columns();
     if (body.orientation_design()) columns.push_back("friction_orientation_deg");
-    history.emplace(run->open_history(columns, start_iteration, result.notes));
+    history.emplace(run->open_history(columns, start_iteration, result.notes,
+                                      checkpoint ? std::optional<double>(checkpoint->method.f) : std::nullopt));
     run->start_series(definition.name, start_iteration, result.notes);
   }
   for (const std::string& note : result.notes) report(fmt::format("note: {}", note));
@@ -142,6 +163,8 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
         c.warm_start = warm->z;
         c.warm_start_dim = warm->dim;
       }
+      for (const auto& warm : oracle.history_warm_starts())
+        c.history_warm_starts.push_back(warm ? warm->z : Eigen::VectorXd());
       c.initial_cost = initial_value;
       c.elapsed_seconds = elapsed;
       c.state_solves = solves;
@@ -164,12 +187,20 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   add_members(json, run_environment());
   json["cost"] = oracle.cost().name();
   json["status"] = std::string(to_string(summary.status));
+  // What the status means for the user (README "Exit codes"): certified, limit_reached,
+  // needs_attention (with the reasons) or failed.
+  const study::OptimizationOutcome outcome = study::assess_outcome(summary, final);
+  json["outcome"] = std::string(study::to_string(outcome.kind));
+  JsonValue attention = JsonValue::array();
+  for (const std::string& reason : outcome.attention) attention.push_back(reason);
+  json["attention"] = attention;
   json["message"] = summary.message;
   json["stopped_by"] = to_json(summary).at("stopped_by");
   json["initial_cost"] = initial_value;
   json["final_cost"] = final.value;
   json["alpha"] = summary.x;
   json["initial_alpha"] = definition.initial_design;
+  json["design_chart"] = design_chart(body);  // rebuilds the surface from alpha
   if (body.orientation_design()) {
     json["initial_friction_orientation_deg"] = orientation_deg(body.initial_design());
     json["friction_orientation_deg"] = orientation_deg(summary.x);
@@ -185,6 +216,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   json["objective_scale"] = summary.objective_scale;  // |Θ(α⁰)|: history.csv's columns are relative to it
   json["stationarity_relative"] = summary.stationarity / summary.objective_scale;
   json["cost_kind"] = std::string(to_string(description.required_cost().kind));
+  json["cost_unit"] = cost_unit(description.required_cost(), body.mesh().dim());  // Θ's unit
   // The method's state solves over all resumes, as history.csv (pictures' solves not counted).
   json["state_solves"] = solves_offset + oracle.num_state_solves() - solves_before - output_solves;
   json["time_seconds"] = summary.time_seconds;                      // this process's optimizer
@@ -201,6 +233,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     run->write_json_file(RunDirectory::kSummary, json);
   }
   result.summary = summary;
+  result.outcome = outcome;
   result.initial_cost = initial_value;
   result.final_cost = final.value;
   result.summary_json = std::move(json);

@@ -12,11 +12,15 @@
 #include <charconv>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "atomic_file.hpp"
+#include "input_file.hpp"
+#include "frictopt/core/validation.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
+#include "frictopt/io/file_error.hpp"
 
 namespace frictopt::io {
 namespace {
@@ -76,6 +80,22 @@ std::string output_name_of(const fs::path& case_path) {
   }
 }
 
+// Whether `directory` holds a run of frictopt's: the files only a run writes (a case.toml
+// alone is anyone's case file).
+bool holds_run(const fs::path& directory) {
+  std::error_code ec;
+  for (std::string_view name : {RunDirectory::kCheckpoint, RunDirectory::kHistory, RunDirectory::kFinalDesign})
+    if (fs::exists(directory / name, ec)) return true;
+  return false;
+}
+
+std::string read_whole(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 }  // namespace
 
 bool RunDirectory::is_frictopt_output(const fs::path& entry, const std::vector<std::string>& names) {
@@ -129,6 +149,9 @@ RunDirectory::RunDirectory(fs::path path, RunOpening opening, fs::path case_argu
       if (has_run)
         throw InvalidInput(fmt::format("{} already holds a run; pass --resume to continue it or --force to replace it",
                                        path_.string()));
+      // Before anything is created in it: a case.toml there that is not ours stays untouched.
+      if (exists && !case_argument_.empty() && !same_file(case_argument_, file(kCaseCopy)))
+        require_case_copy_is_ours(file(kCaseCopy));
       break;
     case RunOpening::kForce:
     case RunOpening::kOutput:
@@ -157,8 +180,11 @@ void RunDirectory::lock() {
   const fs::path lock_path = file(kLockFile);
   detail::require_regular_output(lock_path);
   lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
-  if (lock_fd_ < 0)
-    throw InvalidInput(fmt::format("{}: cannot create the lock file: {}", lock_path.string(), std::strerror(errno)));
+  if (lock_fd_ < 0) {
+    const int error = errno;  // a read-only file system, no permission: exit 5, not bad input
+    throw FileSystemError(fmt::format("{}: cannot create the lock file: {}", lock_path.string(), std::strerror(error)),
+                          lock_path, error);
+  }
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;
     char pid[32] = {};
@@ -170,7 +196,8 @@ void RunDirectory::lock() {
                                      "choose another output directory",
                                      path_.string(), n > 0 ? fmt::format(" (pid {})", std::string(pid, static_cast<std::size_t>(n))) : "",
                                      lock_path.string()));
-    throw InvalidInput(fmt::format("{}: cannot lock: {}", lock_path.string(), std::strerror(error)));
+    throw FileSystemError(fmt::format("{}: cannot lock: {}", lock_path.string(), std::strerror(error)), lock_path,
+                          error);
   }
   const std::string pid = std::to_string(::getpid());
   if (::ftruncate(lock_fd_, 0) == 0 && ::pwrite(lock_fd_, pid.data(), pid.size(), 0) < 0) {
@@ -190,10 +217,14 @@ void RunDirectory::clear_previous_run() {
   const std::vector<std::string> names = known_names();
   std::vector<fs::path> ours;
   std::vector<std::string> foreign;
+  // case.toml is the run's copy only in a directory that holds a run, or when it is the very
+  // copy this run would write; otherwise it is someone's case file and is not removed.
+  const bool run_present = holds_run(path_);
   for (const auto& entry : fs::directory_iterator(path_)) {
     const std::string file_name = entry.path().filename().string();
     if (file_name == kLockFile || same_file(entry.path(), case_argument_)) continue;
-    if (is_frictopt_output(entry.path(), names))
+    const bool foreign_case = file_name == kCaseCopy && !run_present && !is_own_case_copy();
+    if (!foreign_case && is_frictopt_output(entry.path(), names))
       ours.push_back(entry.path());
     else
       foreign.push_back(file_name + (entry.is_directory() && !entry.is_symlink() ? "/" : ""));
@@ -255,16 +286,57 @@ std::string case_copy_text(const std::string& text, const fs::path& case_path) {
   return text.substr(0, column) + toml_string(absolute.string()) + text.substr(column + close + 1);
 }
 
+bool RunDirectory::is_own_case_copy() const {
+  std::error_code ec;
+  const fs::path copy = file(kCaseCopy);
+  if (case_argument_.empty() || !fs::is_regular_file(copy, ec)) return false;
+  return read_whole(copy) == case_copy_text(read_whole(case_argument_), case_argument_);
+}
+
+void RunDirectory::require_case_copy_is_ours(const fs::path& copy) const {
+  // A case.toml in a directory without a run is someone's case file (the user's own, a
+  // colleague's): it is never replaced. The same text as the copy would hold is no loss.
+  std::error_code ec;
+  if (fs::symlink_status(copy, ec).type() == fs::file_type::not_found || holds_run(path_)) return;
+  if (case_argument_.empty() || !is_own_case_copy())
+    throw InvalidInput(fmt::format("{}: exists and {} holds no frictopt run (no {}, {} or {}); frictopt does not "
+                                   "replace a case file it did not write: choose another output directory or move "
+                                   "the file away",
+                                   copy.string(), path_.string(), kCheckpoint, kHistory, kFinalDesign));
+}
+
 fs::path RunDirectory::store_case() {
   const fs::path copy = file(kCaseCopy);
   if (opening_ == RunOpening::kResume || opening_ == RunOpening::kExisting) return copy;
   if (case_argument_.empty()) throw InvalidInput("RunDirectory::store_case: no case argument");
   if (same_file(case_argument_, copy)) return copy;  // the case already lives there
-  std::ifstream in(case_argument_, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  detail::write_file_atomically(copy, case_copy_text(text.str(), case_argument_));
+  require_case_copy_is_ours(copy);
+  detail::write_file_atomically(copy, case_copy_text(read_whole(case_argument_), case_argument_));
   return copy;
+}
+
+void RunDirectory::store_case_text(const std::string& text, const fs::path& origin) {
+  const fs::path copy = file(kCaseCopy);
+  std::error_code ec;
+  detail::require_regular_output(copy);  // a FIFO there would block the comparison below
+  if (fs::exists(copy, ec) && !holds_run(path_) && read_whole(copy) != case_copy_text(text, origin))
+    throw InvalidInput(fmt::format("{}: exists and {} holds no frictopt run (no {}, {} or {}); frictopt does not "
+                                   "replace a case file it did not write: choose another output directory or move "
+                                   "the file away",
+                                   copy.string(), path_.string(), kCheckpoint, kHistory, kFinalDesign));
+  detail::write_file_atomically(copy, case_copy_text(text, origin));
+}
+
+void RunDirectory::check_run_fingerprint(const CaseFingerprint& current) const {
+  std::error_code ec;
+  if (!fs::exists(file(kCheckpoint), ec)) return;  // a run without checkpoint: nothing to compare
+  const RunCheckpoint checkpoint = read_checkpoint();
+  const std::vector<std::string> changes = current.differences_from(checkpoint.fingerprint);
+  if (!changes.empty())
+    throw InvalidInput(fmt::format("{}: no longer defines the problem of the run (its checkpoint {}; checkpoint -> "
+                                   "now): {}; the final design belongs to the run's problem: undo the edit, or "
+                                   "certify the design with a case of its own",
+                                   file(kCaseCopy).string(), file(kCheckpoint).string(), list_entries(changes)));
 }
 
 void RunDirectory::check_resume(const CaseDescription& run_case, const RunCheckpoint& checkpoint,
@@ -293,35 +365,72 @@ void RunDirectory::check_resume(const CaseDescription& run_case, const RunCheckp
 }
 
 CsvWriter RunDirectory::open_history(std::vector<std::string> header, int keep_through_iteration,
-                                     std::vector<std::string>& notes) {
+                                     std::vector<std::string>& notes, std::optional<double> center_value) {
   const fs::path history = file(kHistory);
   if (opening_ != RunOpening::kResume) return CsvWriter(history, std::move(header), CsvWriter::Mode::kTruncate);
   detail::require_regular_output(history);
-  std::ifstream in(history, std::ios::binary);
+  std::error_code exists_ec;
+  // A history holds one short row per iteration: 64 MiB is far beyond any run's (and bounds
+  // what a damaged file can make the resume read).
+  const std::string content = fs::exists(history, exists_ec)
+                                  ? detail::read_input_file(history, "the history", std::size_t{64} << 20)
+                                  : std::string();
   std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  {
+    std::istringstream in(content);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+  }
+  const auto theta_column = std::find(header.begin(), header.end(), "theta") - header.begin();
   std::string kept;
   if (!lines.empty()) {
     kept = lines[0] + "\n";
     std::size_t last = lines.size();
     while (last > 1 && lines[last - 1].empty()) --last;
     int dropped = 0;
+    int previous = 0;  // rows are iterations 1, 2, 3, ... (each once, in order)
+    bool torn_last_row = false;
     for (std::size_t i = 1; i < last; ++i) {
       const std::string& row = lines[i];
       const std::string first = row.substr(0, row.find(','));
       int iteration = -1;
       const auto [end, ec] = std::from_chars(first.data(), first.data() + first.size(), iteration);
-      const bool complete = ec == std::errc() && end == first.data() + first.size() && !in.bad() &&
+      // A row of ours is printable ASCII (numbers and step names): NUL bytes or other control
+      // characters are damage, not data.
+      const bool printable = std::all_of(row.begin(), row.end(), [](char ch) {
+        return static_cast<unsigned char>(ch) >= 0x20 && static_cast<unsigned char>(ch) < 0x7f;
+      });
+      const bool complete = ec == std::errc() && end == first.data() + first.size() && printable &&
                             static_cast<std::size_t>(std::count(row.begin(), row.end(), ',')) + 1 == header.size();
+      if (complete && iteration <= keep_through_iteration && iteration != previous + 1)
+        throw InvalidInput(fmt::format("{}:{}: a row of iteration {} after iteration {}; expected iteration {} (a "
+                                       "duplicated, copied or missing row; repair or remove the rows to resume)",
+                                       history.string(), i + 1, iteration, previous, previous + 1));
+      if (complete) previous = std::max(previous, iteration);
+      if (complete && iteration == keep_through_iteration && center_value && theta_column < std::ssize(header)) {
+        // The checkpoint's centre value is the theta of its iteration's row (both written from
+        // the same number, in shortest round-trip form): two files that disagree were edited.
+        std::string_view field = row;
+        for (std::ptrdiff_t k = 0; k < theta_column; ++k) field.remove_prefix(field.find(',') + 1);
+        field = field.substr(0, field.find(','));
+        double theta = kNaN;
+        const auto [theta_end, theta_ec] = std::from_chars(field.data(), field.data() + field.size(), theta);
+        if (theta_ec != std::errc() || theta_end != field.data() + field.size() || theta != *center_value)
+          throw InvalidInput(fmt::format("{}:{}: theta = {} at iteration {}, but the checkpoint {} holds Θ = {}; one "
+                                         "of the two files was edited or damaged (a run resumes only from its own, "
+                                         "consistent files)",
+                                         history.string(), i + 1, detail::printable_excerpt(field, 30), iteration,
+                                         file(kCheckpoint).string(), format_number(*center_value)));
+      }
       if (!complete) {
         if (i + 1 == last) {
+          torn_last_row = true;
           notes.push_back(fmt::format("{}:{}: the last row is incomplete (an interrupted write); dropped",
                                       history.string(), i + 1));
           continue;
         }
         throw InvalidInput(fmt::format("{}:{}: a damaged row \"{}\" before the last one; expected {} fields starting "
                                        "with the iteration (repair or remove the row to resume)",
-                                       history.string(), i + 1, row.substr(0, 60), header.size()));
+                                       history.string(), i + 1, detail::printable_excerpt(row, 60), header.size()));
       }
       if (iteration > keep_through_iteration) {
         ++dropped;
@@ -332,6 +441,10 @@ CsvWriter RunDirectory::open_history(std::vector<std::string> header, int keep_t
     if (dropped > 0)
       notes.push_back(fmt::format("{}: {} row(s) after the checkpoint's iteration {} dropped (that work is redone)",
                                   history.string(), dropped, keep_through_iteration));
+    if (previous < keep_through_iteration && !torn_last_row)
+      throw InvalidInput(fmt::format("{}: the rows end at iteration {}; the checkpoint {} is at iteration {} (rows "
+                                     "were removed; repair the history or start the run again with --force)",
+                                     history.string(), previous, file(kCheckpoint).string(), keep_through_iteration));
   }
   detail::write_file_atomically(history, kept);
   return CsvWriter(history, std::move(header), CsvWriter::Mode::kAppend);
@@ -397,6 +510,22 @@ CaseFingerprint fingerprint_of(const CaseDescription& description, const study::
   const Eigen::MatrixXd reference = body.mesh().positions(Eigen::VectorXd::Zero(body.definition().shape.num_controls()));
   f.num_nodes = reference.rows();
   f.mesh_hash = fnv1a64(reference.data(), static_cast<std::size_t>(reference.size()) * sizeof(double));
+  // The rest of the mesh definition: the cells, every boundary group (name and facets) and the
+  // bytes of the files an imported body was made from (the .msh, or the .geo and the files it
+  // includes) — a .geo that swaps which curve is clamped leaves every node where it was.
+  const mesh::Mesh& mesh = body.mesh();
+  f.mesh_hash = fnv1a64(mesh.elements().data(), static_cast<std::size_t>(mesh.elements().size()) * sizeof(int), f.mesh_hash);
+  for (const std::string& name : mesh.boundary_names()) {
+    const mesh::BoundarySet& set = mesh.boundary(name);
+    f.mesh_hash = fnv1a64(name.data(), name.size() + 1, f.mesh_hash);  // with its '\0': names stay apart
+    f.mesh_hash = fnv1a64(set.facets.data(), static_cast<std::size_t>(set.facets.size()) * sizeof(int), f.mesh_hash);
+  }
+  if (const auto& imported = body.definition().imported_mesh)
+    for (const std::filesystem::path& source : imported->sources) {
+      std::ifstream in(source, std::ios::binary);
+      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      f.mesh_hash = fnv1a64(bytes.data(), bytes.size(), f.mesh_hash);
+    }
   return f;
 }
 

@@ -88,13 +88,15 @@ void write_contact_csv(const std::filesystem::path& path, const study::ElasticBo
   const Eigen::VectorXd area = contact_tributary_areas(body);
   const contact::ContactState& cs = result.state;
   CsvWriter csv(path, {"x1", "initial_gap", "normal_force", "pressure", "tangential_force", "tangential_traction",
-                       "tangential_displacement", "gap_after_deformation", "status"});
+                       "tangential_displacement", "gap_after_deformation", "status"},
+                CsvWriter::Mode::kReplace);
   for (Eigen::Index i = 0; i < boundary.num_nodes(); ++i) {
     const double tau = -cs.z(2 * i);
     csv.write_row({boundary.plane_coordinates()(i, 0), result.gaps(i), cs.lambda(i), cs.lambda(i) / area(i), tau,
                    tau / area(i), -cs.gradient(2 * i), cs.normal_gap(i),
                    std::string(contact::to_string(cs.nodes[static_cast<std::size_t>(i)].status))});
   }
+  csv.finish();
 }
 
 }  // namespace frictopt::io

@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/io/summary_json.hpp"
 
+#include <fmt/format.h>
+
+#include <cmath>
 #include <string>
 
 #include "frictopt/linalg/blas_threads.hpp"
+#include "frictopt/mesh/design_extension.hpp"
 
 namespace frictopt::io {
 namespace {
@@ -37,6 +41,28 @@ JsonValue integers(const std::vector<int>& list) {
 
 void add_members(JsonValue& into, const JsonValue& members) {
   for (const auto& [key, value] : members.as_object()) into[key] = value;
+}
+
+std::string cost_unit(const study::CostDefinition& cost, int dim) {
+  const bool plane = dim == 2;
+  // x^p: superscript digits for an integer exponent, "^p" otherwise.
+  const auto power = [](const std::string& base, double p) {
+    static const char* const digits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+    if (p != std::floor(p) || p < 0.0 || p > 99.0) return fmt::format("{}^{:g}", base, p);
+    const int n = static_cast<int>(p);
+    return base + (n >= 10 ? std::string(digits[n / 10]) : std::string()) + digits[n % 10];
+  };
+  switch (cost.kind) {
+    case cost::CostKind::kTargetPressure: return plane ? "N²/m²" : "N²";  // Σ(λ̄ − λ)²
+    case cost::CostKind::kNormalForcePower: return power(plane ? "(N/m)" : "N", cost.exponent);
+    case cost::CostKind::kCompliance:
+    case cost::CostKind::kDissipation: return plane ? "J/m" : "J";  // work
+    case cost::CostKind::kPressureNorm:  // (Σ a_i p_i^p)^{1/p}, a_i in m^{dim−1}
+      return fmt::format("Pa·m^{:g}", (dim - 1) / cost.exponent);
+    case cost::CostKind::kTotalSlip: return "m";
+    case cost::CostKind::kTractionUniformity: return plane ? "Pa²·m" : "Pa²·m²";  // Σ a_i ‖t_i − t̄‖²
+  }
+  return "";
 }
 
 JsonValue to_json(const study::StateSummary& s) {
@@ -298,6 +324,47 @@ JsonValue run_environment() {
   // With the default (automatic) BLAS thread count the summation order follows the machine's
   // load, so a record says which policy its round-off was produced under.
   j["blas_threads"] = linalg::describe_blas_threads();
+  // The BLAS CHOLMOD and LAPACK actually reach: its speed, and its round-off, are the run's.
+  j["blas"] = linalg::describe_loaded_blas();
+  return j;
+}
+
+JsonValue design_chart(const study::ElasticBody& body) {
+  const study::BodyDefinition& d = body.definition();
+  const shape::BezierShape& shape = d.shape;
+  const int dim = shape.dim();
+  // The chart's frame: the foundation frame of an imported body's patch, else the box's own axes
+  // (x1, x2 in-plane, the height x_dim; the Bézier surface is the box's bottom).
+  mesh::PlaneFrame frame = mesh::PlaneFrame::standard(dim);
+  Eigen::VectorXd origin = Eigen::VectorXd::Zero(dim - 1);
+  JsonValue j = JsonValue::object();
+  if (d.imported_mesh) {
+    const mesh::DesignMotion& motion = d.imported_mesh->motion;
+    if (motion.frame.normal.size() == dim) frame = motion.frame;
+    origin = mesh::patch_chart(*d.imported_mesh->reference, motion.patch, frame).origin;
+    j["patch"] = motion.patch;
+  } else {
+    j["patch"] = d.contact_surface;
+  }
+  const auto [m1, m2] = shape.control_net();
+  const auto [a, b] = shape.extents();
+  j["origin"] = origin;                                                      // [m], in the plane coordinates
+  j["extents"] = dim == 3 ? Eigen::VectorXd(Eigen::Vector2d(a, b)) : Eigen::VectorXd::Constant(1, a);  // [m]
+  JsonValue controls = JsonValue::array(), degree = JsonValue::array(), tangents = JsonValue::array();
+  for (int c = 0; c < dim - 1; ++c) {
+    const int m = c == 0 ? m1 : m2;
+    controls.push_back(m);
+    degree.push_back(m - 1);
+    tangents.push_back(Eigen::VectorXd(frame.tangents.col(c)));
+  }
+  j["control_points"] = controls;
+  j["degree"] = degree;
+  j["normal"] = frame.normal;
+  j["tangents"] = tangents;
+  j["formula"] = dim == 3 ? "G(x') = sum_{i,j} alpha[i + m1*j] B_i^{m1-1}((x'_1 - origin_1)/a) "
+                            "B_j^{m2-1}((x'_2 - origin_2)/b), x'_c = tangents[c] . x; the patch moves by G along normal"
+                          : "G(x') = sum_i alpha[i] B_i^{m1-1}((x'_1 - origin_1)/a), x'_1 = tangents[0] . x; the patch "
+                            "moves by G along normal";
   return j;
 }
 

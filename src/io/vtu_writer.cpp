@@ -196,24 +196,25 @@ void write_vtu(const std::filesystem::path& path, const VtuGrid& grid) {
   if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
     throw InvalidInput(fmt::format("write_vtu: directory '{}' does not exist", parent.string()));
 
-  // VTK writes where it is told (following links, into devices): it writes a fresh sibling
-  // that replaces the target only if that is a regular file (atomic_file.hpp).
-  const std::filesystem::path temporary = detail::make_sibling_temporary(path);
+  // VTK writes into a string, and frictopt's own writer puts it on disk (atomic_file.hpp): VTK's
+  // file stream does not report a write that fails at its final flush (a full disk gave a
+  // truncated file and no error), while write_file_atomically checks every write and the close
+  // and replaces the target only with the complete file.
+  detail::require_regular_output(path);
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
   detail::VtkErrorCapture capture(writer);
-  writer->SetFileName(temporary.c_str());
+  writer->WriteToOutputStringOn();
   writer->SetInputData(ugrid);
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff();  // raw binary: smaller and faster than base64
   writer->SetCompressorTypeToZLib();
   // 64-bit headers so files above 4 GiB (large 3D series) stay valid.
   writer->SetHeaderTypeToUInt64();
-  if (writer->Write() != 1 || capture.has_error()) {
-    std::filesystem::remove(temporary, ec);
+  if (writer->Write() != 1 || capture.has_error() || writer->GetErrorCode() != 0)
     throw InvalidInput(fmt::format("write_vtu: could not write '{}': {}", path.string(),
                                    capture.has_error() ? capture.errors() : "unknown VTK error"));
-  }
-  detail::publish_file(temporary, path);
+  const std::string xml = writer->GetOutputString();
+  detail::write_file_atomically(path, xml);
 }
 
 }  // namespace frictopt::io

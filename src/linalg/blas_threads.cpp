@@ -3,7 +3,9 @@
 
 #include <dirent.h>
 #include <dlfcn.h>
+#include <limits.h>
 #include <sched.h>
+#include <stdlib.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -136,6 +138,42 @@ std::string describe_blas_threads() {
     case BlasThreadMode::kUnavailable: s << "not controllable (the BLAS is not OpenBLAS)"; break;
   }
   return s.str();
+}
+
+std::string library_of_symbol(const char* symbol) {
+  // RTLD_DEFAULT searches the caller's lookup scope: the global scope of an executable, and for
+  // a module loaded with dlopen(RTLD_LOCAL) (the Python module) also the module's own
+  // dependencies, the scope its CHOLMOD is bound in.
+  void* address = dlsym(RTLD_DEFAULT, symbol);
+  if (address == nullptr) return {};
+  Dl_info info{};
+  if (dladdr(address, &info) == 0 || info.dli_fname == nullptr) return {};
+  // The file itself, not the alternatives' link the loader opened (libblas.so.3 and
+  // libopenblas.so.0 name different implementations on different machines).
+  char resolved[PATH_MAX];
+  if (realpath(info.dli_fname, resolved) != nullptr) return resolved;
+  return info.dli_fname;
+}
+
+bool LoadedBlas::is_openblas() const {
+  return implementation.rfind("OpenBLAS", 0) == 0 && dgemm_library.find("openblas") != std::string::npos;
+}
+
+LoadedBlas loaded_blas() {
+  using GetConfig = const char* (*)();
+  LoadedBlas b;
+  const auto config = reinterpret_cast<GetConfig>(dlsym(RTLD_DEFAULT, "openblas_get_config"));
+  const char* text = config != nullptr ? config() : nullptr;
+  b.implementation = text != nullptr ? std::string(text) : std::string("unknown");
+  // OpenBLAS' config string ends with a blank on some builds.
+  while (!b.implementation.empty() && b.implementation.back() == ' ') b.implementation.pop_back();
+  b.dgemm_library = library_of_symbol("dgemm_");
+  return b;
+}
+
+std::string describe_loaded_blas() {
+  const LoadedBlas b = loaded_blas();
+  return b.implementation + " (dgemm_ from " + (b.dgemm_library.empty() ? "nowhere" : b.dgemm_library) + ")";
 }
 
 BlasThreadsForCall::BlasThreadsForCall(double flops) {

@@ -130,7 +130,7 @@ Status CholmodSolver::analyze(const Eigen::SparseMatrix<double>& A, const std::v
   impl_->common.supernodal = CHOLMOD_SUPERNODAL;
   // An empty leading block (every unknown is trailing, e.g. one cell layer under a fixed top:
   // only the contact DOFs are free) needs no ordering; CHOLMOD's analysis of a 0 × 0 matrix
-  // returns no factor, which was dereferenced here (issue 17, item 5).
+  // returns no factor, which must not be dereferenced.
   if (!leading.empty()) {
     Eigen::SparseMatrix<double> A_ff(static_cast<Eigen::Index>(leading.size()), static_cast<Eigen::Index>(leading.size()));
     A_ff.setFromTriplets(entries.begin(), entries.end());

@@ -7,17 +7,18 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <atomic>
+#include <cstring>
+#include <fstream>
 #include <map>
-#include <mutex>
 #include <set>
 #include <system_error>
+#include <type_traits>
 #include <unordered_map>
-
-#include <stdlib.h>  // mkstemps
-#include <unistd.h>  // write, close
 
 #include "frictopt/core/error.hpp"
 #include "frictopt/mesh/elements.hpp"
+#include "mesh_child_process.hpp"
 
 namespace frictopt::mesh {
 namespace {
@@ -25,6 +26,10 @@ namespace {
 // The finest .geo meshing accepted: extent/size cells along the body's largest extent.
 constexpr double kMaxCellsPerExtent3d = 200.0;
 constexpr double kMaxCellsPerExtent2d = 2000.0;
+// The child's address space beyond the caller's: a base for Gmsh's own tables, and a share per
+// unknown allowed (GmshMeshOptions::max_unknowns).
+constexpr std::uint64_t kGmshBaseBytes = 256ull << 20;
+constexpr std::uint64_t kGmshBytesPerUnknown = 4096;
 
 // Gmsh element type numbers (Gmsh's reference manual, "MSH file format").
 constexpr int kGmshLine2 = 1;
@@ -53,18 +58,14 @@ std::string gmsh_type_name(int type) {
   return fmt::format("{} (Gmsh element type {})", name, type);
 }
 
-// Gmsh keeps one global model and is not thread-safe: every use holds this lock from
-// initialize() to finalize(), and the guard finalizes on every path (also when we throw).
-std::mutex& gmsh_mutex() {
-  static std::mutex mutex;
-  return mutex;
-}
-
+// Gmsh keeps one global model and is not thread-safe; it runs only in the child process of one
+// read (run_in_child), so the parent never holds Gmsh state and concurrent reads are separate
+// processes. The guard finalizes on every path.
 class GmshSession {
  public:
-  GmshSession() : lock_(gmsh_mutex()) {
+  GmshSession() {
     gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
-    // Never write to stdout (our outputs and the CLI's report own it); errors are collected
+    // Never write to stdout (the child's stdout is /dev/null anyway); errors are collected
     // from the logger into our messages.
     gmsh::option::setNumber("General.Terminal", 0);
     gmsh::option::setNumber("General.Verbosity", 1);
@@ -72,9 +73,6 @@ class GmshSession {
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
   ~GmshSession() { gmsh::finalize(); }
-
- private:
-  std::lock_guard<std::mutex> lock_;
 };
 
 // Runs a Gmsh call; a failure (Gmsh throws objects of unspecified type) becomes InvalidInput
@@ -85,6 +83,8 @@ void gmsh_call(const std::filesystem::path& file, std::string_view what, F&& f) 
     f();
   } catch (const InvalidInput&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    throw;  // the child's memory limit: reported with the limit by run_in_child
   } catch (...) {
     std::string error;
     try {
@@ -94,27 +94,6 @@ void gmsh_call(const std::filesystem::path& file, std::string_view what, F&& f) 
     throw InvalidInput(fmt::format("{}: Gmsh could not {}: {}", file.string(), what,
                                    error.empty() ? "no message from Gmsh" : error));
   }
-}
-
-// Gmsh 4.8's .geo parser keeps the rest of a statement it failed on and fails on it at the next
-// parse in the process, even after finalize() (reproduced: a good file then reports "line 0:
-// syntax error (;)"). Parsing a file holding only a comment consumes that rest. The file is
-// created exclusively (mkstemps) and removed again.
-void reset_geo_parser() {
-  std::string path = (std::filesystem::temp_directory_path() / "frictopt-gmsh-reset-XXXXXX.geo").string();
-  const int fd = ::mkstemps(path.data(), 4);
-  if (fd < 0) return;  // no reset possible: only a later parse in this process is affected
-  const char comment[] = "// frictopt: resets Gmsh's parser after a syntax error\n";
-  const bool written = ::write(fd, comment, sizeof(comment) - 1) == static_cast<ssize_t>(sizeof(comment) - 1);
-  ::close(fd);
-  if (written) {
-    try {
-      gmsh::merge(path);
-    } catch (...) {  // expected: the rest of the failed statement is reported here
-    }
-  }
-  std::error_code ec;
-  std::filesystem::remove(path, ec);
 }
 
 struct ElementBlock {
@@ -151,14 +130,120 @@ std::string physical_name(int dim, int tag) {
   return name.empty() ? std::to_string(tag) : name;
 }
 
-struct ReadResult {
-  Mesh mesh;
+// The mesh as Gmsh gives it, in our node numbering: what the child process sends back.
+struct RawMesh {
+  int dim = 0;
   bool subdivided = false;
-  std::vector<std::size_t> element_tags;
+  Eigen::MatrixXd X;  // num_nodes × dim
+  Connectivity cells;
+  std::vector<std::size_t> cell_tags;
+  std::vector<std::pair<std::string, Connectivity>> groups;  // boundary group → facets
 };
 
-ReadResult read(const std::filesystem::path& file, const GmshMeshOptions& options) {
+// The bytes of a RawMesh through the pipe (same binary on both sides: native layout).
+class Writer {
+ public:
+  template <class T>
+  void put(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void put_bytes(const void* data, std::size_t size) {
+    put<std::uint64_t>(size);
+    bytes_.append(static_cast<const char*>(data), size);
+  }
+  void put_matrix(const auto& m) {
+    put<std::int64_t>(m.rows());
+    put<std::int64_t>(m.cols());
+    put_bytes(m.data(), static_cast<std::size_t>(m.size()) * sizeof(*m.data()));
+  }
+  std::string take() && { return std::move(bytes_); }
+
+ private:
+  std::string bytes_;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::string& bytes) : bytes_(bytes) {}
+  template <class T>
+  T get() {
+    T v;
+    need(sizeof v);
+    std::memcpy(&v, bytes_.data() + at_, sizeof v);
+    at_ += sizeof v;
+    return v;
+  }
+  std::string get_string() {
+    const auto size = static_cast<std::size_t>(get<std::uint64_t>());
+    need(size);
+    std::string out = bytes_.substr(at_, size);
+    at_ += size;
+    return out;
+  }
+  template <class M>
+  M get_matrix() {
+    const auto rows = get<std::int64_t>(), cols = get<std::int64_t>();
+    const std::string data = get_string();
+    M m(rows, cols);
+    if (data.size() != static_cast<std::size_t>(m.size()) * sizeof(*m.data())) fail();
+    std::memcpy(m.data(), data.data(), data.size());
+    return m;
+  }
+
+ private:
+  void need(std::size_t n) const {
+    if (at_ + n > bytes_.size()) fail();
+  }
+  [[noreturn]] static void fail() { throw std::runtime_error("the Gmsh child process sent a damaged mesh"); }
+  const std::string& bytes_;
+  std::size_t at_ = 0;
+};
+
+std::string serialize(const RawMesh& raw) {
+  Writer w;
+  w.put<std::int32_t>(raw.dim);
+  w.put<std::uint8_t>(raw.subdivided ? 1 : 0);
+  w.put_matrix(raw.X);
+  w.put_matrix(raw.cells);
+  w.put_bytes(raw.cell_tags.data(), raw.cell_tags.size() * sizeof(std::size_t));
+  w.put<std::uint64_t>(raw.groups.size());
+  for (const auto& [name, facets] : raw.groups) {
+    w.put_bytes(name.data(), name.size());
+    w.put_matrix(facets);
+  }
+  return std::move(w).take();
+}
+
+RawMesh deserialize(const std::string& bytes) {
+  Reader r(bytes);
+  RawMesh raw;
+  raw.dim = r.get<std::int32_t>();
+  raw.subdivided = r.get<std::uint8_t>() != 0;
+  raw.X = r.get_matrix<Eigen::MatrixXd>();
+  raw.cells = r.get_matrix<Connectivity>();
+  const std::string tags = r.get_string();
+  raw.cell_tags.resize(tags.size() / sizeof(std::size_t));
+  std::memcpy(raw.cell_tags.data(), tags.data(), raw.cell_tags.size() * sizeof(std::size_t));
+  const auto groups = r.get<std::uint64_t>();
+  for (std::uint64_t g = 0; g < groups; ++g) {
+    std::string name = r.get_string();
+    raw.groups.emplace_back(std::move(name), r.get_matrix<Connectivity>());
+  }
+  return raw;
+}
+
+// The preconditions checked in the caller's process, before Gmsh sees the file.
+struct Checked {
+  bool is_geo = false;
+  std::vector<std::filesystem::path> sources;
+};
+
+Checked check_input(const std::filesystem::path& file, const GmshMeshOptions& options) {
   const std::string name = file.string();
+  if (name.find('\0') != std::string::npos)
+    throw InvalidInput(fmt::format("mesh file name with a NUL byte ('{}'); expected a file name without NUL",
+                                   std::string(name.c_str())));
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
     throw InvalidInput(fmt::format("{}: mesh file not found (or not a regular file); expected a Gmsh .msh or .geo file",
@@ -176,34 +261,54 @@ ReadResult read(const std::filesystem::path& file, const GmshMeshOptions& option
     throw InvalidInput(fmt::format("{}: a mesh size is given for a .msh file, which is read as it is; expected a size "
                                    "only for a .geo file",
                                    name));
-
-  GmshSession session;
-  try {
-    gmsh_call(file, "read the file", [&] { gmsh::open(name); });
-  } catch (const InvalidInput&) {
-    if (is_geo) reset_geo_parser();
-    throw;
+  if (!(options.max_unknowns > 0))
+    throw InvalidInput(fmt::format("{}: GmshMeshOptions::max_unknowns = {}; expected > 0", name, options.max_unknowns));
+  if (!(options.time_limit_seconds > 0 && options.time_limit_seconds <= 1e6))
+    throw InvalidInput(
+        fmt::format("{}: GmshMeshOptions::time_limit_seconds = {}; expected (0, 1e6]", name, options.time_limit_seconds));
+  Checked checked;
+  checked.is_geo = is_geo;
+  if (!is_geo) {
+    check_msh_file(file);
+    checked.sources = {std::filesystem::weakly_canonical(std::filesystem::absolute(file), ec)};
+  } else if (options.trust_geo) {
+    checked.sources = {std::filesystem::weakly_canonical(std::filesystem::absolute(file), ec)};
+  } else {
+    checked.sources = check_geo_file(file, options.allowed_root);
   }
+  return checked;
+}
+
+// Gmsh's part, run in the child process: read (and mesh) the file, pick the body's cells and
+// the boundary groups, renumber the nodes.
+RawMesh extract(const std::filesystem::path& file, const GmshMeshOptions& options, bool is_geo) {
+  const std::string name = file.string();
+  const bool has_size = !std::isnan(options.size);
+  GmshSession session;
+  gmsh_call(file, "read the file", [&] { gmsh::open(name); });
   int dim = gmsh::model::getDimension();
   if (is_geo) {
     if (dim < 2)
       throw InvalidInput(fmt::format("{}: the geometry has no {}; expected a 2D surface or a 3D volume", name,
                                      dim < 0 ? "entities" : "surface or volume"));
+    // Bounded before meshing, so that a mistyped size (1e-9 m) is an error and not hours of
+    // Gmsh and an exhausted memory: (extent/size)^dim cells stay near the limit of
+    // options.max_unknowns (docs/case-format.md, "Size limits").
+    double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
+    gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+    const double extent = std::max({x1 - x0, y1 - y0, z1 - z0});
+    const double max_ratio = dim == 3 ? kMaxCellsPerExtent3d : kMaxCellsPerExtent2d;
     if (has_size) {
-      // Bounded before meshing, so that a mistyped size (1e-9 m) is an error and not hours of
-      // Gmsh and an exhausted memory: (extent/size)^dim cells stay near the case files' limit
-      // of 2,000,000 unknowns (docs/case-format.md, "Size limits").
-      double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
-      gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
-      const double extent = std::max({x1 - x0, y1 - y0, z1 - z0});
-      const double max_ratio = dim == 3 ? kMaxCellsPerExtent3d : kMaxCellsPerExtent2d;
       if (extent / options.size > max_ratio)
         throw InvalidInput(fmt::format("{}: mesh size {:.3g} m for a body of extent {:.3g} m; expected size >= extent/{} = "
                                        "{:.3g} m (larger meshes exceed the limit of about 2,000,000 unknowns)",
                                        name, options.size, extent, max_ratio, extent / max_ratio));
       gmsh::option::setNumber("Mesh.MeshSizeMax", options.size);
-      gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
     }
+    // The sizes a .geo sets itself (points, fields) are bounded the same way: no element
+    // smaller than extent/max_ratio. Transfinite counts and extrusion layers are not sizes;
+    // the node count after meshing and the child's time and memory limits bound them.
+    if (std::isfinite(extent) && extent > 0) gmsh::option::setNumber("Mesh.MeshSizeMin", extent / max_ratio);
     gmsh_call(file, "mesh the geometry", [&] { gmsh::model::mesh::generate(dim); });
   }
 
@@ -218,8 +323,8 @@ ReadResult read(const std::filesystem::path& file, const GmshMeshOptions& option
     throw InvalidInput(fmt::format("{}: no surface or volume elements; expected a 2D mesh of quadrilaterals or a 3D "
                                    "mesh of hexahedra",
                                    name));
-  const int cell_type = dim == 2 ? kGmshQuad4 : kGmshHexa8;
-  const int facet_type = dim == 2 ? kGmshLine2 : kGmshQuad4;
+  int cell_type = dim == 2 ? kGmshQuad4 : kGmshHexa8;
+  int facet_type = dim == 2 ? kGmshLine2 : kGmshQuad4;
 
   std::vector<int> body_entities;
   {
@@ -237,6 +342,7 @@ ReadResult read(const std::filesystem::path& file, const GmshMeshOptions& option
   bool subdivided = false;
   auto cells_by_type = elements_of(dim, body_entities);
   const bool has_simplices = cells_by_type.count(dim == 2 ? kGmshTriangle3 : kGmshTetra4) > 0;
+  const bool only_simplices = has_simplices && cells_by_type.size() == 1;
   if (is_geo && has_simplices) {
     // No Recombine/Transfinite in the .geo: split every simplex into quads/hexes (Gmsh's
     // subdivision), the cheapest route to the Q1 cells our kernels integrate (docs/meshes.md).
@@ -248,6 +354,12 @@ ReadResult read(const std::filesystem::path& file, const GmshMeshOptions& option
     });
     subdivided = true;
     cells_by_type = elements_of(dim, body_entities);
+  } else if (!is_geo && only_simplices) {
+    // A .msh of triangles/tetrahedra only: read as they are and subdivided by the caller
+    // (subdivide_simplices), as Gmsh subdivides a .geo's.
+    cell_type = dim == 2 ? kGmshTriangle3 : kGmshTetra4;
+    facet_type = dim == 2 ? kGmshLine2 : kGmshTriangle3;
+    subdivided = true;
   }
   for (const auto& [type, block] : cells_by_type) {
     if (type == cell_type) continue;
@@ -256,8 +368,9 @@ ReadResult read(const std::filesystem::path& file, const GmshMeshOptions& option
       found += fmt::format("{}{} {}", found.empty() ? "" : ", ", b.first.size(), gmsh_type_name(t));
     throw InvalidInput(fmt::format(
         "{}: the {}D body has {}; expected only {} (frictopt's Q1 cells, docs/meshes.md: mesh the .geo with "
-        "Recombine/Transfinite, or let frictopt mesh the .geo, which subdivides simplices)",
-        name, dim, found, gmsh_type_name(cell_type)));
+        "Recombine/Transfinite, or let frictopt mesh the .geo, which subdivides simplices; a .msh of simplices "
+        "only is subdivided, or subdivide it with `gmsh -{} -setnumber Mesh.SubdivisionAlgorithm {} file.geo`)",
+        name, dim, found, gmsh_type_name(cell_type), dim, dim == 2 ? 1 : 2));
   }
   const auto cells_it = cells_by_type.find(cell_type);
   if (cells_it == cells_by_type.end() || cells_it->second.first.empty())
@@ -273,6 +386,11 @@ ReadResult read(const std::filesystem::path& file, const GmshMeshOptions& option
   std::vector<std::size_t> used(cell_nodes.begin(), cell_nodes.end());
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
+  const auto unknowns = static_cast<std::int64_t>(used.size()) * dim;
+  if (unknowns > options.max_unknowns)
+    throw InvalidInput(fmt::format("{}: the {}D body has {} nodes, {} unknowns; expected at most {} unknowns "
+                                   "(docs/case-format.md, \"Size limits\")",
+                                   name, dim, used.size(), unknowns, options.max_unknowns));
   std::unordered_map<std::size_t, int> index;  // Gmsh node tag -> our node
   index.reserve(used.size());
   for (std::size_t k = 0; k < used.size(); ++k) index.emplace(used[k], static_cast<int>(k));
@@ -294,12 +412,140 @@ ReadResult read(const std::filesystem::path& file, const GmshMeshOptions& option
     throw InvalidInput(fmt::format("{}: the 2D body spans z in [{}, {}]; expected a planar body in a plane z = const",
                                    name, z_min, z_max));
 
-  const int nodes_per_cell = dim == 2 ? 4 : 8;
+  const int nodes_per_cell = static_cast<int>(cell_nodes.size() / cell_tags.size());
   Connectivity cells(static_cast<Eigen::Index>(cell_tags.size()), nodes_per_cell);
   for (std::size_t e = 0; e < cell_tags.size(); ++e)
     for (int a = 0; a < nodes_per_cell; ++a)
       cells(static_cast<Eigen::Index>(e), a) = index.at(cell_nodes[e * static_cast<std::size_t>(nodes_per_cell) +
                                                                   static_cast<std::size_t>(a)]);
+
+  // Boundary groups: the physical groups of dimension dim − 1.
+  RawMesh raw;
+  std::set<std::string> names;
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, dim - 1);
+  for (const auto& [d, tag] : groups) {
+    const std::string group = physical_name(d, tag);
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(d, tag, entities);
+    if (entities.empty()) continue;
+    const auto facets_by_type = elements_of(dim - 1, entities);
+    const int width = facet_type == kGmshLine2 ? 2 : facet_type == kGmshTriangle3 ? 3 : 4;
+    std::vector<int> facet_nodes;
+    for (const auto& [type, block] : facets_by_type) {
+      if (type != facet_type)
+        throw InvalidInput(fmt::format("{}: physical group '{}' has {} {}; expected only {} (faces of the body's {})",
+                                       name, group, block.first.size(), gmsh_type_name(type),
+                                       gmsh_type_name(facet_type), gmsh_type_name(cell_type)));
+      for (std::size_t k = 0; k < block.second.size(); ++k) {
+        const auto it = index.find(block.second[k]);
+        if (it == index.end())
+          throw InvalidInput(fmt::format("{}: physical group '{}' has a facet on Gmsh node {}, which no cell of the "
+                                         "body uses; expected a group on the body's boundary",
+                                         name, group, block.second[k]));
+        facet_nodes.push_back(it->second);
+      }
+    }
+    if (!names.insert(group).second)
+      throw InvalidInput(fmt::format("{}: two physical groups of dimension {} are called '{}'; expected distinct names",
+                                     name, dim - 1, group));
+    Connectivity facets(static_cast<Eigen::Index>(facet_nodes.size()) / width, width);
+    for (std::size_t k = 0; k < facet_nodes.size(); ++k)
+      facets(static_cast<Eigen::Index>(k) / width, static_cast<Eigen::Index>(k) % width) = facet_nodes[k];
+    raw.groups.emplace_back(group, std::move(facets));
+  }
+  raw.dim = dim;
+  raw.subdivided = subdivided;
+  raw.X = std::move(X);
+  raw.cells = std::move(cells);
+  raw.cell_tags = cell_tags;
+  return raw;
+}
+
+// Splits a simplex mesh into Q1 cells, as Gmsh's Mesh.SubdivisionAlgorithm does for a .geo:
+// every triangle into 3 quadrilaterals (a vertex, its two edge midpoints, the centroid), every
+// tetrahedron into 4 hexahedra (a vertex, its 3 edge midpoints, its 3 face centroids, the
+// centroid); a boundary segment into 2 segments, a boundary triangle into 3 quadrilaterals
+// with the same new nodes as the cells beside it. The cell tags repeat the simplex's.
+void subdivide_simplices(RawMesh& raw) {
+  const int dim = raw.dim;
+  std::vector<Eigen::RowVectorXd> added;
+  const auto base = static_cast<int>(raw.X.rows());
+  std::map<std::vector<int>, int> centre_of;  // sorted vertices → node at their centroid
+  const auto centre = [&](std::vector<int> v) {
+    std::sort(v.begin(), v.end());
+    const auto [it, fresh] = centre_of.emplace(v, base + static_cast<int>(added.size()));
+    if (fresh) {
+      Eigen::RowVectorXd x = Eigen::RowVectorXd::Zero(dim);
+      for (int a : v) x += raw.X.row(a);
+      added.push_back(x / static_cast<double>(v.size()));
+    }
+    return it->second;
+  };
+  const Eigen::Index n = raw.cells.rows();
+  Connectivity cells(n * (dim + 1), dim == 2 ? 4 : 8);
+  std::vector<std::size_t> tags;
+  tags.reserve(static_cast<std::size_t>(cells.rows()));
+  for (Eigen::Index e = 0; e < n; ++e) {
+    const auto row = raw.cells.row(e);
+    for (int k = 0; k <= dim; ++k) {
+      const Eigen::Index out = e * (dim + 1) + k;
+      const int v = row(k), p = row((k + 1) % (dim + 1)), q = row((k + 2) % (dim + 1));
+      if (dim == 2) {
+        cells.row(out) << v, centre({v, p}), centre({v, p, q}), centre({v, q});
+      } else {
+        const int r = row((k + 3) % 4);
+        cells.row(out) << v, centre({v, p}), centre({v, p, q}), centre({v, q}), centre({v, r}), centre({v, p, r}),
+            centre({v, p, q, r}), centre({v, q, r});
+      }
+      tags.push_back(raw.cell_tags[static_cast<std::size_t>(e)]);
+    }
+  }
+  for (auto& [name, facets] : raw.groups) {
+    const int w = static_cast<int>(facets.cols());
+    Connectivity split(facets.rows() * w, w == 2 ? 2 : 4);
+    for (Eigen::Index f = 0; f < facets.rows(); ++f)
+      for (int k = 0; k < w; ++k) {
+        const int v = facets(f, k), p = facets(f, (k + 1) % w);
+        if (w == 2) {
+          if (k == 0) split.row(f * w) << v, centre({v, p});
+          else split.row(f * w + 1) << centre({v, p}), v;
+        } else {
+          const int q = facets(f, (k + 2) % w);
+          split.row(f * w + k) << v, centre({v, p}), centre({v, p, q}), centre({v, q});
+        }
+      }
+    facets = std::move(split);
+  }
+  Eigen::MatrixXd X(base + static_cast<Eigen::Index>(added.size()), dim);
+  X.topRows(base) = raw.X;
+  for (std::size_t k = 0; k < added.size(); ++k) X.row(base + static_cast<Eigen::Index>(k)) = added[k];
+  raw.X = std::move(X);
+  raw.cells = std::move(cells);
+  raw.cell_tags = std::move(tags);
+}
+
+// The caller's part: the Mesh of what the child read.
+Mesh build(const std::string& name, RawMesh raw, std::int64_t max_unknowns) {
+  const int dim = raw.dim;
+  if (raw.cells.cols() == dim + 1) {
+    subdivide_simplices(raw);
+    const auto unknowns = static_cast<std::int64_t>(raw.X.rows()) * dim;
+    if (unknowns > max_unknowns)
+      throw InvalidInput(fmt::format("{}: the {}D body subdivided into Q1 cells has {} nodes, {} unknowns; expected at "
+                                     "most {} unknowns (docs/case-format.md, \"Size limits\")",
+                                     name, dim, raw.X.rows(), unknowns, max_unknowns));
+    std::vector<bool> in_cell(static_cast<std::size_t>(raw.X.rows()), false);
+    for (Eigen::Index k = 0; k < raw.cells.size(); ++k) in_cell[static_cast<std::size_t>(raw.cells.data()[k])] = true;
+    for (const auto& [group, facets] : raw.groups)
+      for (Eigen::Index k = 0; k < facets.size(); ++k)
+        if (!in_cell[static_cast<std::size_t>(facets.data()[k])])
+          throw InvalidInput(fmt::format("{}: physical group '{}' has a facet that is not a face of the body's cells; "
+                                         "expected a group on the body's boundary",
+                                         name, group));
+  }
+  Eigen::MatrixXd X = std::move(raw.X);
+  Connectivity cells = std::move(raw.cells);
   // Gmsh's and VTK's node orders of the quadrilateral and the hexahedron agree; a cell that is
   // inverted in that order (a mirrored hand-written cell) is mirrored back.
   const ElementKind kind = dim == 2 ? ElementKind::kQuad4 : ElementKind::kHex8;
@@ -317,71 +563,95 @@ ReadResult read(const std::filesystem::path& file, const GmshMeshOptions& option
     }
   });
 
-  // Boundary sets: the named physical groups of dimension dim − 1.
   std::map<std::string, BoundarySet, std::less<>> boundaries;
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, dim - 1);
-  for (const auto& [d, tag] : groups) {
-    const std::string group = physical_name(d, tag);
-    std::vector<int> entities;
-    gmsh::model::getEntitiesForPhysicalGroup(d, tag, entities);
-    if (entities.empty()) continue;
-    const auto facets_by_type = elements_of(dim - 1, entities);
+  for (auto& [group, facets] : raw.groups) {
     BoundarySet set;
-    const int width = dim == 2 ? 2 : 4;
-    std::vector<int> facet_nodes;
-    for (const auto& [type, block] : facets_by_type) {
-      if (type != facet_type)
-        throw InvalidInput(fmt::format("{}: physical group '{}' has {} {}; expected only {} (faces of the body's {})",
-                                       name, group, block.first.size(), gmsh_type_name(type),
-                                       gmsh_type_name(facet_type), gmsh_type_name(cell_type)));
-      for (std::size_t k = 0; k < block.second.size(); ++k) {
-        const auto it = index.find(block.second[k]);
-        if (it == index.end())
-          throw InvalidInput(fmt::format("{}: physical group '{}' has a facet on Gmsh node {}, which no cell of the "
-                                         "body uses; expected a group on the body's boundary",
-                                         name, group, block.second[k]));
-        facet_nodes.push_back(it->second);
-      }
-    }
-    set.facets.resize(static_cast<Eigen::Index>(facet_nodes.size()) / width, width);
-    for (std::size_t k = 0; k < facet_nodes.size(); ++k)
-      set.facets(static_cast<Eigen::Index>(k) / width, static_cast<Eigen::Index>(k) % width) = facet_nodes[k];
-    set.nodes = facet_nodes;
+    set.nodes.assign(facets.data(), facets.data() + facets.size());
     std::sort(set.nodes.begin(), set.nodes.end());
     set.nodes.erase(std::unique(set.nodes.begin(), set.nodes.end()), set.nodes.end());
-    if (!boundaries.emplace(group, std::move(set)).second)
-      throw InvalidInput(fmt::format("{}: two physical groups of dimension {} are called '{}'; expected distinct names",
-                                     name, dim - 1, group));
+    set.facets = std::move(facets);
+    boundaries.emplace(group, std::move(set));
   }
 
   ElementDiagnostics diagnostics;
-  diagnostics.location = [tags = cell_tags, name](Eigen::Index e) {
+  diagnostics.location = [tags = raw.cell_tags, name](Eigen::Index e) {
     return fmt::format("Gmsh element {} of {}", tags[static_cast<std::size_t>(e)], name);
   };
   // The mesh as read must be valid before any design moves it: Gmsh can return a cell with an
   // inverted corner (seen when simplices are subdivided near a curved surface, e.g. the fillets
   // of cases3d/gmsh-die at size 0.007).
-  diagnostics.inverted_hint = subdivided ? " — try another mesh size, or Recombine/Transfinite in the .geo"
-                                         : " — the file's cell is not a valid hexahedron/quadrilateral";
+  diagnostics.inverted_hint = raw.subdivided ? " — try another mesh size, or Recombine/Transfinite in the .geo"
+                                             : " — the file's cell is not a valid hexahedron/quadrilateral";
   const Eigen::Index num_dofs = X.rows() * dim;
   const Mesh as_read(kind, X, cells, Eigen::SparseMatrix<double>(num_dofs, 0), boundaries, diagnostics);
   as_read.check_quality(X, "mesh as read");
   diagnostics.inverted_hint = " — the design moves the patch too far for the cells around it (smaller bounds or a "
                               "finer mesh near the patch)";
-  Mesh mesh(kind, std::move(X), std::move(cells), Eigen::SparseMatrix<double>(num_dofs, 0), std::move(boundaries),
-            std::move(diagnostics));
-  return ReadResult{std::move(mesh), subdivided, cell_tags};
+  return Mesh(kind, std::move(X), std::move(cells), Eigen::SparseMatrix<double>(num_dofs, 0), std::move(boundaries),
+              std::move(diagnostics));
+}
+
+std::atomic<bool>& trust_geo_flag() {
+  static std::atomic<bool> flag{false};
+  return flag;
 }
 
 }  // namespace
 
+bool trust_geo_by_default() { return trust_geo_flag().load(); }
+void set_trust_geo_by_default(bool trust) { trust_geo_flag().store(trust); }
+
 GmshMesh::GmshMesh(const std::filesystem::path& file, const GmshMeshOptions& options)
     : file_(file), mesh_(ElementKind::kQuad4, Eigen::MatrixXd::Zero(0, 2), Connectivity(), Eigen::SparseMatrix<double>(), {}) {
-  ReadResult result = read(file, options);
-  mesh_ = std::move(result.mesh);
-  subdivided_ = result.subdivided;
-  element_tags_ = std::move(result.element_tags);
+  const Checked checked = check_input(file, options);
+  detail::ChildLimits limits;
+  limits.seconds = options.time_limit_seconds;
+  // Gmsh's memory for a mesh within the unknowns limit (measured: well below 1 KB per unknown
+  // for the subdivided box of docs/meshes.md), with room: a .geo whose own sizes or
+  // Transfinite counts ask for far more cells ends in the child's allocation failure.
+  const std::uint64_t budget = kGmshBaseBytes + kGmshBytesPerUnknown * static_cast<std::uint64_t>(options.max_unknowns);
+  const std::uint64_t available = available_memory_bytes();
+  limits.memory_bytes = available > 0 ? std::min(available, budget) : budget;
+  limits.memory_hint = fmt::format("the limit of {} unknowns gives Gmsh {:.2g} GB", options.max_unknowns,
+                                   static_cast<double>(limits.memory_bytes) / 1e9);
+  const bool is_geo = checked.is_geo;
+  std::string bytes = detail::run_in_child(file.string(), limits,
+                                           [&] { return serialize(extract(file, options, is_geo)); });
+  RawMesh raw = deserialize(bytes);
+  bytes.clear();
+  subdivided_ = raw.subdivided;
+  element_tags_ = raw.cell_tags;
+  source_files_ = checked.sources;
+  mesh_ = build(file.string(), std::move(raw), options.max_unknowns);
+}
+
+std::uint64_t available_memory_bytes() {
+  std::uint64_t available = 0;
+  if (std::ifstream meminfo("/proc/meminfo"); meminfo) {
+    std::string key;
+    std::uint64_t kb = 0;
+    std::string unit;
+    while (meminfo >> key >> kb) {
+      std::getline(meminfo, unit);
+      if (key == "MemAvailable:") {
+        available = kb * 1024;
+        break;
+      }
+    }
+  }
+  // A cgroup (container) limit below the machine's memory.
+  if (std::ifstream max("/sys/fs/cgroup/memory.max"); max) {
+    std::string text;
+    max >> text;
+    std::uint64_t current = 0;
+    if (std::ifstream now("/sys/fs/cgroup/memory.current"); now) now >> current;
+    if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos && text.size() < 20) {
+      const std::uint64_t limit = std::stoull(text);
+      const std::uint64_t left = limit > current ? limit - current : 0;
+      if (available == 0 || left < available) available = left;
+    }
+  }
+  return available;
 }
 
 }  // namespace frictopt::mesh

@@ -48,7 +48,7 @@ std::array<int, 3> validated_cells(int dim, double height, const GridResolution&
                                    "vertical_growth)",
                                    resolution.grading));
   // Node, element and DOF indices are int: refuse a grid whose counts do not fit, before any
-  // allocation (issue 17, item 6: the counts used to wrap around in 32-bit arithmetic).
+  // allocation (in 32-bit arithmetic the counts would wrap around).
   const StructuredGridSizes sizes = structured_grid_sizes(dim, resolution);
   constexpr std::int64_t kMaxIndex = std::numeric_limits<int>::max();
   if (sizes.dofs > kMaxIndex || sizes.elements > kMaxIndex)
@@ -83,7 +83,8 @@ StructuredMesh::StructuredMesh(const shape::BezierShape& shape, double height, c
 
   const auto extent = shape.extents();
   // Column positions per in-plane direction: uniform (the formula of the uniform grid, so the
-  // default is bit-identical), or graded toward the refinement box (issue 18, item 1).
+  // default is bit-identical), or graded toward the refinement box (docs/case-format.md,
+  // "In-plane grading").
   for (int c = 0; c < dim - 1; ++c) {
     const double length = extent[static_cast<std::size_t>(c)];
     const int n = cells_[static_cast<std::size_t>(c)];

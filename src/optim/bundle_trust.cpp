@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Bundle trust method, spec 04 §6 (consolidated algorithm) with the linear constraints of
-// spec 04 §3.2 inside the direction-finding QP. Readings of the spec's open points are marked
-// "spec 04 §5 item N" where they are implemented.
+// Bundle trust method (thesis §2.5, as in docs/theory/bundle-trust.md) with the linear
+// constraints inside the direction-finding QP (§3 there). The readings of the printed
+// algorithm's open points (docs/theory/bundle-trust.md §4–§5) are marked where they are
+// implemented.
 #include "frictopt/optim/bundle_trust.hpp"
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <sstream>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/core/validation.hpp"
 #include "frictopt/optim/dense_qp.hpp"
 #include "frictopt/optim/point_units_check.hpp"
 #include "frictopt/optim/stationarity.hpp"
@@ -46,16 +48,12 @@ std::string_view to_string(StopReason reason) {
 
 namespace {
 
-template <class T>
-void require(bool ok, const char* field, T value, const char* expected) {
-  if (!ok) {
-    std::ostringstream s;
-    s << "BundleTrust::Options::" << field << " = " << value << "; expected " << expected;
-    throw InvalidInput(s.str());
-  }
+void require(bool ok, const char* field, double value, const char* expected) {
+  require_field(ok, "BundleTrust::Options", field, value, expected);
 }
 
-// Solution of the direction-finding QP (spec 04 §3.2) at center xc with parameter t.
+// Solution of the direction-finding QP (docs/theory/bundle-trust.md §3) at center xc with
+// parameter t.
 struct DirectionQp {
   bool ok = false;
   std::string message;
@@ -77,13 +75,13 @@ struct DirectionQp {
 constexpr int kMaxRefinements = 4;
 constexpr double kGapTolerance = 1e-3;
 
-// One solve of the direction-finding QP (spec 04 §3.2), min_{d,v} v + ‖d‖²/(2t) s.t.
-// g_iᵀd − v ≤ β_i, C(xc + d) ≤ c, E d = 0, written around a known point (d0, v0) with
+// One solve of the direction-finding QP (docs/theory/bundle-trust.md §3), min_{d,v} v + ‖d‖²/(2t)
+// s.t. g_iᵀd − v ≤ β_i, C(xc + d) ≤ c, E d = 0, written around a known point (d0, v0) with
 // d = d0 + D·δ, v = v0 + V·ν and D² = t·V:
 //   min ν + ‖δ‖²/2 + (d0/D)ᵀδ  s.t.  (t/D) g_iᵀδ − ν ≤ r_i/V,  C δ ≤ (c − C(xc + d0))/D,  E δ = 0,
 // r_i = β_i − g_iᵀd0 + v0 >= 0. The first solve is d0 = 0, v0 = 0, V = t·S², D = t·S with S =
 // max‖g_i‖: O(1) data whatever the units of f and x (unscaled, a subgradient of norm 1e7 made
-// the reduced Hessian look singular to the solver, issue 16). δ = 0 with ν = max(−r_i/V) is
+// the reduced Hessian look singular to the solver). δ = 0 with ν = max(−r_i/V) is
 // feasible (xc ∈ Υ, v0 the exact model value at d0), so no phase one is needed. The solver
 // holds its rows (scaled to unit norm) to 1e-10, i.e. the cuts to ~1e-10·D·‖g_i‖ in f.
 struct ScaledStep {
@@ -150,7 +148,7 @@ ScaledStep solve_scaled_step(const std::vector<BundleElement>& bundle, const Eig
 // (S = 2.4e4, G = 100, t = 3.7, tS² = 2e9) the QP returned d ≈ 0 with the primal aggregate
 // error 2e-9 while its multipliers weighed localities to σ = 2.2e-3, and on BPfilter (tS² ≈
 // 3e8 at f = 5e-3) it returned d = 0, v = 0 — "no decrease possible" — 4.5e-3 off f*; both runs
-// stalled (issue 16, fifth round). The cure is the classical one for a solve whose accuracy is
+// stalled. The cure is the classical one for a solve whose accuracy is
 // relative to the size of its data, scaled iterative refinement (Gleixner, Steffy & Wolter 2016,
 // "Iterative refinement for linear programming", INFORMS J. Comput. 28; for QPs Weber, Sager &
 // Gleixner 2019, "Solving quadratic programs to high precision using scaled iterative
@@ -341,8 +339,8 @@ BundleTrust::BundleTrust(Options options, LinearConstraints constraints)
 
 namespace {
 
-// Automatic first step = this factor × ‖x_1‖∞ (× 1 when x_1 = 0): the 10 of spec 04 §7's C_0
-// proposal, measured in units of the starting point so that it scales with x.
+// Automatic first step = this factor × ‖x_1‖∞ (× 1 when x_1 = 0): the usual 10 (C₀ in
+// docs/optim.md), measured in units of the starting point so that it scales with x.
 constexpr double kAutomaticStepFactor = 10.0;
 // Tenfold tightenings of the stopping test after an uncertified stop, before reporting "not
 // certified": two give the certificate a hundredfold margin, and a run that cannot be
@@ -355,8 +353,8 @@ constexpr int kMaxRestarts = 10;
 // Share of the predicted change that must come from the proximal term for t to grow (update_t).
 constexpr double kProximalShare = 0.1;
 
-// The accepted outcome of one inner iteration (spec 04 §4): the new bundle element and what
-// the step rule needs to update t.
+// The accepted outcome of one inner iteration (docs/theory/bundle-trust.md §4): the new bundle
+// element and what the step rule needs to update t.
 struct Trial {
   StepKind kind = StepKind::kStart;
   Eigen::VectorXd y;
@@ -369,7 +367,7 @@ struct Trial {
   DirectionQp qp;        // the last QP at x_k (aggregates for the reset)
 };
 
-// One run of the method: the consolidated algorithm of spec 04 §6, split along its phases
+// One run of the method: the algorithm of docs/theory/bundle-trust.md §4–§5, split along its phases
 // (inner iteration, line search, reset, update, step rule, stopping test).
 class Run {
  public:
@@ -420,8 +418,14 @@ class Run {
   // bundle of the center st.x (also for the first evaluation, from minimize).
   void add_piece_cuts(BundleTrust::IterationSummary& st, const Eigen::VectorXd& y, const Evaluation& e) const;
 
-  // Outer loop (spec 04 §6): inner iteration → reset → update → step rule → observation.
+  // Outer loop (docs/theory/bundle-trust.md §4–§5): inner iteration → reset → update → step rule →
+  // observation.
   void run(BundleTrust::IterationSummary& st) {
+    // A resumed run continues the safeguards of the run it resumes (IterationSummary).
+    restarts_ = st.restarts;
+    tightenings_ = st.tightenings;
+    test_factor_ = st.test_factor;
+    resolution_reached_ = st.resolution_reached;
     update_scales(st);
     while (st.iteration < o_.max_iterations) {
       Trial trial;
@@ -435,12 +439,12 @@ class Run {
   }
 
  private:
-  // Locality β = max(|α|, γ s²/t_ref) (spec 04 §5 item 8 with γ → γ/t_ref): s²/t_ref has the
-  // units of f (t is in x²/f), so β — and with it the method — reads the same for f·c and x·c
-  // (with the automatic first step), which the spec's γ s² does not (docs/optim.md).
+  // Locality β = max(|α|, γ s²/t_ref) (docs/theory/bundle-trust.md §2 with γ → γ/t_ref): s²/t_ref
+  // has the units of f (t is in x²/f), so β — and with it the method — reads the same for f·c and
+  // x·c (with the automatic first step), which a fixed γ s² does not (docs/optim.md).
   // t_ref starts at t_1 = C_0/‖g_1‖ and grows only with the region the run has shown the
   // problem to span (grow_locality_unit); shrinking t therefore makes new cuts more local, as
-  // in the spec's fixed-γ reading. (Tried and rejected on the test set: t_ref = current t makes
+  // in the fixed-γ reading. (Tried and rejected on the test set: t_ref = current t makes
   // every trial as "far" as the predicted decrease and t collapses; t_ref = t of the last
   // serious step let the growth of t weaken locality until nonconvex problems stopped at
   // non-optimal stationary points.)
@@ -482,7 +486,7 @@ class Run {
   // smooth minimum (g(x_k) → 0) or a zero optimal value (f(x_k) → 0) still ends the run.
   // Known limit of the value floor: where f(x_1) > f*/√ε, F is the floor, not |f|, and the test
   // accepts value errors up to ε^1.5·|f(x_1)| (MAD8 at ε = 1e-6: f(x_1) = 2.2e4, F = 21.9 at
-  // f = 0.507). The floor ε·|f(x_1)| was tried (issue 16, fourth round) and rejected: at f* = 0
+  // f = 0.507). The floor ε·|f(x_1)| was tried and rejected: at f* = 0
   // it asks the direction QP's multipliers for an aggregate error of ε²·|f(x_1)|, below the QP's
   // resolution, and weighted-ℓ1 runs that reach f = 0 exactly ended "not certified"
   // (BundleTrust.ConvergesWithTheThesisVariantThatNeverEnlargesT,
@@ -591,8 +595,8 @@ class Run {
       test_factor_ *= 0.1;
       return Check::kRestart;
     }
-    // (The restart and tightening counters belong to this minimize/resume call; a resumed run
-    // starts them afresh.)
+    // (The restart and tightening counters belong to the run: the checkpoint carries them
+    // through IterationSummary, so a resumed run continues them.)
     std::ostringstream m;
     m << "the stopping test passed (|z+w| = " << st.stationarity * st.objective_scale
       << ", agg. error = " << st.aggregate_error * st.objective_scale << ") but ";
@@ -610,24 +614,25 @@ class Run {
     return Check::kNotCertified;
   }
 
-  // Inner iteration (spec 04 §4 with (a′) of §5 item 5, the line search of item 6 and the
-  // safeguards of item 12). Fills `out` and returns true, or ends the run and returns false.
+  // Inner iteration (docs/theory/bundle-trust.md §4 with the reading (a′), the line search (c)(i)
+  // and the safeguards). Fills `out` and returns true, or ends the run and returns false.
   bool inner_iteration(BundleTrust::IterationSummary& st, Trial& out);
-  // Line search (c)(i) along x + s d (spec 04 §5 item 6), after the trial s = 1 was rejected.
+  // Line search (c)(i) along x + s d (docs/theory/bundle-trust.md §4), after the trial s = 1 was
+  // rejected.
   void line_search(const BundleTrust::IterationSummary& st, const DirectionQp& qp, Trial& trial);
   // Variable metric (Options::variable_metric): the pair s = x_{k+1} − x_k, u = g(x_{k+1}) − z_k of
   // a serious step (diagonal_metric.hpp). z_k, the aggregate of the QP that gave the step, is the
   // model's subgradient at x_k; Lukšan–Vlček's variable-metric bundle methods take the aggregate
-  // subgradient too. Measured on the test set (docs/optim-testset.md, seventh round): with
+  // subgradient too. Measured on the test set (docs/optim-testset.md): with
   // u = g(x_{k+1}) − g(x_k), the subgradient of one piece at x_k, 70 of 72 runs were solved at
   // ε = 1e-6 and 1e-7 (ShellDual ended stalled 3.2e-6 off); with z_k, 71 at every ε.
   void update_metric(BundleTrust::IterationSummary& st, const Eigen::VectorXd& dx, const Eigen::VectorXd& u) const {
     st.null_streak = 0;
     update_diagonal_metric(st.metric, dx, u, o_.metric_memory, o_.metric_ratio_bound, o_.metric_damping);
   }
-  // Reset (spec 04 §4 step 5, §5 item 10), before the new elements are inserted.
+  // Reset (docs/theory/bundle-trust.md §5; thesis step 5), before the new elements are inserted.
   void reset_bundle(BundleTrust::IterationSummary& st, const Trial& trial) const;
-  // Update (spec 04 §6, SERIOUS / NULL; §5 items 7 and 9).
+  // Update (docs/theory/bundle-trust.md §5, SERIOUS / NULL).
   void update_bundle(BundleTrust::IterationSummary& st, const Trial& trial) const;
 
   // Step rule for the next inner iteration (docs/optim.md, "step bound").
@@ -669,8 +674,8 @@ class Run {
 
 bool Run::inner_iteration(BundleTrust::IterationSummary& st, Trial& out) {
   const double t_min = o_.t_min_relative * st.t_start;
-  // Bracket [l, u] for t (spec 04 §4 step 1). u starts at the adaptive upper end: at most
-  // t_growth_limit·t (Kiwiel's safeguard), and never above the user's cap.
+  // Bracket [l, u] for t (docs/theory/bundle-trust.md §4). u starts at the adaptive upper end: at
+  // most t_growth_limit·t (Kiwiel's safeguard), and never above the user's cap.
   double l = 0.0;
   double t = st.t;
   double u = o_.t_growth_limit * t;
@@ -697,7 +702,7 @@ bool Run::inner_iteration(BundleTrust::IterationSummary& st, Trial& out) {
       }
       st.t = t;
       std::ostringstream msg;
-      msg << "inner iteration failed (spec 04 §5 item 12): "
+      msg << "inner iteration failed (docs/theory/bundle-trust.md §4): "
           << (t < t_min ? "t fell below t_min = " : "more than max_inner_iterations trials; t = ")
           << (t < t_min ? t_min : t);
       if (!last_failure_.empty()) msg << "; last oracle failure: " << last_failure_;
@@ -717,7 +722,7 @@ bool Run::inner_iteration(BundleTrust::IterationSummary& st, Trial& out) {
     st.stationarity = qp.stationarity;
     st.aggregate_error = qp.aggregate_error;
     st.predicted_change = qp.v;
-    if (stopping_test(st, qp)) {  // spec 04 §5 item 2 (v^j), relative form
+    if (stopping_test(st, qp)) {  // docs/theory/bundle-trust.md §3 (v^j), relative form
       st.t = t;
       std::string why;
       if (!o_.certify_stationarity) {
@@ -825,7 +830,7 @@ void Run::reset_bundle(BundleTrust::IterationSummary& st, const Trial& trial) co
   const DirectionQp& qp = trial.qp;
   const auto j_max = static_cast<std::size_t>(s_.bundle_size_used);
   // The update adds the trial's cut and its pieces' cuts: room for all of them, so that the
-  // bundle never exceeds j_max (with one cut per evaluation: the spec's size < j_max).
+  // bundle never exceeds j_max (with one cut per evaluation: the printed size < j_max).
   const std::size_t incoming = 1 + trial.e.pieces.size();
   if (st.bundle.size() + incoming <= j_max) return;
   const Eigen::VectorXd& theta = qp.theta;
@@ -926,9 +931,9 @@ void Run::update_bundle(BundleTrust::IterationSummary& st, const Trial& trial) c
   update_scales(st);
 }
 
-// Step rule. Spec 04 §5 item 4 keeps t_k = t^j of the accepted trial; the bracket of the inner
-// iteration can only shrink it (or, with enlarge_t, raise it within one growth factor). On top
-// of that, after a serious step whose actual change reached m_R times the predicted one, t
+// Step rule. docs/theory/bundle-trust.md §4 keeps t_k = t^j of the accepted trial; the bracket of
+// the inner iteration can only shrink it (or, with enlarge_t, raise it within one growth factor).
+// On top of that, after a serious step whose actual change reached m_R times the predicted one, t
 // grows to Kiwiel's interpolation t/(2(1 − Δ/v)) — the t for which the quadratic through f(x),
 // the slope v/t and f(y) would predict exactly the decrease observed — limited to
 // t_growth_limit·t (Kiwiel 1990, §3; the same safeguard as his u_{k+1} >= u_k/10). After a
@@ -965,6 +970,11 @@ void Run::update_t(BundleTrust::IterationSummary& st, const Trial& trial) {
 bool Run::record(BundleTrust::IterationSummary& st, const Trial& trial) {
   ++st.iteration;
   st.evaluations = s_.evaluations;
+  st.restarts = restarts_;
+  st.tightenings = tightenings_;
+  st.test_factor = test_factor_;
+  st.resolution_reached = resolution_reached_;
+  st.bundle_size_used = s_.bundle_size_used;
   const double scale = st.objective_scale;
   if (o_.keep_history) {
     s_.history.push_back({st.iteration, st.evaluations, trial.kind, st.f * scale, trial.t,
@@ -987,11 +997,11 @@ int automatic_bundle_size(const BundleTrust::Options& o, Eigen::Index n) {
   return o.max_bundle_size > 0 ? o.max_bundle_size : static_cast<int>(std::max<Eigen::Index>(10, 2 * n));
 }
 
-// The default converged path (docs/optim.md, "Confirmation in the point's units"; issue 16,
-// eighth round). The proximal term and the stopping test are Euclidean, so a stop can be
-// stationary to ε in x and not in the per-coordinate units u of the point (HS114 at ε = 1e-6:
-// "converged" 4.8e-6 off f*, variables from 1 to 1.6e4). Where u is nearly uniform the check is
-// skipped: the method is invariant under x → c·x, and reading the stop's measures in x ⊘ u
+// The default converged path (docs/optim.md, "Confirmation in the point's units";
+// docs/theory/bundle-trust.md §6). The proximal term and the stopping test are Euclidean, so a
+// stop can be stationary to ε in x and not in the per-coordinate units u of the point (HS114 at
+// ε = 1e-6: "converged" 4.8e-6 off f*, variables from 1 to 1.6e4). Where u is nearly uniform the
+// check is skipped: the method is invariant under x → c·x, and reading the stop's measures in x ⊘ u
 // changes them by at most the spread κ = max u / min u (‖u ∘ z‖/‖u ∘ g‖ ≤ κ‖z‖/‖g‖, and δρ ≤ κ
 // times its Euclidean value), so the stop is κε-stationary in those units too — with κ ≤ 10
 // within the factor 10 between the default ε and the accuracy it is meant for.
@@ -1043,7 +1053,7 @@ BundleTrust::Summary BundleTrust::minimize(Oracle& oracle,
   st.objective_scale = options_.scale_objective ? std::max(std::abs(e1.f), 1e-300) : 1.0;
   rescale(e1, st.objective_scale);
   s.objective_scale = st.objective_scale;
-  // t_1: a first step of length max_step_length (spec 04 §7's C_0), or the user's t_1.
+  // t_1: a first step of length max_step_length (C₀ of docs/optim.md), or the user's t_1.
   // First step length C_0: the user's max_step_length, or 10·‖x_1‖∞ (10 when x_1 = 0) — a
   // length in the units of x, so that t_1 and everything after it scale with x.
   const double x_size = x0.lpNorm<Eigen::Infinity>();
@@ -1062,7 +1072,7 @@ BundleTrust::Summary BundleTrust::minimize(Oracle& oracle,
   st.f_start = e1.f;
   st.g_start_norm = e1.g.norm();
   st.g_start = e1.g;
-  st.z_prev = e1.g;     // spec 04 §5 item 3: z_0 = g_1, σ_0 = 0
+  st.z_prev = e1.g;     // docs/theory/bundle-trust.md §4: z_0 = g_1, σ_0 = 0
   st.sigma_prev = 0.0;
   BundleElement c;
   c.g = e1.g;
@@ -1101,7 +1111,8 @@ BundleTrust::Summary BundleTrust::resume(Oracle& oracle, const IterationSummary&
   s.t_max_given = options_.t_max;
   s.t_max_used = checkpoint.t_max;
   s.bundle_size_given = options_.max_bundle_size;
-  s.bundle_size_used = std::max<int>(automatic_bundle_size(options_, n), static_cast<int>(checkpoint.bundle.size()));
+  s.bundle_size_used = std::max<int>({automatic_bundle_size(options_, n), static_cast<int>(checkpoint.bundle.size()),
+                                       options_.max_bundle_size > 0 ? 0 : checkpoint.bundle_size_used});
   s.evaluations = checkpoint.evaluations;
   IterationSummary st = checkpoint;
   st.f = checkpoint.f / checkpoint.objective_scale;  // callbacks see unscaled f

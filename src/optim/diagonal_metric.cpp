@@ -98,7 +98,7 @@ bool update_diagonal_metric(DiagonalMetric& metric, const Eigen::VectorXd& s, co
   // keeps the geometric mean 1 and the bound κ. Why: the estimate from subgradient differences of
   // a nonsmooth f jumps with the pieces met (on polyhedral problems it is noise); undamped, the
   // metric changed the proximal term at every serious step and cost up to 7x the evaluations on
-  // L1HILB and MXHILB (docs/optim-testset.md, seventh round).
+  // L1HILB and MXHILB (docs/optim-testset.md).
   if (damping < 1.0) {
     const Eigen::ArrayXd old =
         metric.h.size() == h.size() ? Eigen::ArrayXd(metric.h.array().log()) : Eigen::ArrayXd(Eigen::ArrayXd::Zero(h.size()));

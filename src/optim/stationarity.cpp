@@ -66,7 +66,7 @@ StationarityCertificate stationarity_certificate(const Eigen::Ref<const Eigen::M
                        "; expected a feasible point (N_Υ(x) is defined on Υ only)");
 
   StationarityCertificate out;
-  // Deduplicate: many selections give identical ξ (spec 06 §6.2).
+  // Deduplicate: many selections give identical ξ (docs/theory/stationarity.md §2).
   std::vector<Eigen::Index> group;
   const std::vector<Eigen::Index> rep = distinct_columns(Xi, options.duplicate_tolerance, group);
   const auto m = static_cast<Eigen::Index>(rep.size());
@@ -82,7 +82,7 @@ StationarityCertificate stationarity_certificate(const Eigen::Ref<const Eigen::M
   const auto pa = static_cast<Eigen::Index>(out.active_inequalities.size());
   const Eigen::Index q = gf.E.rows();
   // Variables w = (θ, η, ζ); M w = Ξθ + C_Aᵀη + Eᵀζ; objective ½‖Mw‖² (H = MᵀM, PSD).
-  // Scaling (issue 16): the subgradient columns are divided by S = max‖ξ_i‖ and every
+  // Scaling: the subgradient columns are divided by S = max‖ξ_i‖ and every
   // constraint normal by its own norm (η, ζ absorb the factors; η ≥ 0 is kept), so H has O(1)
   // entries whatever the units: unscaled, ‖ξ‖ ~ 1e15 next to unit normals left the active-set
   // solver without a usable tolerance. δ = S·min‖M̂ŵ‖.

@@ -81,7 +81,7 @@ PieceLinearization linearize_piece(const Piece& piece, const contact::FrictionLa
       case TangentialBranch::kSmoothSlip: {
         // q − λ w(u_t) = 0; δ: δq − w δλ − λ Dw δu_t, with δu_t = −(G δu)_t.
         const Eigen::Vector2d w = law.exposed_point(ut);
-        const Eigen::Matrix2d Dw = detail::exposed_point_jacobian(law, ut);
+        const Eigen::Matrix2d Dw = law.exposed_point_jacobian(ut);
         for (int c = 0; c < 2; ++c) {
           cz.emplace_back(base + c, base + c, 1.0);
           cz.emplace_back(base + c, normal, -w(c));
@@ -128,8 +128,9 @@ namespace {
 
 // The contact rows split into "identity" rows (z_k = 0 only: C_z row = e_k, S row empty) and
 // the active rest A; R = z-indices not fixed by identity rows; T = z-indices S acts on.
-// Then the contact-sized systems reduce to K[R, A] with M needed only on R × T (spec 03 §7's
-// elimination of λ = 0 and u_t = 0 unknowns, written for the dual variables).
+// Then the contact-sized systems reduce to K[R, A] with M needed only on R × T (the
+// elimination of the trivially fixed unknowns behind the thesis' V4.4.1,
+// docs/theory/sensitivity.md §5, written for the dual variables).
 struct Reduction {
   std::vector<Eigen::Index> active_rows;  // A
   std::vector<Eigen::Index> free_z;       // R

@@ -13,33 +13,17 @@ namespace frictopt::sensitivity {
 namespace {
 
 using detail::cross;
-using detail::exposed_point_axis_jacobian;
 
 }  // namespace
 
 contact::FrictionLaw with_friction_parameters(const contact::FrictionLaw& law, const Eigen::Ref<const Eigen::VectorXd>& values,
                                               FrictionParameterOptions options) {
-  using contact::FrictionLaw;
-  using contact::FrictionLawKind;
   const Eigen::Index expected = friction_parameters(law, options).values.size();
   if (values.size() != expected)
     throw InvalidInput(fmt::format("{}: {} friction parameter values given; expected {}", law.describe(), values.size(), expected));
-  const int n = static_cast<int>(law.vertices().size());
   // The coefficients build the unturned law; the orientation is applied last.
   const double orientation = options.orientation ? values(expected - 1) : law.orientation();
-  const Eigen::VectorXd mu = values.head(options.orientation ? expected - 1 : expected);
-  const auto unturned = [&]() -> FrictionLaw {
-    switch (law.kind()) {
-      case FrictionLawKind::kInterval: return FrictionLaw::interval(mu(0), mu(1));
-      case FrictionLawKind::kDisc: return FrictionLaw::disc(mu(0));
-      case FrictionLawKind::kRegularPolygon: return FrictionLaw::regular_polygon(mu(0), n);
-      case FrictionLawKind::kPolygon: return FrictionLaw::polygon({mu.data(), mu.data() + mu.size()});
-      case FrictionLawKind::kEllipse: return FrictionLaw::ellipse(mu(0), mu(1));
-      case FrictionLawKind::kEllipsePolygon: return FrictionLaw::ellipse_polygon(mu(0), mu(1), n);
-    }
-    return law;
-  };
-  return unturned().rotated(orientation);
+  return law.with_coefficients(values.head(options.orientation ? expected - 1 : expected), orientation);
 }
 
 Eigen::MatrixXd friction_parameter_rows(const Piece& piece, const contact::FrictionLaw& law,
@@ -76,9 +60,9 @@ Eigen::MatrixXd friction_parameter_rows(const Piece& piece, const contact::Frict
           break;
         }
         case TangentialBranch::kSmoothSlip: {
-          Eigen::Vector2d dw = exposed_point_axis_jacobian(law, state.u_t(i)) * params.semi_axis_derivatives[kk];
+          Eigen::Vector2d dw = law.exposed_point_coefficient_jacobian(state.u_t(i)) * params.semi_axis_derivatives[kk];
           if (params.orientation_derivatives[kk] != 0.0)
-            dw += params.orientation_derivatives[kk] * detail::exposed_point_orientation_derivative(law, state.u_t(i));
+            dw += params.orientation_derivatives[kk] * law.exposed_point_orientation_derivative(state.u_t(i));
           for (int c = 0; c < 2; ++c) rows(base + c, k) = -lambda * dw(c);
           break;
         }

@@ -57,7 +57,8 @@ std::vector<NodePiece> node_alternatives(const NodeSets& s, const contact::Frict
   const bool polygon3d = law.is_polygonal() && law.dim() == 3;
   if (s.normal == NormalSet::kNoContact) return {kZeroForceNode};
   if (s.normal == NormalSet::kWeakContact) {
-    // Rule R2 (spec 03, §3.1), generalized: no force, or contact with any tangential branch.
+    // Rule R2 (docs/theory/sensitivity.md §4), generalized: no force, or contact with any
+    // tangential branch.
     std::vector<NodePiece> alternatives{kZeroForceNode};
     if (law.is_zero()) {
       alternatives.push_back(contact_node(TangentialBranch::kZeroFriction));
@@ -72,7 +73,8 @@ std::vector<NodePiece> node_alternatives(const NodeSets& s, const contact::Frict
   }
   switch (s.tangential) {
     case TangentialSet::kWeakStickVertex: {
-      // Spec 03, §14.3 [ADDITION]: stick, sector slip, and (3D) the rays of both adjacent edges.
+      // Completing the thesis' (6.1) (docs/theory/sensitivity.md §4): stick, sector slip, and (3D)
+      // the rays of both adjacent edges.
       std::vector<NodePiece> alternatives{contact_node(TangentialBranch::kStick),
                                           contact_node(TangentialBranch::kVertexSlip, s.vertex)};
       if (polygon3d) {

@@ -1,32 +1,33 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/shape/bezier_shape.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/core/validation.hpp"
 #include "frictopt/shape/bernstein.hpp"
 
 namespace frictopt::shape {
 namespace {
-void require(bool ok, const std::string& message) {
-  if (!ok) throw InvalidInput(message);
-}
+
 }  // namespace
 
 BezierShape::BezierShape(int dim, std::array<double, 2> extent, std::array<int, 2> m)
     : dim_(dim), extent_(extent), m_(m) {}
 
 BezierShape BezierShape::curve(double a, int m1) {
-  require(a > 0, "BezierShape: a = " + std::to_string(a) + "; expected > 0");
-  require(m1 >= 2, "BezierShape: control points = " + std::to_string(m1) + "; expected >= 2");
+  require_field(a > 0 && std::isfinite(a), "BezierShape", "a", a, "a finite value > 0");
+  require_field(m1 >= 2, "BezierShape", "control points", m1, ">= 2");
   return BezierShape(2, {a, 1.0}, {m1, 1});
 }
 
 BezierShape BezierShape::surface(double a, double b, int m1, int m2) {
-  require(a > 0, "BezierShape: a = " + std::to_string(a) + "; expected > 0");
-  require(b > 0, "BezierShape: b = " + std::to_string(b) + "; expected > 0");
-  require(m1 >= 2 && m2 >= 2, "BezierShape: control net = " + std::to_string(m1) + " x " +
-                                  std::to_string(m2) + "; expected at least 2 x 2");
+  require_field(a > 0 && std::isfinite(a), "BezierShape", "a", a, "a finite value > 0");
+  require_field(b > 0 && std::isfinite(b), "BezierShape", "b", b, "a finite value > 0");
+  if (m1 < 2 || m2 < 2) {
+    fail_field("BezierShape", "control net", std::to_string(m1) + " x " + std::to_string(m2), "at least 2 x 2");
+  }
   return BezierShape(3, {a, b}, {m1, m2});
 }
 

@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cmath>
 
 #include <Eigen/Geometry>
 #include <Eigen/QR>
@@ -11,16 +13,59 @@
 #include "frictopt/core/error.hpp"
 #include "frictopt/fem/boundary_conditions.hpp"
 #include "frictopt/mesh/design_extension.hpp"
+#include "frictopt/mesh/gmsh_mesh.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
 
 namespace frictopt::study {
 
+namespace {
+
+// Calibration of estimated_peak_bytes: peak resident memory of `frictopt solve` on the punch at
+// 100,900 unknowns (docs/case-format.md, "Size limits").
+constexpr double kCalibrationUnknowns = 100'900.0;
+constexpr double kCalibrationBytes = 2.07e9;
+
+std::atomic<std::uint64_t>& memory_limit_bytes() {
+  static std::atomic<std::uint64_t> limit{0};
+  return limit;
+}
+
+}  // namespace
+
+double estimated_peak_bytes(std::int64_t unknowns) {
+  return kCalibrationBytes * std::pow(static_cast<double>(unknowns) / kCalibrationUnknowns, 4.0 / 3.0);
+}
+
+void set_memory_limit(std::uint64_t bytes) { memory_limit_bytes().store(bytes); }
+std::uint64_t memory_limit() { return memory_limit_bytes().load(); }
+
+void check_mesh_size(const mesh::Mesh& mesh, const std::string& source) {
+  const std::int64_t unknowns = static_cast<std::int64_t>(mesh.num_nodes()) * mesh.dim();
+  const double estimate = estimated_peak_bytes(unknowns);
+  if (unknowns > kMaxUnknowns)
+    throw InvalidInput(fmt::format("{}: the body has {} nodes, {} unknowns; expected at most {} unknowns (about {:.3g} GB "
+                                   "of memory; docs/case-format.md, \"Size limits\")",
+                                   source, mesh.num_nodes(), unknowns, kMaxUnknowns, estimate / 1e9));
+  const std::uint64_t set = memory_limit();
+  const std::uint64_t limit = set > 0 ? set : mesh::available_memory_bytes();
+  if (limit > 0 && estimate > static_cast<double>(limit))
+    throw InvalidInput(fmt::format("{}: the body has {} unknowns, whose solve needs about {:.3g} GB of memory; expected "
+                                   "at most {:.3g} GB ({}; docs/case-format.md, \"Size limits\": a coarser mesh, or "
+                                   "--max-memory GB to allow more)",
+                                   source, unknowns, estimate / 1e9, static_cast<double>(limit) / 1e9,
+                                   set > 0 ? "the --max-memory limit" : "the memory available on this machine"));
+}
+
 mesh::Mesh build_mesh(const BodyDefinition& definition) {
-  if (!definition.imported_mesh)
-    return mesh::StructuredMesh(definition.shape, definition.height, definition.resolution).take_mesh();
+  if (!definition.imported_mesh) {
+    mesh::Mesh grid = mesh::StructuredMesh(definition.shape, definition.height, definition.resolution).take_mesh();
+    check_mesh_size(grid, "mesh.cells");
+    return grid;
+  }
   const ImportedMeshDefinition& imported = *definition.imported_mesh;
   if (!imported.reference) throw InvalidInput("imported mesh: no mesh was read");
   const mesh::Mesh& reference = *imported.reference;
+  check_mesh_size(reference, imported.file.string());
   const std::string& patch = imported.motion.patch;
   // Γ_d ⊂ Γ_c (spec 07 §5): the gap of a contact node moves with the patch only.
   if (definition.contact) {

@@ -83,6 +83,13 @@ ProgramHistory::ProgramHistory(ElasticBody& body, const CostDefinition& definiti
   step_cost_ = make_cost(one_step, body_, initial);
 }
 
+void ProgramHistory::set_warm_starts(std::vector<std::optional<contact::ContactState>> states) {
+  if (states.size() != warm_starts_.size())
+    throw InvalidInput(fmt::format("ProgramHistory::set_warm_starts: {} states; expected one per step ({})",
+                                   states.size(), warm_starts_.size()));
+  warm_starts_ = std::move(states);
+}
+
 std::string ProgramHistory::name() const {
   return dissipation_ ? step_cost_->name() : fmt::format("{} at step {}", step_cost_->name(), cost_step_ + 1);
 }

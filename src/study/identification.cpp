@@ -74,24 +74,6 @@ std::string format_point(const Eigen::VectorXd& x) {
   return s + ")";
 }
 
-// Gauge of x with respect to the friction set W: the smallest t with x ∈ t·W.
-double gauge(const contact::FrictionLaw& law, const Eigen::Vector2d& x) {
-  if (law.is_polygonal()) {
-    if (law.kind() == contact::FrictionLawKind::kInterval) {
-      const auto w = law.vertices();
-      return x(0) >= 0 ? x(0) / w[1](0) : x(0) / w[0](0);
-    }
-    double g = 0.0;
-    const auto e = law.edge_normals();
-    const auto h = law.edge_heights();
-    for (std::size_t j = 0; j < e.size(); ++j) g = std::max(g, e[j].dot(x) / h[j]);
-    return g;
-  }
-  const Eigen::Vector2d a = law.semi_axes();
-  const Eigen::Vector2d xl = law.frame().transpose() * x;  // in the law's own axes
-  return std::hypot(xl(0) / a(0), xl(1) / a(1));
-}
-
 }  // namespace
 
 std::string_view to_string(MeasuredQuantity quantity) { return kQuantities.name(quantity); }
@@ -602,7 +584,7 @@ Identification::Summary Identification::run() {
         double g = 0.0;
         for (Eigen::Index i = 0; i < s.num_nodes; ++i) {
           const double lambda = state.lambda(i);
-          if (lambda > 0) g = std::max(g, gauge(law, state.q(i) / lambda));
+          if (lambda > 0) g = std::max(g, law.gauge(state.q(i) / lambda));
         }
         e.note = s.friction_values0.size() == 1
                      ? fmt::format("only a lower bound: {} >= {:.6g} (every contact node sticks, so any larger "

@@ -22,10 +22,7 @@ OrientationDesign::OrientationDesign(const OrientationDesignDefinition& definiti
     throw InvalidInput("design.friction_orientation = true: a 2D interval law has no orientation (its tangent space is "
                        "a line); expected a 3D anisotropic law (polygon, ellipse, ellipse_exact) or "
                        "friction_orientation = false");
-  const Eigen::Vector2d axes = law.semi_axes();
-  const bool isotropic = law.kind() == contact::FrictionLawKind::kDisc ||
-                         (law.kind() == contact::FrictionLawKind::kEllipse && axes(0) == axes(1));
-  if (isotropic)
+  if (law.is_isotropic())
     throw InvalidInput(fmt::format("design.friction_orientation = true: the law {} is isotropic, Θ does not depend on "
                                    "its orientation; expected an anisotropic 3D law (polygon, ellipse with mu_x != "
                                    "mu_y) or friction_orientation = false",

@@ -84,5 +84,46 @@ optim::BundleTrust::Summary optimize(ShapeOracle& oracle, optim::BundleTrust::Op
   return summary;
 }
 
+std::string_view to_string(OptimizationOutcome::Kind kind) {
+  switch (kind) {
+    case OptimizationOutcome::Kind::kCertified: return "certified";
+    case OptimizationOutcome::Kind::kLimitReached: return "limit_reached";
+    case OptimizationOutcome::Kind::kNeedsAttention: return "needs_attention";
+    case OptimizationOutcome::Kind::kFailed: return "failed";
+  }
+  return "unknown";
+}
+
+OptimizationOutcome assess_outcome(const optim::BundleTrust::Summary& summary, const Evaluation& final) {
+  using Kind = OptimizationOutcome::Kind;
+  OptimizationOutcome o;
+  if (!final.ok) {
+    o.kind = Kind::kFailed;
+    return o;
+  }
+  switch (summary.status) {
+    case Status::kConverged: o.kind = Kind::kCertified; break;
+    case Status::kMaxIterations: o.kind = Kind::kLimitReached; break;
+    case Status::kStalled:
+      o.kind = Kind::kNeedsAttention;
+      o.attention.push_back(fmt::format("the method stopped without certifying stationarity ({}): {}",
+                                        optim::to_string(summary.stop_reason), summary.message));
+      break;
+    default: o.kind = Kind::kFailed; return o;
+  }
+  // With every contact node separated (M) or touching without force (I0), the state and Θ do not
+  // change under small design changes: ξ = 0 and the certificate holds trivially.
+  const int strong = final.index_sets.count(sensitivity::NormalSet::kStrongContact);
+  if (strong == 0) {
+    o.kind = Kind::kNeedsAttention;
+    o.attention.push_back(fmt::format(
+        "no contact at the final design: no contact node carries force (index sets {}), so the body does not "
+        "touch the foundation; Θ does not depend on the design near it and stationarity there says nothing "
+        "(a cost such as target_pressure is lowered by lifting the body off). Bound the design (upper_bound, "
+        "slope_bound, volume) or press by a force",
+        final.index_sets.summary()));
+  }
+  return o;
+}
 
 }  // namespace frictopt::study

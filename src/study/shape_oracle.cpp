@@ -141,6 +141,30 @@ std::vector<sensitivity::AdjointSensitivity::Result> ShapeOracle::case_subgradie
   return case_history(alpha, k).cost_step_subgradients(pieces);
 }
 
+std::vector<std::optional<contact::ContactState>> ShapeOracle::history_warm_starts() const {
+  std::vector<std::optional<contact::ContactState>> out;
+  if (history_) out = history_->warm_starts();
+  for (const auto& h : case_histories_) out.insert(out.end(), h->warm_starts().begin(), h->warm_starts().end());
+  return out;
+}
+
+void ShapeOracle::set_history_warm_starts(const std::vector<std::optional<contact::ContactState>>& states) {
+  std::size_t needed = history_ ? static_cast<std::size_t>(history_->num_steps()) : 0;
+  for (const auto& h : case_histories_) needed += static_cast<std::size_t>(h->num_steps());
+  if (states.size() != needed)
+    throw InvalidInput(fmt::format("ShapeOracle::set_history_warm_starts: {} states; expected {} (one per step of "
+                                   "every loading program)",
+                                   states.size(), needed));
+  auto next = states.begin();
+  const auto take = [&](ProgramHistory& h) {
+    const auto end = next + h.num_steps();
+    h.set_warm_starts({next, end});
+    next = end;
+  };
+  if (history_) take(*history_);
+  for (const auto& h : case_histories_) take(*h);
+}
+
 sensitivity::PieceEnumeration ShapeOracle::case_pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k, int cap) {
   return case_history(alpha, k).cost_step_pieces(cap);
 }

@@ -64,6 +64,25 @@ TEST(CliSolve, SummaryRecordsTheBlasThreadPolicy) {
   ASSERT_TRUE(summary.contains("blas_threads")) << text.str();
   EXPECT_NE(summary.at("blas_threads").as_string().find("FRICTOPT_BLAS_THREADS = 1"), std::string::npos)
       << summary.at("blas_threads").as_string();
+  // ... and the BLAS it was made with (the implementation and the library dgemm_ binds to).
+  ASSERT_TRUE(summary.contains("blas")) << text.str();
+  EXPECT_EQ(summary.at("blas").as_string().rfind("OpenBLAS", 0), 0U) << summary.at("blas").as_string();
+}
+
+// The shipped binary calls OpenBLAS, not the ATLAS that Debian's libceres.so needs as well
+// (docs/benchmarks.md, "Which BLAS"): `frictopt --version` names the BLAS dgemm_ binds to.
+TEST(CliVersion, NamesOpenBlasAsTheBlasTheBinaryCalls) {
+  const RunResult r = run("--version");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("frictopt 0."), std::string::npos) << r.output;
+  const auto blas = r.output.find("BLAS: OpenBLAS");
+  ASSERT_NE(blas, std::string::npos) << r.output;
+  const auto from = r.output.find("(dgemm_ from ", blas);
+  ASSERT_NE(from, std::string::npos) << r.output;
+  const std::string library = r.output.substr(from, r.output.find(')', from) - from);
+  EXPECT_NE(library.find("openblas"), std::string::npos) << library;
+  EXPECT_EQ(library.find("atlas"), std::string::npos) << library;
+  EXPECT_EQ(library.find("f77blas"), std::string::npos) << library;
 }
 
 TEST(CliSolve, Writes2dVtuForTheThesisBody) {

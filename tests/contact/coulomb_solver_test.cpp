@@ -47,8 +47,8 @@ TEST(CoulombSolverOptions, ValidateNamesFieldValueAndExpectation) {
 }
 
 // Tolerance: 1e-8 on the dimensionless KKT residual and gap of the Coulomb conditions (s = λ),
-// the acceptance bound of issue 3; the fixed point stops at 1e-10 relative increments with
-// inner QPs at 1e-10, both ~100x below it.
+// the acceptance bound (residuals of docs/contact.md §3); the fixed point stops at 1e-10 relative
+// increments with inner QPs at 1e-10, both ~100x below it.
 TEST(CoulombSolver, SatisfiesCoulombKktConditionsForEveryLaw) {
   const std::vector<FrictionLaw> laws = {
       FrictionLaw::interval(0.3, 0.4), FrictionLaw::disc(0.3), FrictionLaw::regular_polygon(0.3, 8),
@@ -111,8 +111,8 @@ TEST(CoulombSolver, SplitAndFullFixedPointAgree) {
   }
 }
 
-// One node, uncoupled (spec 02, §7 sanity check extended by friction): λ = L − kg; the stick
-// force F exceeds μλ, so the node slips with q = μλ and u_t = (F − μλ)/k_t.
+// One node, uncoupled (the frictionless hand check of tresca_solver_test extended by friction):
+// λ = L − kg; the stick force F exceeds μλ, so the node slips with q = μλ and u_t = (F − μλ)/k_t.
 TEST(CoulombSolver, OneNodeHandComputedSlip) {
   const double k = 2.0, big_l = 3.0, gap = 0.5, k_t = 4.0, force = 1.0, mu = 0.3;
   Eigen::MatrixXd m(2, 2);

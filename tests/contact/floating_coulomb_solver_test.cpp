@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// FloatingCoulombSolver (spec 07 §2) on problems solvable by hand: one 3D node whose net force
-// is prescribed (E = I): inside the friction set z = e and β makes the kinematics consistent;
-// outside it the equality cannot hold and the solver says "no equilibrium" instead of iterating
-// forever; bad options and sizes are InvalidInput.
+// FloatingCoulombSolver (docs/experiments.md §5) on problems solvable by hand: one 3D node whose
+// net force is prescribed (E = I): inside the friction set z = e and β makes the kinematics
+// consistent; outside it the equality cannot hold and the solver says "no equilibrium" instead of
+// iterating forever; bad options and sizes are InvalidInput.
 #include "frictopt/contact/floating_coulomb_solver.hpp"
 
 #include <gtest/gtest.h>

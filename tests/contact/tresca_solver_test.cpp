@@ -37,9 +37,9 @@ TEST(TrescaSolverOptions, ValidateNamesFieldValueAndExpectation) {
   EXPECT_EQ(parse_tresca_algorithm(to_string(TrescaAlgorithm::kSplit)), TrescaAlgorithm::kSplit);
 }
 
-// Spec 02, §7 "Sanity check": stiffness k, load −L, gap g; contact iff L > kg, λ = L − kg.
-// Tangentially stiffness k_t and load F = 1: the stick force would be F = 1 > s = 0.6, so the
-// node slips in +e₁ with q = s·μ₊-end and u_t = (F − s)/k_t.
+// A one-node dual QP solvable by hand (docs/theory/state-problem.md §5): stiffness k, load −L,
+// gap g; contact iff L > kg, λ = L − kg. Tangentially stiffness k_t and load F = 1: the stick force
+// would be F = 1 > s = 0.6, so the node slips in +e₁ with q = s·μ₊-end and u_t = (F − s)/k_t.
 TEST(TrescaSolver, OneNodeSanityCaseMatchesHandComputation) {
   const double k = 2.0, big_l = 3.0, gap = 0.5, k_t = 1.0, force = 1.0, s = 0.6;
   Eigen::MatrixXd m(2, 2);
@@ -95,9 +95,9 @@ class TrescaRandom : public ::testing::TestWithParam<RandomCase> {};
 
 // Tolerances: the solver stops at ‖g̃‖ <= 1e-10‖c‖; with M's condition number ≈ 9 the forces are
 // accurate to ~1e-9 relative, so the dimensionless KKT residual and gap must be <= 1e-8 (the
-// acceptance bound of issue 3). The PGS oracle is converged to 1e-15 relative changes; the
-// objective error of both is second order in the force error, so objectives agree to 1e-10
-// relative (plus 1e-12 absolute for objectives near 0).
+// acceptance bound for the residuals of docs/contact.md §3). The PGS oracle is converged to 1e-15
+// relative changes; the objective error of both is second order in the force error, so objectives
+// agree to 1e-10 relative (plus 1e-12 absolute for objectives near 0).
 TEST_P(TrescaRandom, SatisfiesKktAndMatchesProjectedGaussSeidel) {
   const auto& param = GetParam();
   std::mt19937_64 rng{kSeed + static_cast<std::uint64_t>(param.nodes)};

@@ -13,6 +13,7 @@
 #include "frictopt/contact/contact_boundary.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/cost/cost_functional.hpp"
+#include "frictopt/cost/cost_kind.hpp"
 #include "frictopt/fem/linear_elasticity.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
 
@@ -112,6 +113,18 @@ INSTANTIATE_TEST_SUITE_P(
         CostCase{"TractionUniformityTarget2D", 2,
                  [](const Body&) { return make_traction_uniformity(Eigen::VectorXd::Constant(1, 2e4)); }}),
     [](const auto& param_info) { return param_info.param.name; });
+
+// A cost is printed (console, pictures, summary.json's "cost" next to "cost_kind") under the
+// case file's kind: target_pressure's functional was once named "target_normal_force".
+TEST(CostNames, AreTheCaseFileKinds) {
+  const Body body(3);
+  EXPECT_EQ(target_force(body)->name(), to_string(CostKind::kTargetPressure));
+  EXPECT_EQ(make_normal_force_power(4.0)->name(), to_string(CostKind::kNormalForcePower));
+  EXPECT_EQ(make_compliance()->name(), to_string(CostKind::kCompliance));
+  EXPECT_EQ(make_pressure_norm(8.0)->name(), to_string(CostKind::kPressureNorm));
+  EXPECT_EQ(make_total_slip(1e-6)->name(), to_string(CostKind::kTotalSlip));
+  EXPECT_EQ(make_traction_uniformity()->name(), to_string(CostKind::kTractionUniformity));
+}
 
 TEST(TractionUniformity, IsTheAreaWeightedVarianceAndZeroForAUniformTraction) {
   Body body(3);

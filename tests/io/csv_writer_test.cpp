@@ -13,6 +13,7 @@
 
 #include "common/temporary_directory.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/io/file_error.hpp"
 
 namespace frictopt::io {
 namespace {
@@ -79,7 +80,8 @@ TEST_F(CsvFiles, MisuseIsInvalidInput) {
   EXPECT_THROW(csv.write_row({1.0}), InvalidInput);
   EXPECT_THROW(CsvWriter(dir_ / "y.csv", {}), InvalidInput);
   EXPECT_THROW(CsvWriter(dir_ / "y.csv", {"a", "a"}), InvalidInput);
-  EXPECT_THROW(CsvWriter(dir_ / "no" / "y.csv", {"a"}), InvalidInput);
+  // A missing directory is the file system's refusal (exit 5), not bad input.
+  EXPECT_THROW(CsvWriter(dir_ / "no" / "y.csv", {"a"}), frictopt::io::FileSystemError);
 }
 
 }  // namespace

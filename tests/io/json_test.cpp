@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "frictopt/core/error.hpp"
+#include "frictopt/io/file_error.hpp"
 
 namespace frictopt::io {
 namespace {
@@ -68,7 +69,8 @@ TEST(WriteJson, WritesAFileEndingInANewline) {
   EXPECT_EQ(text.str().back(), '\n');
   EXPECT_EQ(parse_json(text.str()).at("status").as_string(), "converged");
   std::filesystem::remove(file);
-  EXPECT_THROW(write_json("/nonexistent/dir/x.json", JsonValue()), InvalidInput);
+  // A missing directory is the file system's refusal (exit 5), not bad input.
+  EXPECT_THROW(write_json("/nonexistent/dir/x.json", JsonValue()), FileSystemError);
 }
 
 }  // namespace

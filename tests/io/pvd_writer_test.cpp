@@ -12,6 +12,7 @@
 
 #include "common/temporary_directory.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/io/file_error.hpp"
 
 namespace frictopt::io {
 namespace {
@@ -67,7 +68,7 @@ TEST_F(PvdFiles, BadEntriesAndPathsAreInvalidInput) {
   EXPECT_THROW(write_pvd(dir_ / "x.pvd", nan_time), InvalidInput);
   const std::vector<PvdEntry> absolute = {{0, "/tmp/a.vtu"}};
   EXPECT_THROW(write_pvd(dir_ / "x.pvd", absolute), InvalidInput);
-  EXPECT_THROW(PvdWriter(dir_ / "missing" / "x.pvd"), InvalidInput);
+  EXPECT_THROW(PvdWriter(dir_ / "missing" / "x.pvd"), FileSystemError);  // the file system's refusal (exit 5)
 }
 
 }  // namespace

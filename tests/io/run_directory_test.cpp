@@ -212,6 +212,7 @@ TEST(Checkpoint, RoundTripsThePieceGapOfABundleElement) {
     bundle.emplace_back(std::move(fields));
   }
   older["bundle"] = JsonValue(std::move(bundle));
+  older["format"] = "frictopt-run-checkpoint-2";  // as written then: no checksum, no piece gaps
   EXPECT_EQ(checkpoint_from_json(older).method.bundle[1].piece_gap, 0.0);
 }
 

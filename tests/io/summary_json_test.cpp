@@ -42,5 +42,30 @@ TEST(SummaryJson, TheBundleTrustSummaryNamesTheLimitThatStoppedIt) {
   EXPECT_EQ(into.at("stopped_by").as_string(), "max_evaluations");
 }
 
+TEST(SummaryJson, TheCostUnitFollowsTheCostAndTheDimension) {
+  study::CostDefinition cost;
+  cost.kind = cost::CostKind::kTargetPressure;  // Σ(λ̄ − λ)², λ in N (2D: N/m)
+  EXPECT_EQ(cost_unit(cost, 3), "N²");
+  EXPECT_EQ(cost_unit(cost, 2), "N²/m²");
+  cost.kind = cost::CostKind::kNormalForcePower;
+  cost.exponent = 4.0;
+  EXPECT_EQ(cost_unit(cost, 3), "N⁴");
+  EXPECT_EQ(cost_unit(cost, 2), "(N/m)⁴");
+  cost.exponent = 2.5;
+  EXPECT_EQ(cost_unit(cost, 3), "N^2.5");
+  cost.kind = cost::CostKind::kCompliance;
+  EXPECT_EQ(cost_unit(cost, 3), "J");
+  EXPECT_EQ(cost_unit(cost, 2), "J/m");
+  cost.kind = cost::CostKind::kPressureNorm;
+  cost.exponent = 8.0;
+  EXPECT_EQ(cost_unit(cost, 3), "Pa·m^0.25");
+  cost.kind = cost::CostKind::kTotalSlip;
+  EXPECT_EQ(cost_unit(cost, 2), "m");
+  cost.kind = cost::CostKind::kTractionUniformity;
+  EXPECT_EQ(cost_unit(cost, 3), "Pa²·m²");
+  cost.kind = cost::CostKind::kDissipation;
+  EXPECT_EQ(cost_unit(cost, 3), "J");
+}
+
 }  // namespace
 }  // namespace frictopt::io

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The BLAS thread rule (issue 18, item 4): one thread for small work and whenever no core is
-// idle; never more threads than idle cores; fixed and user modes as documented.
+// The BLAS thread rule (docs/benchmarks.md, "BLAS threads on a shared machine"): one thread for
+// small work and whenever no core is idle; never more threads than idle cores; fixed and user modes
+// as documented.
 #include "frictopt/linalg/blas_threads.hpp"
 
 #include <gtest/gtest.h>
@@ -49,4 +50,23 @@ TEST(BlasThreads, ACallSiteChoosesWithinTheLimits) {
     EXPECT_EQ(small.threads(), 1);
   }
   EXPECT_FALSE(fl::describe_blas_threads().empty());
+}
+
+// The BLAS behind CHOLMOD's supernodal factorization and the LAPACK wrappers is OpenBLAS, not
+// the reference BLAS or ATLAS that another dependency may bring (cmake/FrictoptModule.cmake,
+// docs/benchmarks.md "Which BLAS"): the loaded implementation names itself, and the symbols
+// CHOLMOD and LAPACK call resolve into an OpenBLAS library file.
+TEST(LoadedBlas, IsOpenBlas) {
+  const fl::LoadedBlas blas = fl::loaded_blas();
+  EXPECT_TRUE(blas.is_openblas()) << fl::describe_loaded_blas();
+  EXPECT_EQ(blas.implementation.rfind("OpenBLAS", 0), 0U) << blas.implementation;
+  for (const char* symbol : {"dgemm_", "dsyrk_", "dtrsm_", "dgemv_", "dpotrf_", "dgesdd_"}) {
+    const std::string library = fl::library_of_symbol(symbol);
+    EXPECT_NE(library.find("openblas"), std::string::npos) << symbol << " resolves to '" << library << "'";
+  }
+  EXPECT_NE(fl::describe_loaded_blas().find(blas.dgemm_library), std::string::npos);
+}
+
+TEST(LoadedBlas, AnUnknownSymbolResolvesNowhere) {
+  EXPECT_EQ(fl::library_of_symbol("frictopt_no_such_blas_routine_"), "");
 }

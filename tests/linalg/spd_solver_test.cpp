@@ -91,9 +91,9 @@ TEST(SpdSolver, TrailingFactorIsTheCholeskyFactorOfTheSchurComplement) {
   EXPECT_LE((solver->solve(b) - dense.ldlt().solve(b)).norm(), 1e-12 * solver->solve(b).norm());
 }
 
-// Issue 17, item 5: when every unknown is trailing (one cell layer under a fixed top: only the
-// contact DOFs are free) the leading block is empty. CHOLMOD's analysis of it returned no
-// factor, which was dereferenced (SIGSEGV in Release). Now the whole matrix is the Schur block.
+// When every unknown is trailing (one cell layer under a fixed top: only the contact DOFs are
+// free) the leading block is empty. CHOLMOD's analysis of it returns no factor, which must not
+// be dereferenced (it was: SIGSEGV in Release). The whole matrix is then the Schur block.
 TEST(SpdSolver, TrailingBlockMayBeTheWholeMatrix) {
   const Eigen::SparseMatrix<double> A = grid_laplacian(3);
   const int n = static_cast<int>(A.rows());

@@ -153,7 +153,7 @@ TEST(BundleTrust, OptionsValidationNamesFieldValueAndExpectation) {
     fo::BundleTrust bt(o);
     FAIL() << "expected InvalidInput";
   } catch (const frictopt::InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("BundleTrust::Options::m2 = 0.05; expected in (m1, 1)"),
+    EXPECT_NE(std::string(e.what()).find("BundleTrust::Options: m2 = 0.05; expected in (m1, 1)"),
               std::string::npos)
         << e.what();
   }
@@ -255,7 +255,7 @@ TEST(BundleTrust, BriefReportNamesStatusAndCounters) {
   EXPECT_NEAR(s.f, 0.0, kFTol);
 }
 
-// ---- issue 16: scale invariance, adaptive step bound, no false "converged" ----------------
+// ---- scale invariance, adaptive step bound, no false "converged" (docs/optim.md) ----------
 
 namespace {
 // CB2-like max of three smooth pieces (Charalambous–Bandler), scaled in f by cf and in x by cx:
@@ -311,7 +311,7 @@ TEST(BundleTrust, ScalingTheObjectiveChangesNoDecision) {
 }
 
 TEST(BundleTrust, ScaleObjectiveOptionGivesTheSameRun) {
-  // Regression (issue 16): scale_objective = true used to stop after one iteration at twice
+  // Regression: scale_objective = true used to stop after one iteration at twice
   // the optimum, because the absolute test met a rescaled f. Now the option changes nothing.
   auto oracle = scaled_cb2(1e3, 1.0);
   fo::BundleTrust::Options o;
@@ -325,7 +325,7 @@ TEST(BundleTrust, ScaleObjectiveOptionGivesTheSameRun) {
 
 TEST(BundleTrust, StepBoundAdaptsToVariablesScaledByAThousand) {
   // With the first step fixed from the first subgradient and never revisited, x·1e3 crept with
-  // thousands of tiny steps (issue 16). The bound now grows with the observed model quality.
+  // thousands of tiny steps. The bound now grows with the observed model quality.
   for (const double cx : {1e-3, 1e3}) {
     auto oracle = scaled_cb2(1.0, cx);
     const auto s = fo::BundleTrust({}).minimize(oracle, cx * Eigen::Vector2d(1.0, -0.1));

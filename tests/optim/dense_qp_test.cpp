@@ -220,7 +220,7 @@ TEST(DenseQpSolver, RejectsInconsistentDimensionsNamingTheBlock) {
 }
 
 TEST(DenseQpSolver, BadlyScaledBundleQpEndsWithAStatusAndNeverANanSolution) {
-  // The unscaled direction QP of issue 16: min v + ‖d‖²/(2t) s.t. gᵀd − v ≤ 0 with ‖g‖ = 1e7,
+  // An unscaled direction QP: min v + ‖d‖²/(2t) s.t. gᵀd − v ≤ 0 with ‖g‖ = 1e7,
   // t = 1e-6. Its reduced Hessian spans 1e6 to 1e-8 and the solver may not resolve it — BundleTrust
   // now scales the QP (bundle_trust.cpp) — but whatever it does, it must either solve it (finite
   // x satisfying KKT) or say it did not; a NaN never passes for a solution.

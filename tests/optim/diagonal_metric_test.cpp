@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The safeguarded diagonal variable metric (diagonal_metric.hpp) and BundleTrust with
-// Options::variable_metric (issue 16, seventh round; docs/optim.md, "Variable metric").
+// Options::variable_metric (docs/optim.md, "Variable metric").
 #include "frictopt/optim/diagonal_metric.hpp"
 
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 #include "common/finite_difference.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/optim/bundle_trust.hpp"
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 
 namespace fo = frictopt::optim;
 using frictopt::testing::kSeed;
@@ -182,7 +182,7 @@ TEST(DiagonalMetric, BundleTrustWithTheMetricResumesBitForBit) {
   EXPECT_EQ(rest.x, full.x);
 }
 
-// Regression (issue 16, seventh round): HS114 at ε = 1e-6 said "converged" 4.8e-6 off f* in the
+// Regression: HS114 at ε = 1e-6 said "converged" 4.8e-6 off f* in the
 // Euclidean metric (a flat valley in variables from 1 to 1.6e4; docs/optim-testset.md). With
 // the variable metric and WITHOUT confirm_in_point_units the run must not say "converged" off
 // f*; measured: it reaches f* to 2.6e-7 and ends `stalled` (the certificate, read in the

@@ -84,8 +84,8 @@ TEST(ProjectOnto, ReportsAnEmptyFeasibleSet) {
 }
 
 TEST(LinearConstraints, IsTheOneCoreTypeAndNamesTheWorstViolation) {
-  // optim::LinearConstraints and shape::LinearConstraints are the same core type (issue 10
-  // item 5): no copy between them. describe_violation names the worst row by its name.
+  // optim::LinearConstraints and shape::LinearConstraints are the same core type: no copy
+  // between them. describe_violation names the worst row by its name.
   static_assert(std::is_same_v<fo::LinearConstraints, frictopt::LinearConstraints>);
   frictopt::LinearConstraints k;
   k.variable_name = "alpha";

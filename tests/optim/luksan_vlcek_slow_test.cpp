@@ -10,7 +10,7 @@
 #include <string>
 
 #include "frictopt/optim/bundle_trust.hpp"
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 
 namespace fo = frictopt::optim;
 
@@ -31,7 +31,7 @@ void check_table(const fo::BundleTrust::Options& options, double accuracy, const
     const bool ok = p.solved(s.f, accuracy);
     solved += ok;
     EXPECT_LE(p.constraints.max_violation(s.x), 1e-9) << p.name;
-    // Issue 16: a run that says "converged" must be accurate, open problem or not.
+    // A run that says "converged" must be accurate, open problem or not.
     if (s.converged()) {
       EXPECT_TRUE(ok) << p.name << " reports converged at an inaccurate value; " << s.brief_report();
     }
@@ -61,9 +61,9 @@ TEST(LuksanVlcekFullSet, EpsilonOneTenthOfTheAccuracyReachesOneInAMillion) {
   check_table(o, 1e-6, {"BPfilter"});
 }
 
-// The issue's tight target: ε = 1e-6 for accuracy 1e-6 with otherwise default options. HS114
+// The tight target: ε = 1e-6 for accuracy 1e-6 with otherwise default options. HS114
 // said "converged" 4.8e-6 off f* here until the default confirmation in the point's units
-// (issue 16, eighth round; docs/optim-testset.md).
+// (docs/optim-testset.md).
 TEST(LuksanVlcekFullSet, EpsilonOneInAMillionReachesOneInAMillion) {
   fo::BundleTrust::Options o;
   o.keep_history = false;

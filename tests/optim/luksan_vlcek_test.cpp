@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Quick part of the Lukšan–Vlček validation: the oracles' subgradients against central
 // differences, and BundleTrust on the small problems. The full set is luksan_vlcek_slow_test.
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 
 #include <gtest/gtest.h>
 
@@ -143,7 +143,7 @@ TEST(LuksanVlcek, PentagonStandardStartViolatesItsConstraints) {
 // The quick part of the table of docs/optim-testset.md: problems and scaled variants that
 // BundleTrust solves in at most a few hundred evaluations, with DEFAULT options (the full set
 // is luksan_vlcek_slow_test). Each must reach f* to the report's accuracy, and a run that
-// reports "converged" must be accurate (issue 16: no converged at a non-stationary point).
+// reports "converged" must be accurate (no "converged" at a non-stationary point).
 class LuksanVlcekQuick : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(LuksanVlcekQuick, BundleTrustWithDefaultOptionsReachesTheOptimalValue) {
@@ -172,7 +172,7 @@ INSTANTIATE_TEST_SUITE_P(SmallProblems, LuksanVlcekQuick,
                            return test_name(param_info.param);
                          });
 
-// Regression (issue 16, second round): BPfilter's steep log pieces give G = ‖g(x_k)‖ ≈ 2e3 at
+// Regression: BPfilter's steep log pieces give G = ‖g(x_k)‖ ≈ 2e3 at
 // f ≈ 7e-3, so a certificate δ = 4e-3 passed ε·G while f was 4.5e-3 off relative. The bound
 // ε·min(G, F/ρ) (ρ: radius of the local subgradients, docs/optim.md) refuses that point: the run
 // may end stalled or at the iteration limit (BPfilter is still open, docs/optim-testset.md), but
@@ -227,7 +227,7 @@ TEST(LuksanVlcek, StructuredMinimaxOraclesGiveEveryPieceWithItsGradient) {
   EXPECT_EQ(structured, 8);  // MAD6, EQUIL, MAD8, BPfilter, HS114, Dembo3, Dembo5, Dembo7
 }
 
-// BPfilter with its pieces' cuts (docs/optim-testset.md, ninth round): the structured model does
+// BPfilter with its pieces' cuts (docs/optim-testset.md): the structured model does
 // not take the run to f* at ε = 1e-6 either (it ends at f = 3.02e-4, 2.6e-5 off, or on the
 // 4.7e-3 plateau); whatever it reaches, it must not say "converged" there.
 TEST(LuksanVlcekRegression, BPfilterWithItsPiecesDoesNotReportConvergedAtAnInaccurateValue) {
@@ -256,11 +256,11 @@ TEST(LuksanVlcekRegression, BPfilterDoesNotReportConvergedAtAnInaccurateValue) {
   }
 }
 
-// Regression (issue 16, fifth round): on ShellDual the direction QP, scaled by the largest
+// Regression: on ShellDual the direction QP, scaled by the largest
 // subgradient S = 2.4e4 while the center's is G = 100, resolved its cuts only to ~1e-10·t·S² ≈
 // 0.2 in f: it returned d ≈ 0 with the primal aggregate error 2e-9 while its multipliers weighed
 // localities to σ = 2.2e-3, so the stopping test passed at a point the final check had to refuse
-// and the run stalled 1.1e-4 off f* (third round: it said "converged" 2.8e-4 off). The direction
+// and the run stalled 1.1e-4 off f* (before that, it said "converged" 2.8e-4 off). The direction
 // QP is now refined until its duality gap is small against its value (docs/optim.md, "Direction
 // QP to a small duality gap"): ShellDual is solved, and "converged" is accurate.
 TEST(LuksanVlcekRegression, ShellDualIsSolvedWithDefaultOptions) {
@@ -271,7 +271,7 @@ TEST(LuksanVlcekRegression, ShellDualIsSolvedWithDefaultOptions) {
   EXPECT_TRUE(s.converged()) << s.brief_report();
 }
 
-// Regression (issue 16, fifth round): at ε = 1e-6, HS78 (1.2e-6), Dembo3 (1.2e-5) and Dembo7
+// Regression: at ε = 1e-6, HS78 (1.2e-6), Dembo3 (1.2e-5) and Dembo7
 // (1.6e-5) ended "stalled" short of 1e-6: the stopping test passed on the primal reading of an
 // unresolved direction QP and the multipliers' aggregate error refused it. With the refined QP
 // the readings agree and the runs reach 1e-6.
@@ -293,7 +293,7 @@ INSTANTIATE_TEST_SUITE_P(FormerlyStalled, LuksanVlcekTight, ::testing::Values("H
                            return test_name(param_info.param);
                          });
 
-// Regression (issue 16, fourth round): with ε = 1e-6 MAD8 (f(x_1) = 2.2e4, f* = 0.507) said
+// Regression: with ε = 1e-6 MAD8 (f(x_1) = 2.2e4, f* = 0.507) said
 // "converged" 1.0e-5 off f*: the value scale F of the stopping test is floored at √ε·|f(x_1)| =
 // 21.9, 43 times |f|, so the value test accepted errors up to ε·F = 2.2e-5, and the locality,
 // tied to the first step, held the last steps short of f*. With the locality unit grown to the
@@ -310,7 +310,7 @@ TEST(LuksanVlcekRegression, Mad8AtTightEpsilonIsAccurateOrNotConverged) {
   }
 }
 
-// Regression (issue 16, fourth round): TR48 starts at x_1 = 0, so the automatic first step is
+// Regression: TR48 starts at x_1 = 0, so the automatic first step is
 // 10 while ‖x*‖∞ = 1086; with the locality unit fixed at t_1 every cut beyond a few units was
 // "far", t was bisected to 0.005 and the run crept (2.2e-2 off f* after 3000 iterations). The
 // unit now grows with the distance the centers have travelled (docs/optim.md).

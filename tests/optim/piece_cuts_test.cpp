@@ -174,7 +174,7 @@ TEST(PieceCuts, DefaultRunInDisparateUnitsReachesTheMinimum) {
   }
 }
 
-// Regression (issue 16, ninth round): the certificate took every cut of small locality as a
+// Regression: the certificate took every cut of small locality as a
 // subgradient near x, the cuts of pieces that were not active where they were taken included.
 // f(x) = 1 + max(x, −x − c) with c = 1.5·ε·F is minimal at x* = −c/2. At x = 0 the piece −x − c
 // lies c below the max; the first QP's aggregate error c/2 passes the stopping test, and the

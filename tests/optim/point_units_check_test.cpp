@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // confirm_in_point_units (point_units_check.hpp): the units of a point, Υ in those units, and the
-// confirmation of a "converged" by a restart in them (issue 16, sixth round).
+// confirmation of a "converged" by a restart in them (docs/theory/bundle-trust.md §6).
 #include "frictopt/optim/point_units_check.hpp"
 
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 
 #include "common/finite_difference.hpp"
 #include "frictopt/core/error.hpp"
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 
 namespace fo = frictopt::optim;
 using frictopt::testing::kSeed;
@@ -77,7 +77,7 @@ TEST(PointUnitsCheck, AnAccurateStopIsConfirmedAndKeepsItsValue) {
                frictopt::InvalidInput);
 }
 
-// Regression (issue 16, sixth round): HS114 at ε = 1e-6 said "converged" 4.8e-6 off f* (accuracy
+// Regression: HS114 at ε = 1e-6 said "converged" 4.8e-6 off f* (accuracy
 // asked 1e-6): it crept along a flat valley, variables from 1 to 1.6e4, x* ≈ 17 units away, and
 // every local test relative to G and F passed. Confirmed in the point's units, the check gains
 // 8e-3 > ε·F, the run goes on in those units and ends converged at f*.
@@ -94,7 +94,7 @@ TEST(LuksanVlcekRegression, Hs114AtTightEpsilonConfirmedInPointUnitsIsSolved) {
   EXPECT_LE(p.constraints.max_violation(s.x), 1e-6 * (1.0 + s.x.cwiseAbs().maxCoeff()));
 }
 
-// --- The default converged path (issue 16, eighth round): the check runs inside minimize/resume
+// --- The default converged path: the check runs inside minimize/resume
 // when the stop's units spread by more than Options::point_units_spread. ---
 
 TEST(PointUnitsCheck, SpreadIgnoresCoordinatesWithoutAUnitAndIsInvariantUnderACommonScale) {
@@ -213,7 +213,7 @@ TEST(PointUnitsCheck, AResumedRunIsConfirmedAsTheUninterruptedOne) {
   EXPECT_EQ(rest.f, whole.f);
 }
 
-// Regression (issue 16, eighth round): HS114 at ε = 1e-6 said "converged" 4.8e-6 off f* with
+// Regression: HS114 at ε = 1e-6 said "converged" 4.8e-6 off f* with
 // default options (units from 1 to 1.6e4, spread 4.4e3 at the stop). With the default check the
 // run continues in the point's units and ends converged at f*, without any opt-in.
 TEST(LuksanVlcekRegression, Hs114AtTightEpsilonIsSolvedWithDefaultOptions) {

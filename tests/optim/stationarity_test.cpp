@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The four 1D examples of spec 06 §5 (thesis §2.4) and its constrained examples.
+// The four 1D examples of the thesis' §2.4 (docs/theory/stationarity.md §1) and constrained
+// examples.
 #include "frictopt/optim/stationarity.hpp"
 
 #include <gtest/gtest.h>
@@ -66,7 +67,7 @@ TEST(StationarityCertificate, Example244AbsoluteValueIsStationaryWithEqualWeight
 }
 
 TEST(StationarityCertificate, LinearFunctionOnAnIntervalIsStationaryOnlyAtTheLeftEnd) {
-  // f(x) = x on [0, 1] (spec 06 §5): δ = 0 at 0 (normal cone (−∞, 0]), 1 at 0.5 and at 1.
+  // f(x) = x on [0, 1]: δ = 0 at 0 (normal cone (−∞, 0]), 1 at 0.5 and at 1.
   fo::LinearConstraints k;
   k.lower = Eigen::VectorXd::Zero(1);
   k.upper = Eigen::VectorXd::Ones(1);
@@ -80,7 +81,7 @@ TEST(StationarityCertificate, LinearFunctionOnAnIntervalIsStationaryOnlyAtTheLef
 }
 
 TEST(StationarityCertificate, TwoDimensionalKinkOnAHalfPlaneIsStationary) {
-  // f = |x1| + x2 on {x2 ≥ 0} at 0: ∂f = [−1,1]×{1}, N = {(0, −η)}: δ = 0 (spec 06 §5).
+  // f = |x1| + x2 on {x2 ≥ 0} at 0: ∂f = [−1,1]×{1}, N = {(0, −η)}: δ = 0.
   Eigen::MatrixXd xi(2, 2);
   xi << 1.0, -1.0, 1.0, 1.0;
   fo::LinearConstraints k;
@@ -111,7 +112,7 @@ TEST(StationarityCertificate, RejectsMismatchedShapesAndInfeasiblePoints) {
 
 TEST(StationarityCertificate, IsHomogeneousInTheSubgradientsOverThirtyOrdersOfMagnitude) {
   // δ(cΞ) = c·δ(Ξ) with the constraint normals unchanged (N_Υ is a cone). Unscaled, the QP's
-  // Hessian ΞᵀΞ next to unit normals failed for ‖ξ‖ ~ 1e15 (issue 16); the certificate must
+  // Hessian ΞᵀΞ next to unit normals failed for ‖ξ‖ ~ 1e15; the certificate must
   // return a status and the homogeneous value, never NaN.
   Eigen::MatrixXd xi(2, 3);
   xi << 1.0, -1.0, 0.5, -2.0, -2.5, -3.0;  // all descend along +x2: blocked only by x2 <= 0

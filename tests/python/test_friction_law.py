@@ -68,3 +68,25 @@ def test_invalid_laws_raise_value_error() -> None:
     with pytest.raises(ValueError, match="s >= 0"):
         frictopt.FrictionLaw.disc(0.3).project([1.0, 0.0], -1.0)
     assert "polygon(n=4" in repr(frictopt.FrictionLaw.polygon([0.4, 0.2, 0.4, 0.2]))
+
+
+def test_the_two_meanings_of_mu_theta() -> None:
+    # An ellipse with μ 0.25 along the lay and 0.4 across: at 45° the resistance to sliding along
+    # θ (support function, mu / support_mu) and the friction set's boundary in direction θ (radial
+    # function, radial_mu: the tribometer's μ(θ) in |F_t| = μ(θ)·P) are 11 % apart.
+    law = frictopt.FrictionLaw.ellipse(0.25, 0.4)
+    t = np.pi / 4
+    assert law.mu(t) == law.support_mu(t) == pytest.approx(np.sqrt((0.25**2 + 0.4**2) / 2), rel=1e-14)
+    assert law.radial_mu(t) == pytest.approx(1.0 / np.sqrt(0.5 / 0.25**2 + 0.5 / 0.4**2), rel=1e-12)
+    assert law.mu(t) / law.radial_mu(t) == pytest.approx(1.1125, rel=1e-12)
+    # Along the axes the two agree; the radial point lies on W's boundary.
+    np.testing.assert_allclose(law.radial_mu(np.array([0.0, np.pi / 2])), [0.25, 0.4], rtol=1e-12)
+    np.testing.assert_allclose(law.support_mu(np.array([0.0, np.pi / 2])), [0.25, 0.4], rtol=1e-12)
+    point = law.radial_mu(t) * np.array([np.cos(t), np.sin(t)])
+    assert (point[0] / 0.25) ** 2 + (point[1] / 0.4) ** 2 == pytest.approx(1.0, rel=1e-12)
+    # Isotropic: one μ.
+    disc = frictopt.FrictionLaw.disc(0.3)
+    np.testing.assert_allclose(disc.radial_mu(THETA), disc.mu(THETA), rtol=1e-13)
+    # 2D interval [−μ₋, μ₊]: the two ends.
+    i = frictopt.FrictionLaw.interval(0.1, 0.3)
+    assert i.radial_mu(0.0) == pytest.approx(0.3) and i.radial_mu(np.pi) == pytest.approx(0.1)

@@ -23,7 +23,7 @@ def test_evaluate_and_call(oracle: frictopt.Oracle, coarse_case: frictopt.Case) 
     theta, xi = oracle(coarse_case.initial_design)
     assert theta == e.value
     np.testing.assert_array_equal(xi, e.subgradient)
-    assert oracle.cost == "target_normal_force"  # the cost module's name of [cost] kind target_pressure
+    assert oracle.cost == "target_pressure"  # the case file's [cost] kind, not the functional's own name
     assert len(oracle.friction_parameters) == e.friction_gradient.size == 4
     assert "Θ =" in repr(e) and "frictopt.Oracle" in repr(oracle)
 
@@ -52,7 +52,13 @@ def test_check_gradient(coarse_case: frictopt.Case) -> None:
     if r.weak_nodes == 0:
         assert r.max_relative_error < 1e-4
     assert set(r.friction_gradient) == {f"mu_vertices[{j}]" for j in range(4)}
-    assert r.step == pytest.approx(1e-6 * np.abs(coarse_case.initial_design).max())
+    # Steps relative to the width of each variable's bounds (C0 for the control heights), not to
+    # max|α| (a flat start α⁰ = 0 once gave h = 1e-16 m).
+    c0 = coarse_case.to_dict()["design"]["upper_bound"]
+    assert r.step == pytest.approx(1e-6 * c0)
+    assert len(r.verdicts) == 16 and set(r.verdicts) <= {"match", "kink", "MISMATCH"}
+    assert np.all(np.isfinite(r.forward_difference)) and np.all(np.isfinite(r.backward_difference))
+    assert len(r.piece_changes) == 16 and not r.warnings, r.warnings
 
 
 def test_certify_at_the_initial_design(coarse_case: frictopt.Case) -> None:

@@ -31,6 +31,15 @@ def test_shapes(solved) -> None:
     assert body.contact_coordinates.shape == (p, 2) and body.tributary_areas.shape == (p,)
 
 
+def test_the_module_calls_openblas(solved) -> None:
+    # The extension module's CHOLMOD calls OpenBLAS, not the ATLAS Debian's Ceres also needs
+    # (docs/benchmarks.md, "Which BLAS"); the summary names the implementation and its file.
+    _, s = solved
+    assert s.summary.blas.startswith("OpenBLAS"), s.summary.blas
+    library = s.summary.blas.split("(dgemm_ from ", 1)[1]
+    assert "openblas" in library and "atlas" not in library, s.summary.blas
+
+
 def test_units_and_mechanics(solved, coarse_case: frictopt.Case) -> None:
     body, s = solved
     assert s.converged, s.message

@@ -55,7 +55,7 @@ TEST(BezierShape, EndValuesAreEndControlPoints2D) {
 }
 
 TEST(BezierShape, IntegralWeightsMatchGaussQuadrature) {
-  // Each Bernstein polynomial integrates to a/d (spec 01, §2.1 fact 4; a=2, d=15: 0.1333...).
+  // Each Bernstein polynomial integrates to a/d (docs/theory/problem.md §2; a=2, d=15: 0.1333...).
   const auto curve = BezierShape::curve(2.0, 15);
   EXPECT_NEAR(curve.integral_weights()(3), 2.0 / 15.0, 1e-15);
   const auto surface = BezierShape::surface(1.5, 0.5, 4, 3);
@@ -114,8 +114,9 @@ TEST(BezierShape, RejectsTooFewControlPoints) {
 }
 
 TEST(AdmissibleSet, ThesisExampleHas58InequalitiesAndCorrectedVolume) {
-  // Spec 01, §4.4: d = 15, C0 = 0.75, C1 = 1, C2 = 1.9, a = 2, C4 = 1: 2(d−1) slope rows and
-  // Σα = d(C4 − C2/a) = 0.75; bounds are kept apart as lower/upper vectors (2d = 30 more).
+  // Thesis §5.2 data with the corrected volume (docs/theory/problem.md §6): d = 15, C0 = 0.75,
+  // C1 = 1, C2 = 1.9, a = 2, C4 = 1: 2(d−1) slope rows and Σα = d(C4 − C2/a) = 0.75; bounds are
+  // kept apart as lower/upper vectors (2d = 30 more).
   const auto curve = BezierShape::curve(2.0, 15);
   AdmissibleSetParameters p;
   p.upper_bound = 0.75;

@@ -89,7 +89,9 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(OrientationDesign, FullGradientMatchesCentralDifferences) {
   ElasticBody body(block_3d(contact::FrictionLaw::polygon({0.4, 0.2, 0.4, 0.2}).rotated(0.4), true));
   ShapeOracle oracle(body, traction_cost());
-  const GradientCheck check = check_gradient(oracle, body.initial_design(), 1e-5);
+  // h_k = 3e-6 × the width of x_k's bounds: 1.5e-8 m for the heights (C0 = 5 mm), as small as
+  // 1e-5·max|x| was before steps were scaled by the bounds; at 5e-8 m nodes change piece.
+  const GradientCheck check = check_gradient(oracle, body.initial_design(), 3e-6);
   ASSERT_TRUE(check.evaluation.ok) << check.evaluation.message;
   ASSERT_EQ(check.evaluation.index_sets.num_weak_nodes(), 0);
   ASSERT_EQ(check.components.size(), 10u);
@@ -98,6 +100,17 @@ TEST(OrientationDesign, FullGradientMatchesCentralDifferences) {
                 check.components[i].adjoint, check.components[i].relative_error);
   EXPECT_LE(check.worst_relative_error, 1e-5);
   EXPECT_LE(check.components.back().relative_error, 1e-6);
+  // At h = 5e-8 m (relative 1e-5) strict index sets at x do not keep every node on its piece:
+  // the components whose central quotient misses ξ (up to 2 %, "weak nodes 0") are those where
+  // a node changes piece within ±h, and ξ_k is then a one-sided quotient (a kink, not a bug).
+  const GradientCheck wide = check_gradient(oracle, body.initial_design(), 1e-5);
+  int kinks = 0;
+  for (std::size_t i = 0; i < wide.components.size(); ++i) {
+    const auto& c = wide.components[i];
+    EXPECT_NE(c.verdict, GradientCheck::Verdict::kMismatch) << "x[" << i << "] rel " << c.relative_error;
+    kinks += c.verdict == GradientCheck::Verdict::kKink;
+  }
+  EXPECT_GT(kinks, 0);
 }
 
 // At φ = φ⁰ the orientation design solves the case's own law: the same Θ and ξ_α as the plain

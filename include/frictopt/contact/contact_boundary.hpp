@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The potential contact nodes Γ_c of a finite element body and the maps between the dual
-// contact variables z and the FE degrees of freedom (spec 02, §0.1, §7, §9.2).
+// contact variables z and the FE degrees of freedom (docs/theory/state-problem.md §1, §3, §5).
 #pragma once
 
 #include <Eigen/Core>
@@ -14,8 +14,8 @@
 
 namespace frictopt::contact {
 
-/// The rigid foundation (issue 11 item 4): the plane n·x = d with the body on the side
-/// n·x >= d (n the unit normal pointing into the body), and the frame of the friction law in
+/// The rigid foundation (docs/theory/friction-frame.md §3): the plane n·x = d with the body on the
+/// side n·x >= d (n the unit normal pointing into the body), and the frame of the friction law in
 /// that plane: first axis t1, in 3D t2 = n × t1 (mesh::PlaneFrame). The default (an empty
 /// frame) is n = e_dim, t1 = e1 (, t2 = e2), d = 0: the thesis' foundation x_dim <= 0.
 struct Foundation {
@@ -27,7 +27,7 @@ struct Foundation {
 
 /// Contact nodes are the nodes of the mesh's contact surface (a named boundary set; "bottom", the
 /// Bézier surface, for the structured grid) whose DOFs are all free: a node of Γ_c on Γ_u is not
-/// a contact node (spec 01, A-BC). The frame is the foundation's (Foundation):
+/// a contact node (docs/theory/problem.md §3). The frame is the foundation's (Foundation):
 /// tangential components along t1 (, t2), normal along n into the body; by default the global
 /// axes x1 (, x2) and x_dim upward (docs/architecture.md, docs/theory/friction-frame.md §3).
 ///
@@ -71,13 +71,14 @@ class ContactBoundary {
   /// quadrilateral (imported meshes) gives node a the integral of its shape function N_a over the
   /// projected facet.
   const Eigen::VectorXd& tributary_areas() const { return areas_; }
-  /// Initial gaps g_i = n·X(node_i) − d (spec 01, §2.4: G_α(x'_i) = X(node_i, dim−1) for the
-  /// standard foundation).
+  /// Initial gaps g_i = n·X(node_i) − d (docs/theory/problem.md §3: G_α(x'_i) = X(node_i, dim−1)
+  /// for the standard foundation).
   Eigen::VectorXd gaps(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
   /// The constant gap matrix B̃ = ∂g/∂α (p × d): the rows of the mesh's V at the contact nodes'
   /// normal components. For the structured grid these are the Bézier basis at the nodes (the
   /// bottom layer has ŝ = 0), bit for bit BezierShape::gap_matrix(plane_coordinates()); for an
-  /// imported body they are the patch's motion (zero off the patch, spec 07 §5).
+  /// imported body they are the patch's motion (zero off the patch;
+  /// docs/meshes.md, "The design on a patch").
   Eigen::MatrixXd gap_jacobian(const mesh::Mesh& mesh) const;
 
   /// w_free += Gᵀ z.

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The numbers a tribologist reads off a contact solution: total normal and tangential force,
 // their ratio, contact / stick / slip areas and node counts, the stick zone's centroid and an
-// equivalent radius. Computed from the nodal dual variables z_i = (q_i, λ_i) (spec 02, §0.1,
-// §9.2) and the tributary areas of the contact nodes; the conventions are in docs/contact.md.
+// equivalent radius. Computed from the nodal dual variables z_i = (q_i, λ_i)
+// (docs/theory/state-problem.md §1, §5) and the tributary areas of the contact nodes; the
+// conventions are in docs/contact.md.
 #pragma once
 
 #include <Eigen/Core>
@@ -14,12 +15,12 @@
 namespace frictopt::contact {
 
 /// Resultants of one contact state. Forces are those the foundation exerts on the body:
-/// normal force Σλ_i (upward) and tangential force Σ τ_i = −Σ q_i (τ_i opposes the slip; spec 02
-/// §0.1). Areas are sums of tributary areas a_i of the nodes in each class (3D: m², 2D: m per
-/// metre of thickness). The stick zone's centroid is the a_i-weighted mean of the in-plane node
-/// coordinates of stick nodes; its equivalent radius is that of a disc of the stick area
-/// (3D: √(A/π)) or the half-width of a strip (2D: A/2), the quantity Cattaneo–Mindlin's c is
-/// compared with.
+/// normal force Σλ_i (upward) and tangential force Σ τ_i = −Σ q_i (τ_i opposes the slip;
+/// docs/theory/state-problem.md §1). Areas are sums of tributary areas a_i of the nodes in each
+/// class (3D: m², 2D: m per metre of thickness). The stick zone's centroid is the a_i-weighted mean
+/// of the in-plane node coordinates of stick nodes; its equivalent radius is that of a disc of the
+/// stick area (3D: √(A/π)) or the half-width of a strip (2D: A/2), the quantity Cattaneo–Mindlin's
+/// c is compared with.
 struct ContactResultants {
   int dim = 3;
   double normal_force = 0.0;                                   ///< P = Σλ_i [N; 2D: N/m]

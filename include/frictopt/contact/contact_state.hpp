@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Per-node results of a contact solve in the dual variables of spec 02, §7 / §9.2: forces
-// z_i = (q_i, λ_i), the gradient pieces (−u_t^i, u_ν^i + g_i) = (Mz + c)_i, the node status
+// Per-node results of a contact solve in the dual variables of docs/theory/state-problem.md §5:
+// forces z_i = (q_i, λ_i), the gradient pieces (−u_t^i, u_ν^i + g_i) = (Mz + c)_i, the node status
 // (separated / stick / slip) and, for slip, the active face of the friction set — the data the
-// sensitivity analysis reads (spec 03, §3.2 and §14.2).
+// sensitivity analysis reads (docs/theory/sensitivity.md §3).
 #pragma once
 
 #include <Eigen/Core>
@@ -55,7 +55,8 @@ struct ContactResiduals {
 };
 
 /// The state of p contact nodes in dimension dim ∈ {2, 3}.
-/// Layout (spec 02, §9.2, node-interleaved): z = (q_1, λ_1, q_2, λ_2, …), q_i ∈ R^{dim−1}.
+/// Layout (docs/theory/state-problem.md §3, node-interleaved):
+/// z = (q_1, λ_1, q_2, λ_2, …), q_i ∈ R^{dim−1}.
 struct ContactState {
   int dim = 3;
   /// Forces z (size dim·p): q_i = −τ_i (friction resistance), λ_i >= 0 normal force.
@@ -91,7 +92,7 @@ struct ContactState {
 };
 
 /// Classifies every node of `state` (z, gradient, slip_bound must be set) into
-/// separated/stick/slip and friction faces, following spec 03, §3.2: with
+/// separated/stick/slip and friction faces, following docs/theory/sensitivity.md §3: with
 /// Λ = max(max_i λ_i, max_i |q_i|, tiny) and U = max(max_i |u_t^i|, max_i |w_i|, c_scale, tiny)
 /// (c_scale = ‖c‖_∞ carries the gaps g and the free elastic response, so a state where every
 /// node sticks with closed gaps still has a displacement scale),

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Coulomb friction as a fixed point over given-friction (Tresca) problems (spec 02, §3, §8,
-// §9.3): the slip bound s ← λ (the coefficient μ is absorbed in the friction set W), each step
-// a warm-started dual QP; and the split variant of spec 02, §8 (steps I/II alternating).
+// Coulomb friction as a fixed point over given-friction (Tresca) problems
+// (docs/theory/state-problem.md §6; thesis §5.1, §6.1.3): the slip bound s ← λ (the coefficient μ
+// is absorbed in the friction set W), each step a warm-started dual QP; and the split variant of
+// docs/theory/state-problem.md §6 (steps I/II alternating; thesis §5.1).
 #pragma once
 
 #include <Eigen/Core>
@@ -18,10 +19,10 @@
 
 namespace frictopt::contact {
 
-/// How the Coulomb problem is solved.
+/// How the Coulomb problem is solved (docs/theory/state-problem.md §6).
 enum class CoulombMethod {
   kFixedPoint,  ///< s_{k+1} = λ(s_k): a full Tresca QP per step (thesis §5.1, §6.1.3)
-  kSplit,       ///< spec 02, §8: per step one tangential solve (I) and one normal solve (II)
+  kSplit,       ///< thesis §5.1: per step one tangential solve (I) and one normal solve (II)
   /// The PETSc engine's semismooth Newton method on the displacements (docs/petsc-engine.md):
   /// reported in its summaries; CoulombSolver refuses it (Options::validate).
   kSemismoothNewton
@@ -110,7 +111,7 @@ class CoulombSolver {
   TrescaSolver tresca_;
 };
 
-/// Quasi-static (incremental) Coulomb friction, spec 07 §1 (docs/theory/loading-program.md):
+/// Quasi-static (incremental) Coulomb friction (docs/theory/loading-program.md §2):
 /// at step k the friction law acts on the slip increment u_t − u_t^{k−1}, so the dual QP of
 /// step k has the same M and the linear term c with its tangential blocks shifted by the
 /// previous tangential displacement, c_q^k = c_q + u_t^{k−1}; then ∇_q = Mz + c = −(u_t − u_t^{k−1})

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The Delassus operator M = G A⁻¹ Gᵀ of the dual contact QP (spec 02, §7 and §9.2): applied to
-// vectors by the QP solvers, and read block by block by the sensitivity analysis.
+// The Delassus operator M = G A⁻¹ Gᵀ of the dual contact QP (docs/theory/state-problem.md §5):
+// applied to vectors by the QP solvers, and read block by block by the sensitivity analysis.
 #pragma once
 
 #include <Eigen/Core>
@@ -14,7 +14,7 @@
 namespace frictopt::contact {
 
 /// M as an operator that can also return dense blocks M[rows, cols] (the adjoint needs the
-/// block of the nodes in contact only, spec 03 §7).
+/// block of the nodes in contact only, docs/theory/sensitivity.md §6).
 class DelassusMatrix : public linalg::LinearOperator {
  public:
   virtual Eigen::MatrixXd block(const std::vector<Eigen::Index>& rows, const std::vector<Eigen::Index>& cols) const = 0;

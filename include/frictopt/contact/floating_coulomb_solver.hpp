@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Coulomb contact of a floating body (issue 12, item 2; spec 07 §2; docs/experiments.md §5):
+// Coulomb contact of a floating body (docs/experiments.md §5):
 // when the Dirichlet conditions leave rigid-body modes R (A R = 0), the displacement is
 // u = A⁺(l + Gᵀz) + Rβ and the contact forces must balance the loads, Rᵀ(l + Gᵀz) = 0. In the
 // dual variables this is the equality E z = e, E = (G R)ᵀ (r × dim·p), e = −Rᵀl, added to the

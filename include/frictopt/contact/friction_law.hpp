@@ -103,7 +103,8 @@ class FrictionLaw {
   int dim() const { return kind_ == FrictionLawKind::kInterval ? 2 : 3; }
   /// Number of tangential components: dim() − 1.
   int tangential_dim() const { return dim() - 1; }
-  /// True for interval and polygon laws (faces are vertices and edges).
+  /// True for interval and polygon laws (faces are vertices and edges); false for the smooth
+  /// laws (disc, ellipse), whose boundary has no corners.
   bool is_polygonal() const;
   /// True when W = {0} (all coefficients zero): frictionless.
   bool is_zero() const { return zero_; }
@@ -152,10 +153,80 @@ class FrictionLaw {
   /// ", orientation_deg=30".
   std::string describe() const;
 
+  // -------------------------------------------------------------------------------------------
+  // Geometry of W and its derivatives (src/contact/friction_law_derivatives.cpp). Every caller
+  // that needs a law's local geometry (the adjoint's pieces, the parameter sensitivities, the
+  // semismooth Newton engine, identification, orientation design) asks the law, so a new kind
+  // is written here once (docs/contact.md, "Adding a friction law").
+
+  /// True when R(φ)·W = W for every turn φ of the tangent plane, so nothing depends on the
+  /// law's orientation: a disc, an ellipse with μ_x = μ_y, and W = {0}. Polygons never are (a
+  /// regular n-gon is invariant under turns by 2π/n only). 2D: W = −W (μ₋ = μ₊).
+  bool is_isotropic() const;
+  /// Gauge (Minkowski functional) γ_W(x) = min{t >= 0 : x ∈ t·W}: 1 on the boundary of W,
+  /// positively homogeneous, and x ∈ s·W ⇔ γ_W(x) <= s. W = {0}: 0 at x = 0, +∞ elsewhere.
+  double gauge(const Eigen::Vector2d& x) const;
+  /// Radial function ρ_W(d) = max{t >= 0 : t·d ∈ W} = 1/γ_W(d), d ≠ 0; ρ_W(d)·d is the boundary
+  /// point of W in the direction d (dual to support(): N_W(u) = max_d ⟨ρ_W(d) d, u⟩).
+  double radial(const Eigen::Vector2d& d) const;
+
+  /// P_W(y) = project(y, 1), one element J of the generalized (Clarke) Jacobian of P_W at y, and
+  /// the face P_W(y) lies on.
+  struct ProjectionJacobian {
+    Eigen::Vector2d point = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d jacobian = Eigen::Matrix2d::Zero();
+    FaceLocation face{FrictionFace::kDegenerate, -1};
+  };
+  /// The projection onto W and its Jacobian at y (2D laws read and fill component 0 only):
+  ///  - y inside W: J = I, face kInterior;
+  ///  - polygon (and interval): J = 0 at a vertex, t tᵀ on an edge with unit tangent t;
+  ///  - ellipse {xᵀDx <= 1} in the law's frame, D = diag(1/μ_x², 1/μ_y²) (disc: μ_x = μ_y):
+  ///    P_W(y) = (I + γD)⁻¹y with the multiplier γ > 0; implicit differentiation of PᵀDP = 1
+  ///    gives J = M − (MDP)(MDP)ᵀ/(PᵀDMDP), M = (I + γD)⁻¹, turned back by R(φ)·J·R(φ)ᵀ;
+  ///  - W = {0}: P = 0, J = 0, face kDegenerate.
+  /// Projections onto s·W follow by homogeneity: P_{sW}(x) = s·P_W(x/s).
+  ProjectionJacobian projection_jacobian(const Eigen::Vector2d& y) const;
+  /// ∂w/∂u of the exposed point w(u) = exposed_point(u) = ∇N_W(u). Smooth laws, u ≠ 0:
+  /// w(u) = R w₀(Rᵀu) with w₀(d) = A d/√(dᵀAd), A = diag(μ_x², μ_y²), so
+  /// ∂w/∂u = R (A/σ − (Ad)(Ad)ᵀ/σ³) Rᵀ, σ = √(dᵀAd), d = Rᵀu. Polygons and the interval: 0 (w is
+  /// constant on each open sector; on an edge-normal ray it is not differentiable). u = 0 or
+  /// W = {0}: 0.
+  Eigen::Matrix2d exposed_point_jacobian(const Eigen::Vector2d& u) const;
+  /// ∂w/∂φ at fixed u of the exposed point of rotated(φ): with R' = J R (J the quarter turn),
+  /// ∂/∂φ [R w₀(Rᵀu)] = J w(u) − (∂w/∂u) J u. Zero for an isotropic law; for a polygon it is the
+  /// turning vertex J w_j (the second term vanishes). 3D laws.
+  Eigen::Vector2d exposed_point_orientation_derivative(const Eigen::Vector2d& u) const;
+
+  // -------------------------------------------------------------------------------------------
+  // The law's own coefficients c (the factory's arguments) as controls: the friction parameters
+  // of the sensitivity module and of identification are these, plus the orientation.
+
+  /// interval (mu_minus, mu_plus); disc and regular_polygon (mu); polygon (mu_vertices[j] =
+  /// |w_j|); ellipse and ellipse_polygon (mu_x, mu_y).
+  std::vector<std::string> coefficient_names() const;
+  /// The values of c, in the order of coefficient_names().
+  Eigen::VectorXd coefficients() const;
+  /// The law of the same kind and size with coefficients `values`, turned by `orientation` from
+  /// the factory's position (rotated(orientation) of the factory's law). Throws InvalidInput for
+  /// a wrong count, or as the factory does for bad values.
+  FrictionLaw with_coefficients(const Eigen::Ref<const Eigen::VectorXd>& values, double orientation) const;
+  /// Polygons and the interval: d[k][j] = ∂w_j/∂c_k, the vertices' derivatives in the tangent
+  /// plane (a turned law's coefficients move its vertices along the turned directions R v_j).
+  /// Smooth laws: empty.
+  std::vector<std::vector<Eigen::Vector2d>> vertex_coefficient_derivatives() const;
+  /// ∂w/∂c (2 × coefficients().size()) of the exposed point at fixed u. Smooth laws: the
+  /// derivative of R w₀(Rᵀu) by the semi-axes (disc: by μ, both semi-axes together); polygons:
+  /// the column of the exposed vertex, d[k][j]; u = 0 or W = {0}: 0.
+  Eigen::MatrixXd exposed_point_coefficient_jacobian(const Eigen::Vector2d& u) const;
+
  private:
   FrictionLaw() = default;
   static FrictionLaw make_polygon(FrictionLawKind kind, std::vector<Eigen::Vector2d> vertices,
                                   std::vector<double> mu_vertices, const char* context);
+
+  /// Throws std::logic_error: a switch over the kinds met a value it does not list (every
+  /// per-kind switch ends here instead of treating an unlisted kind as some other one).
+  [[noreturn]] static void unknown_kind(FrictionLawKind kind, const char* where);
 
   // The smooth laws' (disc, ellipse) vectors in the law's own frame and back: Rᵀv and R v.
   Eigen::Vector2d to_law_frame(const Eigen::Vector2d& v) const { return frame_.transpose() * v; }

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Contact with given (Tresca) friction in its dual form (spec 02, §7 and §9.2–§10.3):
+// Contact with given (Tresca) friction in its dual form (docs/theory/state-problem.md §3, §5):
 //   min ½ zᵀMz + zᵀc  s.t.  λ_i >= 0,  q_i ∈ s_i·W_i,
 // solved by Dostál's MPGP over the product of the per-node sets, or by a split variant that
-// alternates MPRGP on the normal forces with MPGP on the tangential forces (spec 02, §8).
+// alternates MPRGP on the normal forces with MPGP on the tangential forces
+// (docs/theory/state-problem.md §6).
 #pragma once
 
 #include <Eigen/Core>
@@ -44,7 +45,7 @@ class TrescaSolver {
     /// Stop when ‖g̃_ᾱ(z)‖₂ <= relative_tolerance·‖c‖₂, with the reduced projected gradient
     /// g̃_ᾱ(z) = (z − P(z − ᾱ∇))/ᾱ (Dostál 2009, §5.3 and Dostál–Kozubek 2012). The default
     /// is tight because the sensitivity analysis classifies nodes by exact equalities
-    /// (spec 02, §8). In (0, 1).
+    /// (docs/theory/state-problem.md §6). In (0, 1).
     double relative_tolerance = 1e-10;
     /// Cap on the QP iterations (CG + expansion + proportioning steps, summed over the split
     /// variant's inner solves). >= 1.
@@ -64,7 +65,8 @@ class TrescaSolver {
     double norm_safety_factor = 1.05;
     /// Split variant: cap on the outer (block Gauss–Seidel) sweeps. >= 1.
     int max_split_sweeps = 1000;
-    /// ε_cl of the node classification (spec 03, §3.2); must exceed the relative KKT residual.
+    /// ε_cl of the node classification (docs/theory/sensitivity.md §3); must exceed the relative
+    /// KKT residual.
     double classification_tolerance = 1e-8;
     /// Throws InvalidInput naming the field, its value and the expectation.
     void validate() const;
@@ -114,8 +116,8 @@ class TrescaSolver {
 
   /// Which block solve_block() minimizes over.
   enum class Block {
-    kTangential,  ///< step (I) of spec 02, §8: q ∈ s·W with λ fixed (MPGP)
-    kNormal       ///< step (II) of spec 02, §8: λ >= 0 with q fixed (MPRGP)
+    kTangential,  ///< step (I) of docs/theory/state-problem.md §6: q ∈ s·W with λ fixed (MPGP)
+    kNormal       ///< step (II) of docs/theory/state-problem.md §6: λ >= 0 with q fixed (MPRGP)
   };
   /// Minimizes the QP over one block with the other fixed at state.z (which must have size
   /// dim·p), to ‖g̃_ᾱ‖ <= relative_tolerance·‖c‖ on that block. The split Coulomb method.

@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
-// The Coulomb problem of CoulombSolver on a working set of contact nodes (issue 18, item 2).
+// The Coulomb problem of CoulombSolver on a working set of contact nodes (docs/contact.md,
+// "Large contact surfaces").
 // At a Coulomb solution a node without normal force carries no friction force either
 // (q_i ∈ λ_i W = {0}), so z vanishes outside the nodes in contact, and z solves the full dual QP
-// (spec 02, §7/§9.2) iff it solves the QP restricted to any node set W that contains them and
-// every node outside W has a non-negative gap w_i = (Mz + c)_ν,i (its KKT conditions are then
-// λ_i = 0 ⟂ w_i >= 0, q_i = 0 ∈ 0·W). The restricted QP needs only the principal block M[W, W]
+// (docs/theory/state-problem.md §5) iff it solves the QP restricted to any node set W that contains
+// them and every node outside W has a non-negative gap w_i = (Mz + c)_ν,i (its KKT conditions are
+// then λ_i = 0 ⟂ w_i >= 0, q_i = 0 ∈ 0·W). The restricted QP needs only the principal block M[W, W]
 // (from a dense M: read; from the Schur factor: triangular solves for |W|·dim columns, no m³
 // work) and is solved by CoulombSolver on that dense block, whose products cost (|W|·dim)²
 // instead of m²; one product with the full M checks the gaps outside W, and nodes that would

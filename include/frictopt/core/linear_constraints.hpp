@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The one type for a polyhedron Υ = {x : lower ≤ x ≤ upper, A_in x ≤ b_in, A_eq x = b_eq}: shape
-// builds the admissible designs in it (spec 01 §4.4), optim minimizes over it (spec 04 §3.2),
-// and study passes it from one to the other unchanged. It lives in core because shape comes
-// before optim in the module order (DESIGN.md) and neither may depend on the other for it.
+// builds the admissible designs in it (docs/theory/problem.md §6), optim minimizes over it
+// (docs/theory/bundle-trust.md §3), and study passes it from one to the other unchanged. It
+// lives in core because shape comes before optim in the module order (docs/architecture.md §1) and
+// neither may depend on the other for it.
 #pragma once
 
 #include <Eigen/Core>

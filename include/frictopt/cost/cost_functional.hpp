@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Cost functionals J(α, u, z) with value and partial gradients (spec 03 §9.2, spec 05 §2.4).
+// Cost functionals J(α, u, z) with value and partial gradients (docs/theory/costs.md).
 #pragma once
 
 #include <Eigen/Core>
@@ -28,18 +28,21 @@ struct CostInput {
 class CostFunctional {
  public:
   virtual ~CostFunctional() = default;
+  /// The case file's spelling of the cost's kind (cost_kind.hpp), which the console, the
+  /// pictures and summary.json print: one name per cost whatever functional implements it.
   virtual std::string name() const = 0;
   virtual sensitivity::CostPartials evaluate(const CostInput& input) const = 0;
 };
 
 /// J₁ = Σ_i (λ̄_i − λ_i)² (thesis ex. 5.2.1): the normal nodal forces toward a target [N²].
-/// The target λ̄ has one entry per contact node.
+/// The target λ̄ has one entry per contact node. Named "target_pressure": the case file's kind,
+/// whose target is λ̄_i = p̄·a_i.
 std::unique_ptr<CostFunctional> make_target_normal_force(Eigen::VectorXd target);
 
-/// J₂ = Σ_i λ_i^p (thesis ex. 5.2.2 with p = 4, spec 05 §2.3's default reading Σλ⁴).
+/// J₂ = Σ_i λ_i^p (thesis ex. 5.2.2 with p = 4, read as Σλ⁴: docs/theory/costs.md).
 std::unique_ptr<CostFunctional> make_normal_force_power(double exponent = 4.0);
 
-/// J₃ = −uᵀA u + lᵀu over all DOFs (thesis ex. 5.2.3, spec 03 §9.2): at a solution
+/// J₃ = −uᵀA u + lᵀu over all DOFs (thesis ex. 5.2.3, docs/theory/costs.md): at a solution
 /// J₃ = λᵀg + Σ λ_i N_W(u_t^i) >= 0 (minus twice the strain energy plus the work of loads).
 std::unique_ptr<CostFunctional> make_compliance();
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The cost functionals a study can name (spec 05 §2.4), with their one spelling table: case
+// The cost functionals a study can name (docs/theory/costs.md), with their one spelling table: case
 // files, summaries and the CLI read and print these names (STYLE.md §2).
 #pragma once
 

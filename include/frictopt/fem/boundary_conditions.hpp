@@ -11,7 +11,7 @@
 namespace frictopt::fem {
 
 /// u_c = value_c on every node of the boundary set `boundary` for each listed component c
-/// (spec 01, §2.3).
+/// (docs/theory/problem.md §4).
 struct FaceDirichlet {
   std::string boundary = "left";  ///< name of a mesh::BoundarySet
   std::vector<int> components;   ///< empty = all components

@@ -52,7 +52,8 @@ class LinearElasticity {
   [[nodiscard]] Status factorize();
   const linalg::SpdSolver& factorization() const { return *solver_; }
   /// Replaces the solver behind factorization() by `solver` (already able to solve, e.g. the
-  /// PETSc engine's Krylov solves, issue 14); factorize() is then not called by the owner.
+  /// PETSc engine's Krylov solves, docs/petsc-engine.md); factorize() is then not called by the
+  /// owner.
   void set_factorization(std::unique_ptr<linalg::SpdSolver> solver) { solver_ = std::move(solver); }
   /// The full displacement for the assembled load: u_f = A⁻¹ l, u_d prescribed.
   Eigen::VectorXd solve() const;
@@ -66,7 +67,7 @@ class LinearElasticity {
   /// The shape-derivative kernel: ∇_α [pᵀ(A_full(α) u − l_traction(α))] for fixed full vectors
   /// u, p (d entries), = Vᵀ ∂/∂X[…], computed element by element (never a 3-tensor). With p
   /// zero on prescribed DOFs this is the α-derivative of the reduced residual tested with p —
-  /// the term Ξᵀp of the adjoint sensitivity (spec 03, §9).
+  /// the term Ξᵀp of the adjoint sensitivity (docs/theory/sensitivity.md §6).
   Eigen::VectorXd shape_derivative(const Eigen::Ref<const Eigen::MatrixXd>& X,
                                    const Eigen::Ref<const Eigen::VectorXd>& u,
                                    const Eigen::Ref<const Eigen::VectorXd>& p) const;

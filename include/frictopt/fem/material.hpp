@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Isotropic linear elastic material (spec 01, §2.5).
+// Isotropic linear elastic material (docs/theory/problem.md §4; thesis (3.1.1)–(3.1.2)).
 #pragma once
 
 #include <string_view>
@@ -8,7 +8,7 @@
 
 namespace frictopt::fem {
 
-/// 2D model (spec 01, A-PS): plane strain (default, unit thickness) or plane stress.
+/// 2D model (docs/theory/problem.md §4): plane strain (default, unit thickness) or plane stress.
 enum class PlaneModel { kPlaneStrain, kPlaneStress };
 /// The spellings of PlaneModel (case files, reports).
 inline constexpr auto kPlaneModelNames = frictopt::detail::make_enum_table<PlaneModel>(
@@ -29,7 +29,7 @@ struct IsotropicMaterial {
   void validate() const;
   /// μ = E / (2(1+ν)).
   double shear_modulus() const { return young / (2.0 * (1.0 + poisson)); }
-  /// λ = Eν/((1+ν)(1−2ν)); in 2D plane stress λ* = 2λμ/(λ+2μ) (spec 01, §2.5).
+  /// λ = Eν/((1+ν)(1−2ν)); in 2D plane stress λ* = 2λμ/(λ+2μ) (docs/theory/problem.md §4).
   double lame_lambda(int dim) const;
 };
 

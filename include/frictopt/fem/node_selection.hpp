@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Point and node-set conditions (issue 12, item 3): nodal forces on nodes chosen by coordinates
-// (the nearest node within a tolerance), by a box, or by a named boundary set; and the load
-// vector of one face traction, so that a loading program can scale each [[load]] separately.
+// Point and node-set conditions (docs/experiments.md §3): nodal forces on nodes chosen by
+// coordinates (the nearest node within a tolerance), by a box, or by a named boundary set; and the
+// load vector of one face traction, so that a loading program can scale each [[load]] separately.
 #pragma once
 
 #include <Eigen/Core>

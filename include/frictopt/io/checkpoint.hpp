@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "frictopt/io/json.hpp"
 #include "frictopt/optim/bundle_trust.hpp"
@@ -41,6 +42,10 @@ struct RunCheckpoint {
   /// The contact forces z the body's next state solve starts from (empty: a cold start).
   Eigen::VectorXd warm_start;
   int warm_start_dim = 0;
+  /// The contact forces each step of the loading programs starts from (study::ShapeOracle::
+  /// history_warm_starts; empty vector: a cold start; no entries: the static problem). Their
+  /// dimension is fingerprint.dim.
+  std::vector<Eigen::VectorXd> history_warm_starts;
   double initial_cost = kNaN;        ///< Θ(α⁰), for summary.json
   double elapsed_seconds = 0.0;      ///< over all processes of the run so far
   std::int64_t state_solves = 0;     ///< over all processes of the run so far

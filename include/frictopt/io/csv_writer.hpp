@@ -24,24 +24,30 @@ using CsvValue = std::variant<std::int64_t, double, std::string>;
 class CsvWriter {
  public:
   enum class Mode {
-    kTruncate,  ///< start a new file
-    kAppend     ///< continue an existing file whose header must equal `header`
+    kTruncate,  ///< start a new file, rows flushed as they come (a run's history)
+    kAppend,    ///< continue an existing file whose header must equal `header`
+    /// A whole table: the rows are kept in memory and `finish()` replaces `path` atomically
+    /// (atomic_file.hpp), so a failed write (a full disk) leaves the previous file as it was.
+    kReplace
   };
 
   /// Opens `path` and, unless appending to a non-empty file, writes and flushes the header.
-  /// Throws InvalidInput if the header is empty or has an empty or duplicate column name,
-  /// the file cannot be opened, or (kAppend) the existing header differs.
+  /// Throws InvalidInput if the header is empty or has an empty or duplicate column name, or
+  /// (kAppend) the existing header differs; FileSystemError if the file cannot be opened.
   CsvWriter(const std::filesystem::path& path, std::vector<std::string> header,
             Mode mode = Mode::kTruncate);
 
   /// Appends one row and flushes it. Throws InvalidInput if the row's length differs from
-  /// the header's, or the write fails.
+  /// the header's, FileSystemError if the write fails.
   void write_row(std::span<const CsvValue> row);
   void write_row(std::initializer_list<CsvValue> row) {
     write_row(std::span<const CsvValue>(row.begin(), row.size()));
   }
   /// Convenience for all-real rows.
   void write_row(std::span<const double> row);
+  /// kReplace: writes the table to `path` (FileSystemError when the system refuses; the
+  /// previous file is then kept). Without it nothing is written. No-op in the other modes.
+  void finish();
 
   [[nodiscard]] const std::vector<std::string>& header() const { return header_; }
   [[nodiscard]] std::int64_t rows_written() const { return rows_written_; }
@@ -53,6 +59,8 @@ class CsvWriter {
   std::filesystem::path path_;
   std::vector<std::string> header_;
   std::ofstream out_;
+  Mode mode_ = Mode::kTruncate;
+  std::string buffer_;  // kReplace: the table so far
   std::int64_t rows_written_ = 0;
 };
 

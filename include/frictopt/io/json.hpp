@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <concepts>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -87,10 +88,21 @@ class JsonValue {
 [[nodiscard]] std::string to_json_string(const JsonValue& value, int indent = 2);
 
 /// Parses JSON text. Throws InvalidInput with the position of a syntax error.
+/// Arrays and objects may nest at most kMaxJsonDepth deep (frictopt's own files nest a few
+/// levels): a deeper text is refused before it is parsed, so no recursion can exhaust the stack.
 [[nodiscard]] JsonValue parse_json(std::string_view text);
+inline constexpr int kMaxJsonDepth = 64;
+
+/// Reads and parses the JSON file `path` (a regular file of at most `max_bytes`; a FIFO or
+/// device is refused without waiting). Every error names the file and `what` ("the design
+/// file"): InvalidInput for a missing, non-regular, oversized or malformed file,
+/// FileSystemError when the system refuses to read it.
+[[nodiscard]] JsonValue read_json_file(const std::filesystem::path& path, std::string_view what,
+                                       std::size_t max_bytes = std::size_t{1} << 30);
 
 /// Writes to_json_string(value) plus a newline to `path`, atomically (temporary file +
-/// rename). Throws InvalidInput if the file cannot be written.
+/// rename). Throws FileSystemError (exit 5) if the file cannot be written; the previous file
+/// is then kept.
 void write_json(const std::filesystem::path& path, const JsonValue& value, int indent = 2);
 
 }  // namespace frictopt::io

@@ -46,6 +46,7 @@ struct OptimizationRunRequest {
 
 struct OptimizationRunResult {
   optim::BundleTrust::Summary summary;  ///< the method's (this process's counters)
+  study::OptimizationOutcome outcome;   ///< certified / limit reached / needs attention / failed
   double initial_cost = kNaN;           ///< Θ(α⁰)
   double final_cost = kNaN;             ///< Θ at the final design
   JsonValue summary_json;               ///< summary.json's content (written when there is a run directory)

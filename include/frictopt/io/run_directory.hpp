@@ -74,7 +74,17 @@ class RunDirectory {
 
   /// The case the run solves: copies `case_argument` to PATH/case.toml (kNewRun, kForce) and
   /// returns the path to load; on kResume and kExisting the run's own copy.
+  /// A case.toml already in a directory that holds no run (no checkpoint.json, history.csv or
+  /// final_design.json) is someone's case file: refused (InvalidInput), never replaced, unless
+  /// it is the very copy this run would write.
   [[nodiscard]] std::filesystem::path store_case();
+  /// The same for a case given as TOML text (the Python module): `origin` is the path its
+  /// relative file names resolve against (case_copy_text), so the copy is the CLI's.
+  void store_case_text(const std::string& text, const std::filesystem::path& origin);
+
+  /// certify: refuses (InvalidInput naming the changes) when the run's checkpoint holds another
+  /// fingerprint than `current` (case.toml edited after the run); no checkpoint: no check.
+  void check_run_fingerprint(const CaseFingerprint& current) const;
 
   /// kResume: refuses (InvalidInput naming every setting that changed) when the case argument
   /// defines another problem than the run's case.toml (`run_case`), or when `current` (the
@@ -86,9 +96,13 @@ class RunDirectory {
   /// The history CSV: a new file, or on kResume the existing one cut back to the rows of
   /// iterations <= `keep_through_iteration` (later rows belong to an iteration the
   /// checkpoint does not hold; a damaged last row — an interrupted write — is dropped with a
-  /// note in `notes`; a damaged row before it is refused).
+  /// note in `notes`; a damaged row before it is refused: a row with control characters (NUL
+  /// bytes), of the wrong width, out of the order 1, 2, 3, ... (duplicated or copied rows), rows
+  /// ending before the checkpoint's iteration, or — given `center_value`, the checkpoint's Θ —
+  /// a theta at that iteration other than the checkpoint's).
   [[nodiscard]] CsvWriter open_history(std::vector<std::string> header, int keep_through_iteration,
-                                       std::vector<std::string>& notes);
+                                       std::vector<std::string>& notes,
+                                       std::optional<double> center_value = std::nullopt);
 
   [[nodiscard]] RunCheckpoint read_checkpoint() const;
   void write_checkpoint(const RunCheckpoint& checkpoint) const;
@@ -106,6 +120,8 @@ class RunDirectory {
  private:
   void lock();
   void clear_previous_run();
+  [[nodiscard]] bool is_own_case_copy() const;
+  void require_case_copy_is_ours(const std::filesystem::path& copy) const;
   [[nodiscard]] std::vector<std::string> known_names() const;
 
   std::filesystem::path path_;

@@ -21,11 +21,20 @@ namespace frictopt::io {
 /// Adds (or replaces) every member of the object `members` in the object `into`.
 void add_members(JsonValue& into, const JsonValue& members);
 
+/// The SI unit of the cost Θ of `cost` on a body of dimension `dim` (docs/theory/costs.md; in 2D
+/// forces are per metre of thickness and tributary areas are lengths), e.g. "N²", "J/m".
+[[nodiscard]] std::string cost_unit(const study::CostDefinition& cost, int dim);
+
 [[nodiscard]] JsonValue to_json(const study::StateSummary& summary);
 /// The conditions a run's numbers were produced under, for every command's summary (CLI and
-/// Python alike): {"blas_threads": the BLAS thread policy}. A run is bit-reproducible only for a
+/// Python alike): {"blas_threads": the BLAS thread policy, "blas": the BLAS loaded (implementation
+/// and the library dgemm_ resolves to)}. A run is bit-reproducible only for a
 /// fixed thread count (README, "Reproducibility").
 [[nodiscard]] JsonValue run_environment();
+/// The Bézier chart of the body's design (docs/case-format.md, [design]): patch, origin and
+/// extents in the plane coordinates, control points and degree per direction, the frame (normal,
+/// tangents) and the formula of the surface, so that a run's alpha rebuilds it.
+[[nodiscard]] JsonValue design_chart(const study::ElasticBody& body);
 /// summary.json of `solve` (CLI and Python alike): the case, the state's summary, mesh sizes, the
 /// contact summary and, for a converged state, energies, volume and the largest von Mises stress.
 [[nodiscard]] JsonValue solve_summary(const std::string& case_name, const study::ElasticBody& body,

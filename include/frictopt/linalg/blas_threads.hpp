@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // How many threads the BLAS behind CHOLMOD and the dense kernels may use, chosen per call from
-// the size of the work and the cores other processes leave idle (issue 18, item 4;
-// docs/benchmarks.md, "BLAS threads on a shared machine"). OpenBLAS' pthread workers spin while
+// the size of the work and the cores other processes leave idle
+// (docs/benchmarks.md, "BLAS threads on a shared machine"). OpenBLAS' pthread workers spin while
 // they wait; with another process on the second core a threaded call waited for a descheduled
 // worker, and the demo's factorization took 2.0 s with two threads against 0.23 s with one.
 #pragma once
@@ -41,6 +41,28 @@ inline constexpr double kMinFlopsForThreads = 2e8;
 
 /// One line for logs and benchmarks: "BLAS threads: automatic (max 2)" etc.
 [[nodiscard]] std::string describe_blas_threads();
+
+/// The BLAS this process (or this module, inside a host that loaded it) actually calls: the
+/// library the dynamic linker binds a BLAS/LAPACK symbol to is the one CHOLMOD's and LAPACK's
+/// calls reach, which need not be the one the alternatives name (a dependency such as Ceres may
+/// bring ATLAS ahead of it; cmake/FrictoptModule.cmake links OpenBLAS first for that reason).
+struct LoadedBlas {
+  std::string implementation;  ///< openblas_get_config(), e.g. "OpenBLAS 0.3.21 DYNAMIC_ARCH ..."; else "unknown"
+  std::string dgemm_library;   ///< the file dgemm_ resolves to (dladdr, links resolved), "" if it does not resolve
+  /// The implementation reports OpenBLAS and dgemm_ resolves into an OpenBLAS library file.
+  [[nodiscard]] bool is_openblas() const;
+};
+
+/// Looks the BLAS up as above (dlsym from this library's own scope, then dladdr).
+[[nodiscard]] LoadedBlas loaded_blas();
+
+/// The file a BLAS/LAPACK symbol (e.g. "dsyrk_", "dpotrf_") resolves to in this process, with
+/// symbolic links (Debian's alternatives) resolved; "" if it does not resolve.
+[[nodiscard]] std::string library_of_symbol(const char* symbol);
+
+/// One line for logs, `frictopt --version` and summaries: "OpenBLAS 0.3.21 ... (dgemm_ from
+/// /usr/lib/.../libopenblasp-r0.3.21.so)".
+[[nodiscard]] std::string describe_loaded_blas();
 
 /// Sets the BLAS thread count for the BLAS call that follows, from the rule above, when it
 /// differs from the current one. The count is not restored afterwards (each change wakes

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The abstract SPD operator that iterative solvers are written against (the contact QP solvers
-// apply the Delassus operator M = G A⁻¹ Gᵀ of spec 02, §7 / §9.2 through it), with a dense and
-// a scaled implementation. Operators are applied, never formed, as in MFEM's linalg/operator.hpp.
+// apply the Delassus operator M = G A⁻¹ Gᵀ of docs/theory/state-problem.md §5 through it), with a
+// dense and a scaled implementation. Operators are applied, never formed, as in MFEM's
+// linalg/operator.hpp.
 #pragma once
 
 #include <Eigen/Core>

@@ -40,7 +40,8 @@ struct SpdSolverOptions {
 /// analyze(A, trailing) orders the given rows/columns last. Then the trailing m × m block L_tt of
 /// the factor L satisfies L_tt L_ttᵀ = S, the Schur complement of A onto those indices, and
 /// (A⁻¹)_tt = S⁻¹: a contact problem's Delassus matrix comes from dense algebra on L_tt
-/// instead of m sparse solves (spec 02 §5; the performance budget of docs/architecture.md).
+/// instead of m sparse solves (docs/theory/state-problem.md §4; the performance budget of
+/// docs/architecture.md).
 class SpdSolver {
  public:
   using Options = SpdSolverOptions;

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The design motion of an imported body (spec 07 §5): a Bézier surface (3D) or curve (2D) over a
-// chart of the design patch moves the patch nodes along the foundation normal; every other node
-// follows an extension computed once per mesh, so that V = ∂X/∂α is constant and
-// X(α) = X_ref + V α (spec 01 §2.6).
+// The design motion of an imported body (docs/meshes.md, "The design on a patch"): a Bézier surface
+// (3D) or curve (2D) over a chart of the design patch moves the patch nodes along the foundation
+// normal; every other node follows an extension computed once per mesh, so that V = ∂X/∂α is
+// constant and X(α) = X_ref + V α (docs/theory/problem.md §5).
 #pragma once
 
 #include <Eigen/Core>
@@ -32,7 +32,8 @@ struct PlaneFrame {
 
 /// The chart of a design patch: the bounding rectangle [origin, origin + extents] of the
 /// patch's nodes in the plane coordinates of the frame; a node at plane coordinates x' has
-/// Bézier parameter x' − origin in [0, a] × [0, b] (spec 07 §5's default chart).
+/// Bézier parameter x' − origin in [0, a] × [0, b] (the default chart of
+/// docs/meshes.md, "The design on a patch").
 struct PatchChart {
   Eigen::VectorXd origin;   ///< size dim − 1 [m]
   Eigen::VectorXd extents;  ///< size dim − 1, (a[, b]) [m], each > 0

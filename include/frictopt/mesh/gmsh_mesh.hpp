@@ -4,6 +4,7 @@
 // the file's physical groups by name. One producer of a Mesh, next to the structured grid.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -13,12 +14,51 @@
 
 namespace frictopt::mesh {
 
+/// The process-wide default of GmshMeshOptions::trust_geo (false until set; the command line
+/// sets it for --trust-geo, the Python module for load_case(..., trust_geo=True)).
+bool trust_geo_by_default();
+void set_trust_geo_by_default(bool trust);
+
 /// How a Gmsh file becomes a mesh.
 struct GmshMeshOptions {
   /// .geo only: the largest element size [m] (Gmsh's Mesh.MeshSizeMax); NaN: the sizes the
   /// .geo itself sets. A .msh is read as it is and must not be given a size.
   double size = std::numeric_limits<double>::quiet_NaN();
+  /// .geo only: run the file with every Gmsh command, unscanned (the user vouches for it; the
+  /// command line's --trust-geo). False: the file and its Includes must pass check_geo_file.
+  bool trust_geo = trust_geo_by_default();
+  /// The folder a .geo's Include/Merge may name files in (with its sub-folders); empty: the
+  /// .geo's own folder. The case reader passes the case file's folder.
+  std::filesystem::path allowed_root{};
+  /// The most unknowns (nodes × dim) the mesh may have; a larger mesh is refused when Gmsh
+  /// has made or read it, before anything is assembled (docs/case-format.md, "Size limits").
+  std::int64_t max_unknowns = 2'000'000;
+  /// Wall-clock seconds the Gmsh child process may take (reading, meshing); then it is killed
+  /// and the file refused.
+  double time_limit_seconds = 600.0;
 };
+
+/// Refuses a .geo file that could do more than describe a geometry: throws InvalidInput naming
+/// file:line and the command for System, SystemCall, NonBlockingSystemCall, Shell, OnelabRun,
+/// Exit, Abort, Save, Print, Sleep, Plugin, SetNumber/SetString, file-writing Printf (`> "f"`,
+/// `>> "f"`), options outside Geometry.* and Mesh.*, an Include/Merge/ShapeFromFile whose
+/// argument is not one string literal, names a file outside `allowed_root` or a file of another
+/// kind (Merge: .msh, .geo, .step/.stp, .brep, .iges/.igs), an unterminated string or comment,
+/// and Includes nested deeper than 16. Included and merged .geo files are checked the same way.
+/// Returns every file the .geo reads (itself first), for the run's fingerprint.
+std::vector<std::filesystem::path> check_geo_file(const std::filesystem::path& file,
+                                                  const std::filesystem::path& allowed_root);
+
+/// The memory this process may still use [bytes]: the machine's MemAvailable (/proc/meminfo),
+/// or less under a cgroup limit (memory.max − memory.current); 0 when neither can be read.
+std::uint64_t available_memory_bytes();
+
+/// Checks an ASCII .msh file (formats 2.2 and 4.1) line by line before Gmsh reads it: the
+/// $MeshFormat header, the counts of $Nodes and $Elements, the number of entries on every node
+/// and element line (an element line must hold exactly its type's nodes), and that every
+/// element names a node the file defines. Throws InvalidInput naming file:line. A binary .msh
+/// is only checked for its header (Gmsh then reads it in the child process).
+void check_msh_file(const std::filesystem::path& file);
 
 /// The body of a Gmsh file, as a Mesh of Q1 cells (quadrilaterals in 2D, hexahedra in 3D;
 /// docs/meshes.md says why) with no design variables yet (V has 0 columns: the design
@@ -38,14 +78,17 @@ struct GmshMeshOptions {
 /// - Cells with a negative Jacobian at their centre (Gmsh's orientation of a hand-written
 ///   .msh) are reordered; the facet orientation is not used.
 ///
-/// Thread safety: Gmsh has one global state; every GmshMesh construction holds a process-wide
-/// lock while the library is initialized and finalizes it before returning. Nothing is printed
-/// (General.Terminal = 0); Gmsh's messages become the InvalidInput messages.
+/// Gmsh runs in a child process (fork): a crash, an Exit or a hang inside Gmsh ends the child,
+/// never the caller, and becomes an InvalidInput naming the file; the child is killed after
+/// options.time_limit_seconds and its address space is bounded by the memory available. The
+/// mesh comes back through a pipe. Before the child starts, a .msh passes check_msh_file and
+/// (unless options.trust_geo) a .geo passes check_geo_file. Nothing is printed; Gmsh's
+/// messages become the InvalidInput messages.
 class GmshMesh {
  public:
   /// Throws InvalidInput naming the file for: a missing or unreadable file, an extension other
   /// than .msh/.geo, a size given for a .msh or a size that is not > 0, a Gmsh syntax error,
-  /// no elements of the body's dimension, triangles/tetrahedra (in a .msh) or other unsupported
+  /// no elements of the body's dimension, other unsupported
   /// or mixed element types, a 2D body that is not planar, and a boundary group with facets
   /// that are not faces of body nodes.
   GmshMesh(const std::filesystem::path& file, const GmshMeshOptions& options = {});
@@ -59,11 +102,15 @@ class GmshMesh {
   bool subdivided() const { return subdivided_; }
   /// Gmsh's element tag of each cell (for messages).
   const std::vector<std::size_t>& element_tags() const { return element_tags_; }
+  /// Every file the mesh was made from (the .msh, or the .geo and the files it includes and
+  /// merges), for the run's fingerprint; a trusted .geo lists only itself.
+  const std::vector<std::filesystem::path>& source_files() const { return source_files_; }
 
  private:
   std::filesystem::path file_;
   bool subdivided_ = false;
   std::vector<std::size_t> element_tags_;
+  std::vector<std::filesystem::path> source_files_;
   Mesh mesh_;
 };
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Column coordinates along one in-plane direction of the structured grid: uniform, or graded
-// geometrically toward a refinement interval (issue 18, item 1), and the layer heights of the
-// vertical grading "contact".
+// geometrically toward a refinement interval (docs/case-format.md, "In-plane grading"), and the
+// layer heights of the vertical grading "contact".
 #pragma once
 
 #include <string>
@@ -24,13 +24,13 @@ std::vector<double> uniform_coordinates(double length, int cells);
 std::vector<double> graded_coordinates(double length, int cells, double lo, double hi, double growth,
                                        const std::string& field);
 
-/// Layer heights 0 = z_0 < … < z_layers = height of the vertical grading "contact" (issue 18):
-/// equal layers of thickness t = fine_depth/m from the contact surface down to the depth
-/// fine_depth, then layers growing by a ratio r in [1, growth] per layer up to the top, filling
-/// it exactly. m is the largest count the layers allow (the thinnest fine layers), as in
-/// graded_coordinates with the refinement interval [0, fine_depth]. Throws InvalidInput naming
-/// mesh.fine_depth (not in (0, height)), mesh.vertical_growth (not in (1, 2]) or
-/// mesh.cells[vertical] (too few layers to reach the top).
+/// Layer heights 0 = z_0 < … < z_layers = height of the vertical grading "contact"
+/// (docs/case-format.md, "Vertical grading"): equal layers of thickness t = fine_depth/m from the
+/// contact surface down to the depth fine_depth, then layers growing by a ratio r in [1, growth]
+/// per layer up to the top, filling it exactly. m is the largest count the layers allow (the
+/// thinnest fine layers), as in graded_coordinates with the refinement interval [0, fine_depth].
+/// Throws InvalidInput naming mesh.fine_depth (not in (0, height)), mesh.vertical_growth (not in
+/// (1, 2]) or mesh.cells[vertical] (too few layers to reach the top).
 std::vector<double> contact_layer_coordinates(double height, int layers, double fine_depth, double growth);
 
 }  // namespace frictopt::mesh

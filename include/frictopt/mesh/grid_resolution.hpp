@@ -7,7 +7,7 @@
 
 namespace frictopt::mesh {
 
-/// How the layers are spaced vertically (issue 18, item 1).
+/// How the layers are spaced vertically (docs/case-format.md, "Vertical grading").
 enum class VerticalGrading {
   kPower,   ///< ŝ_k = (k/n_vertical)^grading: one power law over the whole height
   kContact  ///< equal layers down to fine_depth, geometric growth above (contact_layer_coordinates)
@@ -26,8 +26,8 @@ struct GridResolution {
   VerticalGrading vertical_grading = VerticalGrading::kPower;
   double fine_depth = 0.0;       ///< [m], kContact only: depth of the equal fine layers, in (0, height)
   double vertical_growth = 1.2;  ///< kContact only: largest ratio of neighbouring layer thicknesses, in (1, 2]
-  /// In-plane grading (issue 18): 1 keeps the columns uniform (x_i = L·i/n). growth > 1 puts
-  /// uniform cells inside refine_box and cells growing geometrically, by a ratio of at most
+  /// In-plane grading (docs/case-format.md): 1 keeps the columns uniform (x_i = L·i/n). growth > 1
+  /// puts uniform cells inside refine_box and cells growing geometrically, by a ratio of at most
   /// `growth` between neighbours, from the box to the sides (graded_coordinates.hpp). In [1, 2].
   double growth = 1.0;
   /// [x1min, x1max, x2min, x2max] in metres (the x2 pair is unused in 2D); without it and with

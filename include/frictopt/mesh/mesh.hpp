@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The body's finite element mesh as a value: nodes, cells of one element kind, named boundary
-// sets, and the design motion X(α) = X_ref + V α (spec 01, §2.6 A-MESH). Producers (the
+// sets, and the design motion X(α) = X_ref + V α (docs/theory/problem.md §5). Producers (the
 // structured grid today) build it; fem, contact, sensitivity and output read only this type.
 #pragma once
 

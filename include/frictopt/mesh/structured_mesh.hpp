@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The structured reference grid of a box-like body with a Bézier bottom, and its vertical
-// morph X(α) = X_ref + V α (spec 01, §2.6 A-MESH; 3D as in §3): one producer of a mesh::Mesh.
+// morph X(α) = X_ref + V α (docs/theory/problem.md §5, 2D and 3D): one producer of a mesh::Mesh.
 #pragma once
 
 #include <Eigen/Core>
@@ -17,7 +17,7 @@
 namespace frictopt::mesh {
 
 /// Counts of a structured grid, in 64 bits so that an absurd resolution is reported rather than
-/// wrapped around (issue 17, item 6).
+/// wrapped around.
 struct StructuredGridSizes {
   std::int64_t columns = 0;   ///< (n1+1)(n2+1), n2 = 0 in 2D
   std::int64_t nodes = 0;     ///< columns · (n_vertical + 1)
@@ -37,7 +37,7 @@ StructuredGridSizes structured_grid_sizes(int dim, const GridResolution& resolut
 ///
 /// Node numbering: column c = i1 + (n1+1)·i2 (i2 = 0 in 2D), node = c + num_columns·k with
 /// layer k = 0 (bottom, Γ_c) .. n_vertical (top). Coordinates of a node in column c, layer k:
-///   x' = (ξ1_i1, ξ2_i2),   x_dim = ŝ_k·C4 + (1 − ŝ_k)·G_α(x')        (spec 01, (A-MESH))
+///   x' = (ξ1_i1, ξ2_i2),   x_dim = ŝ_k·C4 + (1 − ŝ_k)·G_α(x')        (docs/theory/problem.md §5)
 /// so X(α) = X_ref + V α with X_ref(x_dim) = ŝ_k·C4 and V[(node, dim−1), :] = (1−ŝ_k)·basis(x').
 /// The layers ŝ_k follow resolution.vertical_grading: the power law (k/n_vertical)^grading, or
 /// "contact" (equal layers down to fine_depth, geometric growth above; contact_layer_coordinates).

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The bundle trust (BT) method of Schramm & Zowe for locally Lipschitz, nonconvex, nonsmooth f
-// over a polyhedron Υ, as consolidated in spec 04 §6 (with the readings of spec 04 §5).
+// over a polyhedron Υ (thesis §2.5), as described in docs/theory/bundle-trust.md (with its
+// readings of the printed algorithm, §4–§5).
 #pragma once
 
 #include <Eigen/Core>
@@ -16,13 +17,14 @@
 
 namespace frictopt::optim {
 
-/// One bundle element (spec 04 §5 item 9): a subgradient with its linearization error α,
-/// distance measure s and locality measure β = max(|α|, γ s²/t_1) relative to the current center.
+/// One bundle element (docs/theory/bundle-trust.md §2, §5): a subgradient with its linearization
+/// error α, distance measure s and locality measure β = max(|α|, γ s²/t_1) relative to the current
+/// center.
 struct BundleElement {
   Eigen::VectorXd g;        ///< subgradient at y (or the aggregate z for an aggregate element)
-  double lin_err = 0.0;     ///< α = f(x_c) − f(y) − gᵀ(x_c − y)  (spec 04 §2)
+  double lin_err = 0.0;     ///< α = f(x_c) − f(y) − gᵀ(x_c − y)  (docs/theory/bundle-trust.md §2)
   double distance = 0.0;    ///< s: ‖x_c − y‖ (real) or its triangle-inequality bound (aggregate)
-  double locality = 0.0;    ///< β = max(|α|, γ s²/t_1)  (spec 04 §5 item 8; docs/optim.md)
+  double locality = 0.0;    ///< β = max(|α|, γ s²/t_1) (docs/optim.md)
   Eigen::VectorXd y;        ///< trial point; empty for an aggregate element
   bool is_center = false;   ///< y is the current stability center (β = 0)
   /// f(y) − φ(y) >= 0 for the cut of a piece φ of a max taken at y (OracleResult::pieces); 0 for
@@ -43,7 +45,7 @@ enum class StopReason {
   kStationarityNotCertified,  ///< stopping test met, but the certificate at x does not confirm it
   kIterationLimit,         ///< max_iterations
   kEvaluationLimit,        ///< max_evaluations
-  kInnerIterationFailed,   ///< spec 04 §5 item 12: too many trials, or t below t_min
+  kInnerIterationFailed,   ///< docs/theory/bundle-trust.md §4: too many trials, or t < t_min
   kDirectionQpFailed,      ///< the direction-finding QP returned no solution
   kStartNotEvaluated,      ///< the oracle failed at x_1
   kStoppedByCallback
@@ -65,7 +67,7 @@ class BundleTrust {
     double f = kNaN;            ///< f(x_k) (unscaled)
     double t = kNaN;            ///< trust parameter for the next inner iteration
     double t_max = kNaN;        ///< upper end of t in the last inner iteration (docs/optim.md)
-    double stationarity = kNaN; ///< ‖z + ω‖ = ‖d‖/t of the last QP (spec 04 §3.2)
+    double stationarity = kNaN; ///< ‖z + ω‖ = ‖d‖/t of the last QP (docs/theory/bundle-trust.md §3)
     double aggregate_error = kNaN;  ///< −‖d‖²/t − v of the last QP
     double predicted_change = kNaN; ///< v of the last QP (< 0)
     Eigen::VectorXd z_prev;     ///< aggregate subgradient z of the last QP at x_k
@@ -87,6 +89,15 @@ class BundleTrust {
     /// Variable metric of the proximal term (Options::variable_metric; identity otherwise).
     DiagonalMetric metric;
     int null_streak = 0;        ///< null steps since the last serious step (metric reset)
+    /// The run's own safeguards, so that `resume` continues exactly where the run stopped:
+    /// bundle restarts and tightenings of the stopping test so far (at most kMaxRestarts and
+    /// kMaxTightenings per run), the factor of ε they left, whether the oracle's resolution was
+    /// reached, and j_max as grown by piece cuts (0: not recorded; resume takes the automatic size).
+    int restarts = 0;
+    int tightenings = 0;
+    double test_factor = 1.0;
+    bool resolution_reached = false;
+    int bundle_size_used = 0;
   };
   using IterationCallback = std::function<CallbackResult(const IterationSummary&)>;
 
@@ -94,15 +105,16 @@ class BundleTrust {
     // Hard upper bound T on the trust parameter t. NaN (default): none — t adapts freely within
     // the per-iteration limit t_growth_limit. Otherwise > 0.
     double t_max = kNaN;
-    // Length of the FIRST trial step (units of x): t_1 = max_step_length / ‖g_1‖ (spec 04 §7's
-    // C_0). Only a starting value: from then on t adapts (docs/optim.md, "step bound"). NaN
-    // (default): 10·‖x_1‖∞, or 10 when x_1 = 0. The application passes its design range.
+    // Length of the FIRST trial step (units of x): t_1 = max_step_length / ‖g_1‖ (C₀ of
+    // docs/optim.md). Only a starting value: from then on t adapts (docs/optim.md, "step bound").
+    // NaN (default): 10·‖x_1‖∞, or 10 when x_1 = 0. The application passes its design range.
     // NaN or > 0.
     double max_step_length = kNaN;
     // t_1 given directly. NaN: max_step_length / ‖g_1‖. Otherwise > 0 (and <= t_max).
     double t_initial = kNaN;
-    // Descent fraction m_1, model-change fraction m_2 and locality fraction m_3 (spec 04 §7:
-    // 0.1, 0.5, 0.5). Need 0 < m1 < m2 < 1 and 0 < m3 < 1.
+    // Descent fraction m_1, model-change fraction m_2 and locality fraction m_3
+    // (docs/theory/bundle-trust.md §4; defaults 0.1, 0.5, 0.5). Need 0 < m1 < m2 < 1 and
+    // 0 < m3 < 1.
     double m1 = 0.1;
     double m2 = 0.5;
     double m3 = 0.5;
@@ -119,28 +131,31 @@ class BundleTrust {
     // Default 1e-5: a factor 10 below the accuracy 1e-4 the test set asks for, because the test
     // bounds the stationarity measures, not |f − f*| (docs/optim-testset.md).
     double epsilon = 1e-5;
-    // Bundle capacity j_max. 0: automatic max(2n, 10) — spec 04 §7 proposes 2d; the floor of 10
+    // Bundle capacity j_max. 0: automatic max(2n, 10) — 2n is the usual choice; the floor of 10
     // is our reading for small n, where 2n = 4 cannot hold the center, the aggregate and one cut
     // per active piece (DEM, CB3: thousands of null steps with 4, a few dozen with 10).
     // With piece cuts (OracleResult::pieces) the automatic size adds two evaluations' worth of
     // cuts, 2·(1 + pieces) (docs/optim.md, "Cuts of the pieces of a max"). Otherwise >= 3.
     int max_bundle_size = 0;
-    // γ of β = max(|α|, γ s²/t_1) (spec 04 §5 item 8, made unit-free by the first t). > 0.
+    // γ of β = max(|α|, γ s²/t_1) (docs/theory/bundle-trust.md §2, made unit-free by the
+    // first t). > 0.
     double locality_weight = 1;
-    // Reading (a′) of spec 04 §5 item 5: within an inner iteration, also try a larger t (up to
-    // t_growth_limit·t) when a descent step is "too short". Costs evaluations; the between-
-    // iteration update (model_agreement) usually makes it unnecessary. false = thesis as printed.
+    // Reading (a′) of docs/theory/bundle-trust.md §4: within an inner iteration, also try a
+    // larger t (up to t_growth_limit·t) when a descent step is "too short". Costs evaluations;
+    // the between-iteration update (model_agreement) usually makes it unnecessary. false =
+    // thesis as printed.
     bool enlarge_t = false;
     // δ_T of (a′): stop enlarging when the bracket [l, u] is narrower than δ_T·u. In (0, 1).
     double enlarge_margin = 0.1;
-    // Limits: outer iterations k_max, oracle calls, QPs per inner iteration (spec 04 §5 item 12),
-    // t_min = t_min_relative·t_1, line-search step s_min. All >= 1 / > 0.
+    // Limits: outer iterations k_max, oracle calls, QPs per inner iteration
+    // (docs/theory/bundle-trust.md §4), t_min = t_min_relative·t_1, line-search step s_min.
+    // All >= 1 / > 0.
     int max_iterations = 3000;
     int max_evaluations = 10000;
     int max_inner_iterations = 50;
     double t_min_relative = 1e-12;
     double line_search_min_step = 1e-6;
-    // Minimize f/|f(x_1)| instead of f (spec 04 §7). The stopping test and the step rule are
+    // Minimize f/|f(x_1)| instead of f (docs/optim.md). The stopping test and the step rule are
     // invariant under this scaling, so it changes results by round-off only; kept for
     // compatibility. Default off.
     bool scale_objective = false;
@@ -149,7 +164,7 @@ class BundleTrust {
     // aggregate error from the direction QP's multipliers <= ε·F, or the run ends with
     // StopReason::kStationarityNotCertified (Status kStalled) instead of kConverged.
     bool certify_stationarity = true;
-    // Variable metric (docs/optim.md, "Variable metric"; issue 16, seventh round; opt-in): the
+    // Variable metric (docs/optim.md, "Variable metric"; opt-in): the
     // proximal term of the direction QP is dᵀHd/(2t) with H = diag(h) a relative diagonal metric
     // (geometric mean 1) estimated by least squares from the last `metric_memory` pairs
     // (x_{k+1} − x_k, g(x_{k+1}) − z_k) of serious steps (z_k the aggregate subgradient of the
@@ -168,14 +183,14 @@ class BundleTrust {
     // effect for oracles that return none.
     bool use_piece_cuts = true;
     // Confirmation of a "converged" in the point's units (docs/optim.md, "Confirmation in the
-    // point's units"; issue 16, eighth round): when the stop's per-coordinate units
+    // point's units"; docs/theory/bundle-trust.md §6): when the stop's per-coordinate units
     // u_i = max(|x_i|, |x_1,i|) spread by more than point_units_spread (max u / min u over the
     // coordinates that have a unit), the stop is checked by confirm_in_point_units
     // (point_units_check.hpp) before minimize/resume return it: a restart in x ⊘ u that gains more
     // than ε·F continues the run in those units. Nearly uniform units are skipped: the method is
     // invariant under x → c·x, and with a spread κ the stop is already κε-stationary in x ⊘ u.
     // The check's evaluations count towards max_evaluations/max_iterations; it does not call
-    // on_iteration. false: the Euclidean stop is returned as it is (the method before round 8).
+    // on_iteration. false: the Euclidean stop is returned as it is.
     bool confirm_in_point_units = true;
     double point_units_spread = 10.0;  // >= 1
     // A start point violating Υ by more than this (user units, max norm) is projected.  > 0.
@@ -214,7 +229,7 @@ class BundleTrust {
     int evaluations = 0;            ///< oracle calls, including failed ones
     int failed_evaluations = 0;     ///< calls that returned !ok or non-finite numbers
     int qp_solves = 0;
-    double stationarity = kNaN;     ///< final ‖z + ω‖ (spec 04 §3.2), unscaled
+    double stationarity = kNaN;     ///< final ‖z + ω‖ (docs/theory/bundle-trust.md §3), unscaled
     double aggregate_error = kNaN;  ///< final σ + μᵀ(c − Cx), unscaled
     double subgradient_scale = kNaN;  ///< G of the relative test, unscaled
     double value_scale = kNaN;        ///< F of the relative test, unscaled

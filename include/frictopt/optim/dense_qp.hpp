@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // A dense convex QP solver (primal active-set method for positive SEMIdefinite Hessians) for the
-// small subproblems of the bundle trust method (spec 04 §3.2) and the stationarity QP (spec 06
-// §6.2). Hand-written because our Debian package set has no dense QP library usable from C++
-// (`apt-cache search quadprog` lists only r-cran-quadprog; eiquadprog, qpOASES, OSQP are not
-// packaged), and because both subproblems have singular Hessians, which Goldfarb–Idnani does
-// not accept.
+// small subproblems of the bundle trust method (docs/theory/bundle-trust.md §3) and the
+// stationarity QP (docs/theory/stationarity.md §2). Hand-written because our Debian package set has
+// no dense QP library usable from C++ (`apt-cache search quadprog` lists only r-cran-quadprog;
+// eiquadprog, qpOASES, OSQP are not packaged), and because both subproblems have singular Hessians,
+// which Goldfarb–Idnani does not accept.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // A safeguarded diagonal variable metric for the proximal term of BundleTrust's direction QP
-// (issue 16, seventh round; docs/optim.md, "Variable metric").
+// (docs/optim.md, "Variable metric").
 #pragma once
 
 #include <Eigen/Core>

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The polyhedral feasible set Υ = {x : lb ≤ x ≤ ub, A_in x ≤ b_in, A_eq x = b_eq} of spec 04
-// §3.2 (the core type LinearConstraints) in the general form C x ≤ c, E x = e the QPs use.
+// The polyhedral feasible set Υ = {x : lb ≤ x ≤ ub, A_in x ≤ b_in, A_eq x = b_eq} of
+// docs/theory/bundle-trust.md §3 (the core type LinearConstraints) in the general form
+// C x ≤ c, E x = e the QPs use.
 #pragma once
 
 #include <Eigen/Core>

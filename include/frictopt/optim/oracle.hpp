@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The only thing the optimizers know about a problem (spec 04 §1): at a point x, the value f(x)
-// and one arbitrary Clarke subgradient g ∈ ∂f(x) — or the news that f cannot be evaluated
-// there (e.g. the contact solver failed), in which case the method shortens its step.
+// The only thing the optimizers know about a problem (docs/theory/bundle-trust.md §1): at a point
+// x, the value f(x) and one arbitrary Clarke subgradient g ∈ ∂f(x) — or the news that f cannot be
+// evaluated there (e.g. the contact solver failed), in which case the method shortens its step.
 #pragma once
 
 #include <Eigen/Core>

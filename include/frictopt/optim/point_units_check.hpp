@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // A "converged" of BundleTrust confirmed in the per-coordinate units of the point found
-// (issue 16, sixth round; docs/optim.md, "Confirmation in the point's units"). Since the eighth
-// round BundleTrust::minimize/resume call it by default on stops whose units spread by more than
+// (docs/optim.md, "Confirmation in the point's units"; docs/theory/bundle-trust.md §6).
+// BundleTrust::minimize/resume call it by default on stops whose units spread by more than
 // Options::point_units_spread; called directly it checks any converged summary.
 #pragma once
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // A baseline for the test-set table: Shor's projected subgradient method with normalized,
-// diminishing steps a_k = a_0/√(k+1) (spec 04 §2, "Subgradient method"). It has no
+// diminishing steps a_k = a_0/√(k+1) (thesis §2.5). It has no
 // implementable stopping test, so it runs to its evaluation budget and returns the best point.
 #pragma once
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // One Clarke subgradient (or pseudodifferential element) of Θ(α) = J(α, S(α)) for a chosen
-// piece, by one adjoint solve on the full FE system (spec 03, §6–§9, 3D §14.5–§14.6).
+// piece, by one adjoint solve on the full FE system (docs/theory/sensitivity.md §5–§6; thesis
+// T4.4.1, T6.2.1).
 #pragma once
 
 #include <Eigen/Core>
@@ -34,8 +35,9 @@ struct CostPartials {
 /// rows, r = S (G u) + C_z z (+ g_i for gap rows), where G u = (−u_t, u_ν) per node
 /// (contact::ContactBoundary). This is (GE2) without the equilibrium rows, written for every
 /// law: vertex slip q − λw_j = 0; stick u_t = 0; ray slip on edge j as the unnormalized pair
-/// (w_{j+1} − w_j) × (q − λw_j) = 0 and ⟨w_{j+1} − w_j, u_t⟩ = 0 (equivalent to spec 03, §14.4
-/// but polynomial in the vertices, so also differentiable in μ); smooth slip q − λ w(u_t) = 0
+/// (w_{j+1} − w_j) × (q − λw_j) = 0 and ⟨w_{j+1} − w_j, u_t⟩ = 0 (equivalent to the
+/// thesis-style pair of docs/theory/sensitivity.md §4 but polynomial in the vertices, so also
+/// differentiable in μ); smooth slip q − λ w(u_t) = 0
 /// linearized at the current u_t; zero force λ = 0; zero friction q = 0; gap u_ν + g = 0.
 struct PieceLinearization {
   Eigen::SparseMatrix<double> S;   ///< m × m, m = dim·p
@@ -65,7 +67,7 @@ struct AdjointOptions {
 /// the adjoint (Π_iᵀ ψ = −∇_state J of T4.4.1, on the full system) is reduced by the
 /// factorization of A to the contact-sized system
 ///   (M Sᵀ + C_zᵀ) ψ_z = −∇_z J − G A⁻¹ ∇_u J,      ψ_u = −A⁻¹(∇_u J + Gᵀ Sᵀ ψ_z),
-/// with M = G A⁻¹ Gᵀ the Delassus matrix; then (spec 03, §9, ξ = ∇_α J + Ξᵀψ)
+/// with M = G A⁻¹ Gᵀ the Delassus matrix; then (docs/theory/sensitivity.md §6, ξ = ∇_α J + Ξᵀψ)
 ///   ξ = ∇_α J + ∇_α[ψ_uᵀ(A(α)u − l(α))] + Σ_{gap rows} ψ_z,r B̃_{node(r)}.
 /// Rows that only fix a force to zero (λ_i = 0, q_i = 0: separated nodes, frictionless
 /// components) are eliminated first — their columns of the contact-sized matrix are unit
@@ -96,7 +98,7 @@ class AdjointSensitivity {
   };
 
   /// The forward derivative of the piece's state along a design direction h (a column
-  /// combination R_i h of spec 03 §8, §14.6, on the full system):
+  /// combination R_i h of docs/theory/sensitivity.md §6, on the full system):
   ///   (S M + C_z) δz = −B̃h|_gap + S G A⁻¹ r_α h,   δu = A⁻¹(Gᵀ δz − r_α h),
   /// with r_α h = ∂(A u − l)/∂α · h (fem::LinearElasticity::residual_derivative).
   struct StateDerivative {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The thesis' index sets of a Coulomb solution (spec 03, §3 for 2D, §14.2 for the 3D n-gon),
+// The thesis' index sets of a Coulomb solution (docs/theory/sensitivity.md §3; thesis §4.4
+// for 2D, §6.2 for the 3D n-gon),
 // read off the classified contact state, for any friction law.
 #pragma once
 
@@ -13,11 +14,11 @@
 
 namespace frictopt::sensitivity {
 
-/// Normal status (spec 03, §3): I₊ strong contact (λ > τ_λ), M no contact (w > τ_w),
-/// I₀ weak contact (touching without force).
+/// Normal status (docs/theory/sensitivity.md §3): I₊ strong contact (λ > τ_λ), M no contact
+/// (w > τ_w), I₀ weak contact (touching without force).
 enum class NormalSet { kStrongContact, kNoContact, kWeakContact };
 
-/// Tangential status of a node with λ > τ_λ (spec 03, §3 and §14.2). Faces refer to the
+/// Tangential status of a node with λ > τ_λ (docs/theory/sensitivity.md §3). Faces refer to the
 /// friction set W of the law; indices follow contact::FaceLocation (our vertex j = thesis j+1).
 enum class TangentialSet {
   kSectorSlip,       ///< K₊ⱼ (2D: K₊ at vertex 1, K₋ at vertex 0): u_t in the open sector of vertex j, q = λw_j
@@ -29,7 +30,7 @@ enum class TangentialSet {
   kWeakStickEdge,    ///< K₀ inside edge j: u_t = 0, q on the edge
   kWeakStickSmooth,  ///< disc/ellipse: u_t = 0, q on the smooth boundary
   kFrictionless,     ///< W = {0} (μ = 0): q = 0 whatever u_t
-  kZeroForce         ///< λ <= τ_λ: rule R1 (spec 03, §3.1), tangential status irrelevant
+  kZeroForce         ///< λ <= τ_λ: rule R1 (docs/theory/sensitivity.md §3), no tangential status
 };
 
 std::string_view to_string(NormalSet set);
@@ -57,8 +58,8 @@ struct IndexSets {
 };
 
 /// Reads the index sets from a classified contact state (contact::classify_nodes has run: the
-/// solvers do this) with its own tolerances (state.scales, spec 03 §3.2); the normal status
-/// uses λ_i and w_i = u_ν + g against the same scales.
+/// solvers do this) with its own tolerances (state.scales, docs/theory/sensitivity.md §3); the
+/// normal status uses λ_i and w_i = u_ν + g against the same scales.
 IndexSets classify(const contact::ContactState& state, const contact::FrictionLaw& law);
 
 }  // namespace frictopt::sensitivity

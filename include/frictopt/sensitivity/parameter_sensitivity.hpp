@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Forward sensitivities of the contact state with respect to material and friction parameters
-// (issue 7): the derivative of a piece's contact rows in the friction coefficients, the law
-// rebuilt from its parameter vector, and the contact-space forward solve that turns several
+// (docs/identification.md): the derivative of a piece's contact rows in the friction coefficients,
+// the law rebuilt from its parameter vector, and the contact-space forward solve that turns several
 // parameter directions into state derivatives with one LU of the piece's contact-sized matrix.
 #pragma once
 
@@ -47,9 +47,9 @@ struct ContactStateDerivative {
   std::string message = "not computed";
 };
 
-/// The forward sensitivity of the piece's state (spec 03, §7 on the full system, with the
-/// equilibrium rows eliminated through A⁻¹ as in AdjointSensitivity::state_derivative): for a
-/// parameter p entering the contact rows with ∂r/∂p = R_z and the equilibrium rows
+/// The forward sensitivity of the piece's state (docs/theory/sensitivity.md §6 on the full system,
+/// with the equilibrium rows eliminated through A⁻¹ as in AdjointSensitivity::state_derivative):
+/// for a parameter p entering the contact rows with ∂r/∂p = R_z and the equilibrium rows
 /// A u − l − Gᵀz with ∂(A u − l)/∂p = r_u,
 ///   (S M + C_z) δz = −R_z + S Q,    G δu = M δz − Q,    Q = G A⁻¹ r_u,
 /// one column per direction. `contact_rows` (R_z) and `equilibrium_image` (Q) are dim·p × k;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Pieces of the piecewise smooth solution map: per contact node, which branch of the contact
-// and friction law is imposed as an equation (spec 03, §5, §8, §14.3–§14.4), their default
-// choice (spec 03, §10 and the 3D analogue of §14.6) and the enumeration of the set 𝕃.
+// and friction law is imposed as an equation (docs/theory/sensitivity.md §4–§5), their
+// default choice (the thesis' §5.2 and its 3D analogue) and the enumeration of the set 𝕃.
 #pragma once
 
 #include <cstdint>
@@ -38,12 +38,12 @@ struct Piece {
   std::string summary() const;
 };
 
-/// The thesis' choice (spec 03, §10; 3D: §14.6 default): weak stick → stick, weak contact →
+/// The thesis' choice (§5.2; docs/theory/sensitivity.md §4): weak stick → stick, weak contact →
 /// zero force, ray slip with the force at a vertex → ray slip. Valid at every point.
 Piece default_piece(const IndexSets& sets);
 
-/// The node-level alternatives of one node (spec 03, §4, §14.3 with its [ADDITION] for a
-/// complete 𝕃, and rule R2 of §3.1): a single entry for strict nodes.
+/// The node-level alternatives of one node (docs/theory/sensitivity.md §4: the
+/// thesis' (4.1)–(4.3) and (6.1)–(6.4), completed, and rule R2): a single entry for strict nodes.
 std::vector<NodePiece> node_alternatives(const NodeSets& node, const contact::FrictionLaw& law);
 
 /// The pieces 𝕃 through the current point: the Cartesian product of node_alternatives.

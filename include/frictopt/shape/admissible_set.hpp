@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The admissible designs Υ as linear constraints on α (spec 01, §4.4; 3D: A-3DUPS of §3).
+// The admissible designs Υ as linear constraints on α (docs/theory/problem.md §6, 2D and 3D).
 #pragma once
 
 #include <Eigen/Core>
@@ -12,15 +12,15 @@
 
 namespace frictopt::shape {
 
-/// Slope-bound scaling, spec 01 §4.3: the thesis' |Δα| ≤ C1/(m−1) (which bounds the true slope
-/// by C1/a), or the exact |Δα| ≤ a·C1/(m−1) that bounds |∂G/∂x| by C1.
+/// Slope-bound scaling (docs/theory/problem.md §6): the thesis' |Δα| ≤ C1/(m−1) (which bounds the
+/// true slope by C1/a), or the exact |Δα| ≤ a·C1/(m−1) that bounds |∂G/∂x| by C1.
 enum class SlopeScaling { kThesis, kExact };
 /// The spellings of SlopeScaling (case files, reports).
 inline constexpr auto kSlopeScalingNames = frictopt::detail::make_enum_table<SlopeScaling>(
     std::pair{SlopeScaling::kThesis, "thesis"}, std::pair{SlopeScaling::kExact, "exact"});
 [[nodiscard]] inline std::string_view to_string(SlopeScaling scaling) { return kSlopeScalingNames.name(scaling); }
 
-/// Data of Υ (spec 01, §4.1 with the corrected volume of §4.2).
+/// Data of Υ (thesis §5.2, with the corrected volume of docs/theory/problem.md §6).
 struct AdmissibleSetParameters {
   double upper_bound = 0.0;             ///< C0 > 0: 0 <= α_k <= C0 [m]
   std::optional<double> slope_bound;    ///< C1 > 0; absent: no slope rows
@@ -39,8 +39,8 @@ using LinearConstraints = frictopt::LinearConstraints;
 ///    |α_{i+1,j} − α_{i,j}| <= δ1, |α_{i,j+1} − α_{i,j}| <= δ2, δ_c = C1/(m_c−1) (thesis) or
 ///    extent_c·C1/(m_c−1) (exact), as two rows each;
 ///  * volume: meas Ω(α) = base·C4 − ∫G_α = C2, i.e. Σ_k α_k = d·(base·C4 − C2)/base with
-///    base = a (2D) or a·b (3D) — the corrected form of spec 01, §4.2 (2D: d(C4 − C2/a)) and
-///    its 3D analogue A-3DUPS (spec 01, §3).
+///    base = a (2D) or a·b (3D) — the corrected form of docs/theory/problem.md §6
+///    (2D: d(C4 − C2/a)) and its 3D analogue.
 /// Throws InvalidInput when a parameter is out of range or the set is obviously empty (the
 /// volume asks for a mean height outside [0, C0]).
 LinearConstraints make_admissible_set(const BezierShape& shape, const AdmissibleSetParameters& p);

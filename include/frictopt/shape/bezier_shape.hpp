@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The Bézier bottom of the body: a curve on [0, a] (2D) or a tensor-product surface on
-// [0, a] × [0, b] (3D), linear in its control heights α (spec 01, §2.1 and §3).
+// [0, a] × [0, b] (3D), linear in its control heights α (docs/theory/problem.md §2).
 #pragma once
 
 #include <Eigen/Core>
@@ -9,11 +9,11 @@
 namespace frictopt::shape {
 
 /// The contact surface x_dim = G_α(x') with x' = x1 (2D) or (x1, x2) (3D):
-///   2D: G_α(x1)     = Σ_i α_i b_i(x1/a),                 i = 0..m1−1  (spec 01, §2.1)
-///   3D: G_α(x1, x2) = Σ_{i,j} α_{ij} b_i(x1/a) b_j(x2/b),  i < m1, j < m2 (spec 01, §3)
+///   2D: G_α(x1)     = Σ_i α_i b_i(x1/a),                 i = 0..m1−1  (thesis §5.2)
+///   3D: G_α(x1, x2) = Σ_{i,j} α_{ij} b_i(x1/a) b_j(x2/b),  i < m1, j < m2 (thesis §6.1)
 /// with Bernstein polynomials b of degree m−1. The design vector α has d = m1 (2D) or
-/// d = m1·m2 (3D) entries, ordered row-major with x1 fastest: k = i + m1·j (DESIGN.md; spec 01
-/// §3 orders x2 fastest, any fixed order is equivalent).
+/// d = m1·m2 (3D) entries, ordered row-major with x1 fastest: k = i + m1·j
+/// (docs/theory/problem.md §2; any fixed order is equivalent).
 /// Only the heights are design variables; control abscissae are equispaced.
 class BezierShape {
  public:
@@ -40,10 +40,10 @@ class BezierShape {
   double height(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                 const Eigen::Ref<const Eigen::VectorXd>& x_plane) const;
   /// The constant gap matrix B̃ (rows = points, one per row of `points_plane`, which is
-  /// n × (dim−1)): g = B̃ α are the initial gaps at those points (spec 01, §2.1 fact 5).
+  /// n × (dim−1)): g = B̃ α are the initial gaps at those points (docs/theory/problem.md §3).
   Eigen::MatrixXd gap_matrix(const Eigen::Ref<const Eigen::MatrixXd>& points_plane) const;
   /// Weights w with ∫ G_α dx' = wᵀα; every entry equals base_measure()/d because each
-  /// Bernstein polynomial integrates to 1/(degree+1) (spec 01, §2.1 fact 4).
+  /// Bernstein polynomial integrates to 1/(degree+1) (docs/theory/problem.md §2).
   Eigen::VectorXd integral_weights() const;
 
  private:

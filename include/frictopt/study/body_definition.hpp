@@ -98,6 +98,7 @@ struct ImportedMeshDefinition {
   std::filesystem::path file;                   ///< where the mesh came from (for messages)
   std::shared_ptr<const mesh::Mesh> reference;  ///< never null; shared, the mesh is read once
   mesh::DesignMotion motion;                    ///< the design patch, the chart's frame, the extension
+  std::vector<std::filesystem::path> sources{};  ///< every file read to make it (the run's fingerprint)
 };
 
 struct BodyDefinition {

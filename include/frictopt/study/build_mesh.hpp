@@ -2,6 +2,7 @@
 // The mesh of a body definition, from whichever producer the definition names.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,27 @@ namespace frictopt::study {
 /// design patch that is not part of the contact surface, and for an imported body whose
 /// Dirichlet parts leave a rigid-body motion free (check_rigid_modes_removed).
 mesh::Mesh build_mesh(const BodyDefinition& definition);
+
+/// The size limits every body's mesh meets before anything is assembled (docs/case-format.md,
+/// "Size limits"), whichever producer made it: at most kMaxUnknowns unknowns, and a peak memory
+/// estimate (estimated_peak_bytes) within the memory limit (set_memory_limit; by default the
+/// memory available, mesh::available_memory_bytes). build_mesh calls it; throws InvalidInput
+/// naming `source`, the counts, the estimate and the limit.
+void check_mesh_size(const mesh::Mesh& mesh, const std::string& source);
+
+/// The largest number of unknowns (nodes × dim) of a body.
+inline constexpr std::int64_t kMaxUnknowns = 2'000'000;
+
+/// The peak resident memory [bytes] of a state solve with `unknowns` unknowns (direct engine):
+/// 2.07 GB at 100,900 unknowns growing like n^(4/3), the sparse Cholesky factor of a 3D grid
+/// (measured peaks: 0.38 GB at 22.5k, 2.07 GB at 100.9k, 4.86 GB at 195k unknowns; the formula
+/// gives 0.28, 2.07 and 4.97 GB). An upper bound for 2D bodies (n log n).
+double estimated_peak_bytes(std::int64_t unknowns);
+
+/// The memory limit of check_mesh_size [bytes], process-wide (the command line's --max-memory);
+/// 0 (the default) means the memory available when the mesh is checked.
+void set_memory_limit(std::uint64_t bytes);
+std::uint64_t memory_limit();
 
 /// Throws InvalidInput naming `file` and the Dirichlet groups when the prescribed DOFs of
 /// `dirichlet` leave a rigid-body motion of `mesh` free (3D: 3 translations and 3 rotations;

@@ -49,6 +49,11 @@ class ProgramHistory {
                  std::string_view where = "program");
 
   int num_steps() const { return static_cast<int>(program_.steps.size()); }
+  /// The contact state each step's next solve starts from (one per step; empty: a cold start),
+  /// for a checkpoint: a resumed run continues them so that it repeats the uninterrupted run.
+  const std::vector<std::optional<contact::ContactState>>& warm_starts() const { return warm_starts_; }
+  /// Restores warm_starts(); `states` must have num_steps() entries (InvalidInput otherwise).
+  void set_warm_starts(std::vector<std::optional<contact::ContactState>> states);
   /// 0-based index of the step whose state the cost reads (the last for the dissipation).
   int cost_step() const { return cost_step_; }
   bool dissipation() const { return dissipation_; }

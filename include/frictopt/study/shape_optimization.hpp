@@ -6,7 +6,9 @@
 #include <Eigen/Core>
 #include <functional>
 #include <optional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "frictopt/optim/bundle_trust.hpp"
 #include "frictopt/optim/linear_constraints.hpp"
@@ -44,5 +46,29 @@ optim::BundleTrust::Options default_study_options(const BodyDefinition& body);
 [[nodiscard]] optim::BundleTrust::Summary optimize(ShapeOracle& oracle, optim::BundleTrust::Options options,
                                                    const ProgressCallback& on_progress,
                                                    const optim::BundleTrust::IterationSummary* checkpoint = nullptr);
+
+/// How a finished optimization ended, for exit codes and summaries (README, "Exit codes"): a
+/// result the user can use as it is, one written but needing attention, or a failure.
+struct OptimizationOutcome {
+  enum class Kind {
+    kCertified,       ///< converged: certified stationary, in contact
+    kLimitReached,    ///< the iteration or evaluation limit the case set was reached first
+    kNeedsAttention,  ///< a result was written, but it is not certified or not meaningful (`attention`)
+    kFailed           ///< the method or the final state solve failed (numerical failure)
+  };
+  Kind kind = Kind::kFailed;
+  /// Why the result needs attention (empty for kCertified and kLimitReached), one sentence each.
+  std::vector<std::string> attention;
+};
+
+[[nodiscard]] std::string_view to_string(OptimizationOutcome::Kind kind);
+
+/// The outcome of a run from the method's summary and the evaluation at its final design:
+/// kStalled (stationarity not certified, an inner iteration that found no step) needs attention,
+/// and so does any final design at which no contact node carries force (I+ empty): there the
+/// state does not depend on the design near it, every such design is stationary, and a cost such
+/// as target_pressure can be lowered by lifting the body off the foundation (docs/optim.md,
+/// "Outcomes").
+[[nodiscard]] OptimizationOutcome assess_outcome(const optim::BundleTrust::Summary& summary, const Evaluation& final);
 
 }  // namespace frictopt::study

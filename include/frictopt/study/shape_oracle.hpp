@@ -93,6 +93,11 @@ class ShapeOracle final : public optim::Oracle {
   /// the whole history (the product over the steps). state_derivative() is not available.
   ProgramHistory* history() { return history_.get(); }
   const ProgramHistory* history() const { return history_.get(); }
+  /// The warm starts of the loading programs' steps (the history's, or every load case's in
+  /// order), which the body's own warm start does not hold; empty for the static problem. For
+  /// checkpoints: set_history_warm_starts restores them (InvalidInput for another count).
+  std::vector<std::optional<contact::ContactState>> history_warm_starts() const;
+  void set_history_warm_starts(const std::vector<std::optional<contact::ContactState>>& states);
   /// The load cases of the cost definition (null: the case file's own loads). Each case is solved
   /// as a loading program — its own [[load_case.step]] tables, or one step with its scales (the
   /// static load) — on the one factorization of A(α) (study/history.hpp); "case k's state" below

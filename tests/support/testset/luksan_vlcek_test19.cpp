@@ -8,7 +8,7 @@
 #include <limits>
 #include <numbers>
 
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 #include "luksan_vlcek_pieces.hpp"
 #include "luksan_vlcek_tr48_data.hpp"
 

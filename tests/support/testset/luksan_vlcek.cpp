@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The accuracy test of the Lukšan–Vlček problems, their scaled variants and the lookup by name.
 // The problems themselves are in luksan_vlcek_test19.cpp and luksan_vlcek_test22.cpp.
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 
 #include <cmath>
 #include <limits>

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 
 namespace frictopt::optim::detail {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "frictopt/optim/luksan_vlcek.hpp"
+#include "testset/luksan_vlcek.hpp"
 #include "luksan_vlcek_pieces.hpp"
 
 namespace frictopt::optim {
