@@ -290,14 +290,17 @@ class Run:
         return None
 
     def chart(self):
-        """((origin), (extents)) of the Bézier chart when the run states it (summary.json or
-        final_design.json "chart" with "origin" and "extents"), else None."""
+        """((origin), (extents)) of the Bézier chart when the run states it (summary.json's
+        "design_chart", or a "chart" with "origin" and "extents" in summary.json or
+        final_design.json), else None."""
         sources = [self.summary]
         final_design = os.path.join(self.dir, "final_design.json")
         if os.path.isfile(final_design):
             sources.append(read_json(final_design))
         for source in sources:
-            chart = source.get("chart") if isinstance(source, dict) else None
+            chart = None
+            if isinstance(source, dict):
+                chart = source.get("design_chart", source.get("chart"))
             if isinstance(chart, dict) and "origin" in chart and "extents" in chart:
                 return (np.asarray(chart["origin"], dtype=float),
                         np.asarray(chart["extents"], dtype=float))
