@@ -279,6 +279,22 @@ class Run:
                 text += f" [{self.cost_unit}]"
         return text
 
+    def load_warning(self):
+        """One line when summary.json warns that the final design carries another load than
+        the initial one (frictopt's "warnings", docs/optim.md "Outcomes"), else ""."""
+        warnings = self.summary.get("warnings") if isinstance(self.summary, dict) else None
+        if not isinstance(warnings, list) or not warnings:
+            return ""
+        initial, final = self.summary.get("initial_load"), self.summary.get("final_load")
+        if isinstance(initial, dict) and isinstance(final, dict):
+            p0, p = initial.get("total_normal_force"), final.get("total_normal_force")
+            if (isinstance(p0, (int, float)) and isinstance(p, (int, float))
+                    and math.isfinite(p0) and math.isfinite(p) and p0 > 0):
+                unit = "N/m" if self.dim == 2 else "N"
+                return (f"warning: the final design carries another load — total normal force "
+                        f"{p0:.4g} → {p:.4g} {unit} ({100.0 * (p - p0) / p0:+.0f} %)")
+        return f"warning: {warnings[0]}"
+
     def control_points(self, count):
         """(m1, m2) of the 3D control net with `count` = m1·m2 entries: [design]
         control_points of the run's copy of the case file; None when it is not there."""
@@ -382,10 +398,18 @@ def fit_texts(fig):
             fig.canvas.draw()
 
 
-def save(fig, path):
+def save(fig, path, run=None):
     """Writes the figure as an RGB PNG, or as a 256-colour palette PNG when the RGB file
-    would exceed MAX_PNG_BYTES (a palette can band smooth colour maps slightly). Titles are
-    fitted inside the figure first (fit_texts)."""
+    would exceed MAX_PNG_BYTES (a palette can band smooth colour maps slightly). The run's
+    load warning (Run.load_warning) ends the title; titles are fitted inside the figure first
+    (fit_texts)."""
+    warning = run.load_warning() if run is not None else ""
+    if warning:
+        suptitle = getattr(fig, "_suptitle", None)
+        if suptitle is not None and suptitle.get_text():
+            suptitle.set_text(f"{suptitle.get_text()}\n{warning}")
+        elif fig.axes:
+            fig.axes[0].set_title(f"{fig.axes[0].get_title()}\n{warning}")
     fit_texts(fig)
     buffer = io.BytesIO()
     fig.savefig(buffer, dpi=DPI, metadata=PNG_METADATA, format="png")
@@ -604,7 +628,7 @@ def picture_body_3d(run, out_dir, cut=True):
     fig.suptitle(f"{run.headline()}: deformed body coloured by von Mises stress\n"
                  f"{scale_text}; {cut_text}; view from the front (−x2), x3 up",
                  fontsize=13)
-    return save(fig, os.path.join(out_dir, "body_von_mises.png"))
+    return save(fig, os.path.join(out_dir, "body_von_mises.png"), run)
 
 
 # ----------------------------------------------------------------------------------------
@@ -718,7 +742,7 @@ def picture_contact_3d(run, out_dir):
                  "the contact facets)", fontsize=13)
     if arrow_text:
         fig.supxlabel(f"bottom row: contact status per node; {arrow_text}", fontsize=10)
-    return save(fig, os.path.join(out_dir, "contact_maps.png"))
+    return save(fig, os.path.join(out_dir, "contact_maps.png"), run)
 
 
 # ----------------------------------------------------------------------------------------
@@ -889,7 +913,7 @@ def picture_shape_3d(run, out_dir):
                  f"{lift_text}\nbottom: the whole body, {scale_text}, coloured by the von "
                  "Mises stress, seen from below (−x3), the contact face Γ_c in front",
                  fontsize=12)
-    return save(fig, os.path.join(out_dir, "shape.png"))
+    return save(fig, os.path.join(out_dir, "shape.png"), run)
 
 
 # ----------------------------------------------------------------------------------------
@@ -1010,7 +1034,7 @@ def picture_shape_2d(run, out_dir):
                      label=f"von Mises stress [{unit}] (element centres)")
     fig.suptitle(f"{run.headline()}: shape of the bottom and deformed mesh\n"
                  f"mesh: {scale_text}; dashed: undeformed outline", fontsize=13)
-    return save(fig, os.path.join(out_dir, "shape.png"))
+    return save(fig, os.path.join(out_dir, "shape.png"), run)
 
 
 def undeformed_outline(design):
@@ -1103,7 +1127,7 @@ def picture_contact_stress_2d(run, out_dir):
     strip.set_title("status of the contact nodes", fontsize=9, loc="left")
     for side in ("top", "right", "left"):
         strip.spines[side].set_visible(False)
-    return save(fig, os.path.join(out_dir, "contact_stress.png"))
+    return save(fig, os.path.join(out_dir, "contact_stress.png"), run)
 
 
 # ----------------------------------------------------------------------------------------
@@ -1202,7 +1226,7 @@ def picture_history(run, out_dir):
     ax.set_title(f"{run.headline()}: convergence of the bundle trust method\n"
                  f"{change}; {summary_counts}{note}", fontsize=11)
     ax.set_xlim(-0.5, max(iterations.max(), 1) + 0.5)
-    return save(fig, os.path.join(out_dir, "history.png"))
+    return save(fig, os.path.join(out_dir, "history.png"), run)
 
 
 # ----------------------------------------------------------------------------------------

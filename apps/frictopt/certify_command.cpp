@@ -18,6 +18,7 @@
 #include "frictopt/study/certificate.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 #include "frictopt/study/elastic_body.hpp"
+#include "frictopt/study/load_change.hpp"
 
 namespace frictopt::app {
 
@@ -51,6 +52,23 @@ int run_certify(const std::filesystem::path& run_dir, int cap, double sample_rad
                phi_deg, alpha.size(), o->scale());
     json["friction_orientation_deg"] = phi_deg;
   }
+  // The load the certified design carries against the initial design's (one more state solve,
+  // after the certificate): a design can be stationary for a cost it lowered by carrying less.
+  const study::Evaluation& final = oracle.evaluate_design(alpha, false);
+  const contact::ContactResultants final_load = final.resultants;
+  const bool final_ok = final.ok;
+  const study::Evaluation& initial = oracle.evaluate_design(body.initial_design(), false);
+  io::JsonValue warnings = io::JsonValue::array();
+  if (final_ok && initial.ok) {
+    for (const std::string& w : study::load_change_warnings(initial.resultants, final_load)) {
+      fmt::print("warning: {}\n", w);
+      warnings.push_back(w);
+    }
+    json["initial_load"] = io::load_to_json(initial.resultants);
+    json["final_load"] = io::load_to_json(final_load);
+  }
+  json["warnings"] = warnings;
+  json["load_warning_fraction"] = study::kLoadChangeWarningFraction;
   json["command"] = "certify";
   io::add_members(json, io::run_environment());
   json["case"] = case_path.string();

@@ -243,7 +243,26 @@ JsonValue checkpoint_to_json(const RunCheckpoint& c) {
   center["weak_nodes"] = c.center.weak_nodes;
   center["state_seconds"] = c.center.state_seconds;
   center["subgradient_seconds"] = c.center.subgradient_seconds;
+  center["normal_force"] = c.center.normal_force;
+  center["tangential_force"] = c.center.tangential_force;
+  center["contact_area"] = c.center.contact_area;
+  center["stick_nodes"] = c.center.stick_nodes;
+  center["slip_nodes"] = c.center.slip_nodes;
+  center["separated_nodes"] = c.center.separated_nodes;
   run["center"] = std::move(center);
+  if (std::isfinite(c.initial_load.normal_force)) {
+    const contact::ContactResultants& r = c.initial_load;
+    JsonValue load = JsonValue::object();
+    load["dim"] = r.dim;
+    load["normal_force"] = r.normal_force;
+    load["tangential_force"] = Eigen::VectorXd(r.tangential_force);
+    load["tangential_force_norm"] = r.tangential_force_norm;
+    load["contact_area"] = r.contact_area;
+    load["num_stick"] = r.num_stick;
+    load["num_slip"] = r.num_slip;
+    load["num_separated"] = r.num_separated;
+    run["initial_load"] = std::move(load);
+  }
   j["run"] = std::move(run);
   JsonValue fingerprint = JsonValue::object();
   fingerprint["dim"] = c.fingerprint.dim;
@@ -380,6 +399,28 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
   c.center.weak_nodes = center.count("weak_nodes", 0, std::numeric_limits<std::int64_t>::max());
   c.center.state_seconds = center.number("state_seconds", true);
   c.center.subgradient_seconds = center.number("subgradient_seconds", true);
+  // The load columns and the initial load came with the forces in history.csv: a checkpoint
+  // written before them resumes with the columns empty (NaN) and no load comparison.
+  if (top.at("run").at("center").contains("normal_force")) {
+    c.center.normal_force = center.number("normal_force");
+    c.center.tangential_force = center.number("tangential_force");
+    c.center.contact_area = center.number("contact_area");
+    c.center.stick_nodes = center.count("stick_nodes");
+    c.center.slip_nodes = center.count("slip_nodes");
+    c.center.separated_nodes = center.count("separated_nodes");
+  }
+  if (top.at("run").contains("initial_load")) {
+    const Fields load(run.at("initial_load"), origin, "run.initial_load.");
+    contact::ContactResultants& r = c.initial_load;
+    r.dim = static_cast<int>(load.count("dim", 2, 3));
+    r.normal_force = load.number("normal_force", true);
+    r.tangential_force = load.vector("tangential_force", 2);
+    r.tangential_force_norm = load.number("tangential_force_norm", true);
+    r.contact_area = load.number("contact_area", true);
+    r.num_stick = static_cast<int>(load.count("num_stick"));
+    r.num_slip = static_cast<int>(load.count("num_slip"));
+    r.num_separated = static_cast<int>(load.count("num_separated"));
+  }
   const Fields f(top.at("fingerprint"), origin, "fingerprint.");
   c.fingerprint.dim = static_cast<int>(f.count("dim", 2, 3));
   for (std::size_t k = 0; k < c.history_warm_starts.size(); ++k)

@@ -14,6 +14,7 @@
 #include "frictopt/io/state_output.hpp"
 #include "frictopt/io/summary_json.hpp"
 #include "frictopt/study/elastic_body.hpp"
+#include "frictopt/study/load_change.hpp"
 #include "frictopt/study/shape_optimization.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 
@@ -24,7 +25,9 @@ const std::vector<std::string>& optimization_history_columns() {
       "iteration",     "evaluations", "step",          "theta",      "t",
       "stationarity_relative",        "aggregate_error_relative",    "bundle_size",
       "serious_steps", "null_steps",  "state_solves",  "coulomb_iterations",
-      "qp_iterations", "weak_nodes",  "state_seconds", "subgradient_seconds", "elapsed_seconds"};
+      "qp_iterations", "weak_nodes",  "state_seconds", "subgradient_seconds", "elapsed_seconds",
+      // The centre's load: a design must not lower Θ by carrying less (study/load_change.hpp).
+      "normal_force",  "tangential_force", "contact_area", "stick_nodes", "slip_nodes", "separated_nodes"};
   return columns;
 }
 
@@ -108,8 +111,10 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   const double elapsed_offset = checkpoint ? checkpoint->elapsed_seconds : 0.0;
   const std::int64_t solves_offset = checkpoint ? checkpoint->state_solves : 0;
   double initial_value = kNaN;
+  contact::ContactResultants initial_load = RunCheckpoint::unknown_load();
   if (checkpoint) {
     initial_value = checkpoint->initial_cost;
+    initial_load = checkpoint->initial_load;
     if (checkpoint->warm_start.size() > 0) {
       contact::ContactState warm(checkpoint->warm_start_dim, checkpoint->warm_start.size() / checkpoint->warm_start_dim);
       warm.z = checkpoint->warm_start;
@@ -121,7 +126,9 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
                checkpoint->method.f, checkpoint->method.evaluations));
   } else {
     // Θ(α⁰) for the summary, now: the method's first evaluation then hits the cache.
-    initial_value = oracle.evaluate_design(body.initial_design(), true).value;
+    const study::Evaluation& initial = oracle.evaluate_design(body.initial_design(), true);
+    initial_value = initial.value;
+    if (initial.ok) initial_load = initial.resultants;
     write_design_vtu(0, body.initial_design());
   }
 
@@ -140,15 +147,19 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     const auto& m = p.method;
     const double elapsed = elapsed_offset + p.elapsed_seconds;
     const std::int64_t solves = solves_offset + p.state_solves - solves_before - output_solves;
-    if (p.center.ok)  // else the centre is the checkpoint's, not evaluated by this process
+    if (p.center.ok) {  // else the centre is the checkpoint's, not evaluated by this process
+      const contact::ContactResultants& load = p.center.resultants;
       center = {p.center.contact.iterations, p.center.contact.qp_iterations, p.center.index_sets.num_weak_nodes(),
-                p.center.state_seconds, p.center.subgradient_seconds};
+                p.center.state_seconds, p.center.subgradient_seconds, load.normal_force, load.tangential_force_norm,
+                load.contact_area, load.num_stick, load.num_slip, load.num_separated};
+    }
     std::vector<CsvValue> row = {
         static_cast<std::int64_t>(m.iteration), static_cast<std::int64_t>(m.evaluations),
         std::string(optim::to_string(m.step)), m.f, m.t, m.stationarity, m.aggregate_error,
         static_cast<std::int64_t>(m.bundle.size()), static_cast<std::int64_t>(m.serious_steps),
         static_cast<std::int64_t>(m.null_steps), solves, center.coulomb_iterations, center.qp_iterations,
-        center.weak_nodes, center.state_seconds, center.subgradient_seconds, elapsed};
+        center.weak_nodes, center.state_seconds, center.subgradient_seconds, elapsed, center.normal_force,
+        center.tangential_force, center.contact_area, center.stick_nodes, center.slip_nodes, center.separated_nodes};
     if (body.orientation_design()) row.emplace_back(orientation_deg(m.x));  // after the fixed columns
     report(fmt::format("{:>5} {:>6} {:>14.6e} {:>14} {:>10.3e} {:>12.3e} {:>8} {:>8.1f}s", m.iteration, m.evaluations, m.f,
                optim::to_string(m.step), m.t, m.stationarity, center.qp_iterations, elapsed));
@@ -166,6 +177,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
       for (const auto& warm : oracle.history_warm_starts())
         c.history_warm_starts.push_back(warm ? warm->z : Eigen::VectorXd());
       c.initial_cost = initial_value;
+      c.initial_load = initial_load;
       c.elapsed_seconds = elapsed;
       c.state_solves = solves;
       c.center = center;
@@ -194,6 +206,16 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   JsonValue attention = JsonValue::array();
   for (const std::string& reason : outcome.attention) attention.push_back(reason);
   json["attention"] = attention;
+  // The load the final design carries against the initial one's (docs/optim.md, "Outcomes").
+  const std::vector<std::string> load_warnings =
+      std::isfinite(initial_load.normal_force) && final.ok ? study::load_change_warnings(initial_load, final.resultants)
+                                                           : std::vector<std::string>{};
+  for (const std::string& w : load_warnings) report("warning: " + w);
+  json["warnings"] = JsonValue::array();
+  for (const std::string& w : load_warnings) json["warnings"].push_back(w);
+  json["load_warning_fraction"] = study::kLoadChangeWarningFraction;
+  if (std::isfinite(initial_load.normal_force)) json["initial_load"] = load_to_json(initial_load);
+  if (final.ok) json["final_load"] = load_to_json(final.resultants);
   json["message"] = summary.message;
   json["stopped_by"] = to_json(summary).at("stopped_by");
   json["initial_cost"] = initial_value;
@@ -236,6 +258,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   result.outcome = outcome;
   result.initial_cost = initial_value;
   result.final_cost = final.value;
+  result.warnings = load_warnings;
   result.summary_json = std::move(json);
   return result;
 }

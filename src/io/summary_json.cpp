@@ -129,6 +129,18 @@ JsonValue to_json(const contact::ContactResultants& r) {
   return j;
 }
 
+JsonValue load_to_json(const contact::ContactResultants& r) {
+  JsonValue j = JsonValue::object();
+  j["total_normal_force"] = r.normal_force;
+  j["total_tangential_force"] = Eigen::VectorXd(r.tangential_force.head(r.dim - 1));
+  j["total_tangential_force_norm"] = r.tangential_force_norm;
+  j["contact_area"] = r.contact_area;
+  j["num_stick"] = r.num_stick;
+  j["num_slip"] = r.num_slip;
+  j["num_separated"] = r.num_separated;
+  return j;
+}
+
 JsonValue to_json(const sensitivity::AdjointSensitivity::Summary& s) {
   JsonValue j = status_fields(s.status, s.message);
   j["reciprocal_condition"] = s.reciprocal_condition;

@@ -16,6 +16,13 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+// The state's reports (solve, contact solve, forces) that an evaluation carries.
+void describe_state(Evaluation& e, const BodyState& s) {
+  e.state = s.summary;
+  e.contact = s.contact ? s.contact->summary : contact::CoulombSolver::Summary{};
+  e.resultants = s.contact ? s.contact->resultants : contact::ContactResultants{};
+}
 std::vector<double> key_of(const Eigen::Ref<const Eigen::VectorXd>& alpha) { return {alpha.data(), alpha.data() + alpha.size()}; }
 // Bounded memory: the bundle method revisits only the last few designs.
 constexpr std::size_t kCacheSize = 512;
@@ -176,8 +183,7 @@ void ShapeOracle::evaluate_cases(Evaluation& e, bool with_subgradient) {
     const ProgramHistory& history = *case_histories_[static_cast<std::size_t>(k)];
     if (!history.ok()) {
       const BodyState& s = *history.cost_state();
-      e.state = s.summary;
-      e.contact = s.contact ? s.contact->summary : contact::CoulombSolver::Summary{};
+      describe_state(e, s);
       e.message = fmt::format("load case \"{}\": state solve failed: {}", (*cases_)[k].name, history.message());
       return;
     }
@@ -188,8 +194,7 @@ void ShapeOracle::evaluate_cases(Evaluation& e, bool with_subgradient) {
   e.selected_case = combined.selected;
   select_case(state_alpha_, combined.selected);
   ProgramHistory& selected = *case_histories_[static_cast<std::size_t>(combined.selected)];
-  e.state = state_->summary;
-  e.contact = state_->contact->summary;
+  describe_state(e, *state_);
   e.index_sets = selected.index_sets(selected.cost_step());
   if (selected.num_steps() > 1)
     for (int k = 0; k < selected.num_steps(); ++k) e.step_index_sets.push_back(selected.index_sets(k));
@@ -234,8 +239,7 @@ void ShapeOracle::evaluate_cases(Evaluation& e, bool with_subgradient) {
 }
 
 void ShapeOracle::evaluate_history(Evaluation& e, bool with_subgradient) {
-  e.state = state_->summary;
-  e.contact = state_->contact ? state_->contact->summary : contact::CoulombSolver::Summary{};
+  describe_state(e, *state_);
   if (!history_->ok()) {
     e.message = "loading program: state solve failed: " + history_->message();
     return;
@@ -293,8 +297,7 @@ const Evaluation& ShapeOracle::evaluate_design(const Eigen::Ref<const Eigen::Vec
     evaluate_history(e, with_subgradient);
     return cache_[key_of(alpha)] = e;
   }
-  e.state = state_->summary;
-  e.contact = state_->contact->summary;
+  describe_state(e, *state_);
   if (state_->summary.status != Status::kConverged) {
     e.message = "state solve failed: " + state_->summary.message;
     return cache_[key_of(alpha)] = e;

@@ -7,11 +7,13 @@
 // start steps by the bounds' width.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "common/cli_runner.hpp"
 #include "frictopt/io/json.hpp"
@@ -57,6 +59,47 @@ TEST(CliOutcome, ADesignWithoutContactIsNotAPlainSuccess) {
   EXPECT_DOUBLE_EQ(chart.at("origin").as_array()[0].as_number(), 0.0);
   EXPECT_EQ(chart.at("degree").as_array()[0].as_integer(), 2);
   EXPECT_EQ(chart.at("control_points").as_array()[0].as_integer(), 3);
+  // The load: the design won by carrying none (a warning naming the forces, the loads recorded).
+  EXPECT_NE(r.output.find("warning: the final design has lost contact: total normal force"), std::string::npos)
+      << r.output;
+  ASSERT_EQ(summary.at("warnings").as_array().size(), 1U);
+  EXPECT_GT(summary.at("initial_load").at("total_normal_force").as_number(), 0.0);
+  EXPECT_EQ(summary.at("final_load").at("total_normal_force").as_number(), 0.0);
+  EXPECT_EQ(summary.at("final_load").at("num_separated").as_integer(),
+            summary.at("initial_load").at("num_stick").as_integer() +
+                summary.at("initial_load").at("num_slip").as_integer() +
+                summary.at("initial_load").at("num_separated").as_integer());
+  // history.csv: the centre's load per iteration, the initial design's force at the first centre
+  // and none at the last.
+  std::ifstream history(out / "history.csv");
+  std::string header, row, last;
+  std::getline(history, header);
+  std::getline(history, row);
+  for (std::string line; std::getline(history, line);) last = line;
+  if (last.empty()) last = row;
+  EXPECT_NE(header.find(",normal_force,tangential_force,contact_area,stick_nodes,slip_nodes,separated_nodes"),
+            std::string::npos)
+      << header;
+  const auto column = [&](const std::string& line, const std::string& name) {
+    std::vector<std::string> names, values;
+    std::stringstream h(header), v(line);
+    for (std::string cell; std::getline(h, cell, ',');) names.push_back(cell);
+    for (std::string cell; std::getline(v, cell, ',');) values.push_back(cell);
+    const auto at = std::find(names.begin(), names.end(), name) - names.begin();
+    return static_cast<std::size_t>(at) < values.size() ? std::stod(values[static_cast<std::size_t>(at)]) : -1.0;
+  };
+  EXPECT_EQ(column(last, "normal_force"), 0.0) << last;
+  EXPECT_EQ(column(last, "contact_area"), 0.0) << last;
+}
+
+TEST(CliOutcome, CertifyWarnsWhenTheFinalDesignCarriesAnotherLoad) {
+  const fs::path out = fresh_directory("outcome_half_cylinder_certify");
+  ASSERT_EQ(run("optimize " + kHalfCylinder + " -o " + out.string()).exit_code, 6);
+  const RunResult r = run("certify " + out.string());
+  EXPECT_NE(r.output.find("warning: the final design has lost contact"), std::string::npos) << r.output;
+  const auto certificate = read_json(out / "certificate.json");
+  ASSERT_EQ(certificate.at("warnings").as_array().size(), 1U);
+  EXPECT_GT(certificate.at("initial_load").at("total_normal_force").as_number(), 0.0);
 }
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {

@@ -8,6 +8,7 @@
 #include <memory>
 #include <numbers>
 
+#include "frictopt/core/error.hpp"
 #include "frictopt/mesh/gmsh_mesh.hpp"
 #include "frictopt/study/build_mesh.hpp"
 #include "frictopt/study/elastic_body.hpp"
@@ -102,6 +103,29 @@ TEST(GmshBody, GapMatrixFromVIsTheStructuredGapMatrixBitForBit) {
   const Eigen::MatrixXd bezier = b.shape.gap_matrix(boundary.plane_coordinates());
   ASSERT_EQ(from_v.rows(), bezier.rows());
   EXPECT_TRUE((from_v.array() == bezier.array()).all());
+}
+
+// A Gmsh part pressed by a force, with no clamp or with only its lateral motion held, is a
+// floating body as on the box (contact and friction hold the free rigid motions); it was refused
+// with "the Dirichlet parts () leave 6 of the body's 6 rigid-body motions free". The solve and
+// its force balance: tests/study/gmsh_floating_slow_test.cpp. Without contact nothing holds them.
+TEST(GmshBody, AnImportedBodyWithoutAClampFloatsOnItsContact) {
+  BodyDefinition b = cylinder_body(0.25);
+  b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
+  b.tractions = {{"Top", Eigen::Vector3d(0.0, 0.0, -1e6)}};
+  b.contact = ContactDefinition{};
+  b.contact->law = contact::FrictionLaw::disc(0.3);
+  EXPECT_EQ(ElasticBody(b).num_floating_modes(), 6);
+  b.dirichlet = {{"Top", {0, 1}, Eigen::Vector3d::Zero()}};
+  EXPECT_EQ(ElasticBody(b).num_floating_modes(), 3);
+  b.contact.reset();
+  try {
+    ElasticBody body(b);
+    ADD_FAILURE() << "a body without contact whose rigid motions are free must be refused";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("leave 3 of the body's 6 rigid-body motions free"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -145,12 +145,13 @@ HISTORY_COLUMNS = ["iteration", "evaluations", "step", "theta", "t", "stationari
 
 
 def write_optimize_run(directory, body_of_lift, steps, name="synthetic", control_points=(3, 2),
-                       cost_unit="N²", case_path=None, confirmation_iterations=0):
+                       cost_unit="N²", case_path=None, confirmation_iterations=0, loads=None):
     """An `frictopt optimize`-like directory: NAME_iter0000.vtu and the final iterate (the
     body at a flat lift α = const), NAME.pvd, history.csv with one row per entry of `steps`
     (optim::StepKind spellings), summary.json and case.toml. `confirmation_iterations` more
     iterations are counted in the summary only, as the confirmation runs in the point's units
-    do (docs/optim.md)."""
+    do (docs/optim.md). `loads` = (P⁰, P): summary.json's initial and final total normal
+    force, with frictopt's load warning when they differ by more than 10 %."""
     os.makedirs(directory, exist_ok=True)
     m1, m2 = control_points
     alphas = [np.full(m1 * m2, 1e-3), np.full(m1 * m2, 2e-3)]
@@ -190,6 +191,12 @@ def write_optimize_run(directory, body_of_lift, steps, name="synthetic", control
                "evaluations": evaluations}
     if cost_unit is not None:
         summary["cost_unit"] = cost_unit
+    if loads is not None:
+        p0, p = loads
+        summary["initial_load"] = {"total_normal_force": p0}
+        summary["final_load"] = {"total_normal_force": p}
+        summary["warnings"] = (["the final design carries a different load"]
+                               if abs(p - p0) > 0.1 * p0 else [])
     with open(os.path.join(directory, "summary.json"), "w", encoding="utf-8") as stream:
         json.dump(summary, stream)
     with open(os.path.join(directory, "case.toml"), "w", encoding="utf-8") as stream:

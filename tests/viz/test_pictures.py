@@ -23,8 +23,8 @@ def figures(monkeypatch):
     kept = {}
     original = render_run.save
 
-    def keep(fig, path):
-        written = original(fig, path)
+    def keep(fig, path, run=None):
+        written = original(fig, path, run)
         fig.canvas.draw()  # the pixels and text positions of the saved layout
         kept[path.rsplit("/", 1)[-1]] = fig
         return written
@@ -236,3 +236,25 @@ def test_render_vtu_contact_map_keeps_the_slot_empty(tmp_path, monkeypatch):
         for x in (1.1, 1.5, 1.9):
             assert is_background(pixel_at(fig, ax, x, 0.3, image)), (title, x)
         assert not is_background(pixel_at(fig, ax, 0.6, 0.3, image)), title
+
+
+def test_a_design_that_carries_less_load_is_named_in_every_title(tmp_path, figures):
+    run = synthetic_runs.write_optimize_run(str(tmp_path / "unloaded"), synthetic_runs.bracket,
+                                            ["serious", "null"], loads=(11240.0, 6560.0))
+    draw(run, "history", "contact_3d", "body_3d")
+    expected = "total normal force 1.124e+04 → 6560 N (-42 %)"
+    for name, fig in figures.items():
+        titles = [getattr(fig, "_suptitle", None)] + [ax.title for ax in fig.axes]
+        text = " ".join(t.get_text().replace("\n", " ") for t in titles if t is not None)
+        assert "warning: the final design carries another load" in text, (name, text)
+        assert expected in text, (name, text)
+        assert not texts_outside(fig), name
+
+
+def test_no_load_warning_when_the_load_is_kept(tmp_path, figures):
+    run = synthetic_runs.write_optimize_run(str(tmp_path / "kept"), synthetic_runs.bracket,
+                                            ["serious", "null"], loads=(11240.0, 11000.0))
+    draw(run, "history", "contact_3d")
+    for fig in figures.values():
+        titles = [getattr(fig, "_suptitle", None)] + [ax.title for ax in fig.axes]
+        assert not any(t is not None and "warning" in t.get_text() for t in titles)

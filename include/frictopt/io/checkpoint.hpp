@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "frictopt/contact/contact_resultants.hpp"
 #include "frictopt/io/json.hpp"
 #include "frictopt/optim/bundle_trust.hpp"
 
@@ -57,7 +58,25 @@ struct RunCheckpoint {
     std::int64_t weak_nodes = 0;
     double state_seconds = 0.0;
     double subgradient_seconds = 0.0;
+    /// The centre's load (study::Evaluation::resultants): total normal force, |total tangential
+    /// force|, contact area and node counts (NaN and 0 in a checkpoint written without them).
+    double normal_force = kNaN;
+    double tangential_force = kNaN;
+    double contact_area = kNaN;
+    std::int64_t stick_nodes = 0;
+    std::int64_t slip_nodes = 0;
+    std::int64_t separated_nodes = 0;
   } center;
+  /// The initial design's forces, areas and counts, for summary.json's comparison of the final
+  /// design's load with the initial one (study::load_change_warnings); normal_force NaN when the
+  /// checkpoint was written without them.
+  contact::ContactResultants initial_load = unknown_load();
+  /// ContactResultants with a NaN total normal force: "not recorded".
+  static contact::ContactResultants unknown_load() {
+    contact::ContactResultants r;
+    r.normal_force = kNaN;
+    return r;
+  }
 };
 
 /// Every field (doubles round-trip exactly: JSON numbers are written with 17 significant digits).

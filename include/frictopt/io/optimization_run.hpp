@@ -51,6 +51,9 @@ struct OptimizationRunResult {
   double final_cost = kNaN;             ///< Θ at the final design
   JsonValue summary_json;               ///< summary.json's content (written when there is a run directory)
   std::vector<std::string> notes;       ///< what the run directory reported on opening the series/history
+  /// The final design carries another load than the initial one (study::load_change_warnings);
+  /// printed as "warning: ..." and in summary.json's "warnings". They do not change the outcome.
+  std::vector<std::string> warnings;
 };
 
 /// Runs the bundle trust method on the request's case — or, with `resume`, continues the run

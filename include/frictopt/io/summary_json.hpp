@@ -43,6 +43,9 @@ void add_members(JsonValue& into, const JsonValue& members);
 [[nodiscard]] JsonValue to_json(const contact::CoulombSolver::Summary& summary);
 /// Totals, areas, counts and the stick zone (the members of solve's "contact" object).
 [[nodiscard]] JsonValue to_json(const contact::ContactResultants& resultants);
+/// The load a design carries (a run's initial_load / final_load): total normal force, total
+/// tangential force and its norm, contact area, node counts.
+[[nodiscard]] JsonValue load_to_json(const contact::ContactResultants& resultants);
 [[nodiscard]] JsonValue to_json(const sensitivity::AdjointSensitivity::Summary& summary);
 /// Without the per-iteration history (history.csv holds it) and the last state (checkpoint.json).
 [[nodiscard]] JsonValue to_json(const optim::BundleTrust::Summary& summary);

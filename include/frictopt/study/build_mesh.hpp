@@ -17,8 +17,9 @@ namespace frictopt::study {
 /// (mesh::with_design_motion: patch nodes along the foundation normal by the Bézier surface, the
 /// rest by the once-per-mesh extension, which holds the Dirichlet parts and, with contact, the
 /// contact surface off the patch). Throws InvalidInput as those producers do, and for a
-/// design patch that is not part of the contact surface, and for an imported body whose
-/// Dirichlet parts leave a rigid-body motion free (check_rigid_modes_removed).
+/// design patch that is not part of the contact surface, and for an imported body without
+/// contact whose Dirichlet parts leave a rigid-body motion free (check_rigid_modes_removed; with
+/// contact such a body floats, held by contact and friction as on the box).
 mesh::Mesh build_mesh(const BodyDefinition& definition);
 
 /// The size limits every body's mesh meets before anything is assembled (docs/case-format.md,

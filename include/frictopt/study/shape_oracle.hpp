@@ -35,6 +35,10 @@ struct Evaluation {
   sensitivity::AdjointSensitivity::Summary adjoint;
   StateSummary state;
   contact::CoulombSolver::Summary contact;
+  /// Total normal and tangential force, contact area and node counts of the state `contact`
+  /// describes (contact::contact_resultants): what the design carries, reported per evaluation
+  /// so that a design which lowers Θ by carrying less load is seen (docs/optim.md, "Outcomes").
+  contact::ContactResultants resultants;
   double state_seconds = 0.0;
   double subgradient_seconds = 0.0;
   /// Load cases (issue 13): J_k of every case (unweighted, in the cases' order); empty without.
