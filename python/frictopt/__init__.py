@@ -33,6 +33,7 @@ from ._frictopt import (
     State,
     certify,
     check_gradient,
+    experiment,
     identify,
     load_case,
     optimize,
@@ -47,7 +48,7 @@ from ._toml import to_toml
 
 __all__ = [
     "Body", "Case", "Evaluation", "FrictionLaw", "Measurement", "Oracle", "State", "Summary",
-    "certify", "check_gradient", "identify", "load_case", "optimize", "parse_case",
+    "certify", "check_gradient", "experiment", "identify", "load_case", "optimize", "parse_case",
     "read_measurements", "synthetic_measurements", "write_measurements", "to_toml",
     "STATUS_SEPARATED", "STATUS_STICK", "STATUS_SLIP",
 ]

@@ -256,6 +256,8 @@ def optimize(case: Case | None = None, run_directory: PathLike | None = None, *,
              max_iterations: int | None = None, max_evaluations: int | None = None,
              epsilon: float | None = None) -> Summary: ...
 
+def experiment(case: Case, run_directory: PathLike | None = None) -> Summary: ...
+
 class Measurement:
     """One measured contact quantity with its standard deviation."""
     def __init__(self, quantity: str, value: float, sigma: float = 1.0, node: int = -1,

@@ -83,5 +83,6 @@ void bind_body(py::module_& m);
 void bind_oracle(py::module_& m);
 void bind_optimize(py::module_& m);
 void bind_identification(py::module_& m);
+void bind_experiment(py::module_& m);
 
 }  // namespace frictopt::python

@@ -32,4 +32,5 @@ PYBIND11_MODULE(_frictopt, m) {
   frictopt::python::bind_oracle(m);
   frictopt::python::bind_optimize(m);
   frictopt::python::bind_identification(m);
+  frictopt::python::bind_experiment(m);
 }

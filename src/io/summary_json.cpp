@@ -204,6 +204,57 @@ JsonValue to_json(const optim::DenseQpSolver::Summary& s) {
   return j;
 }
 
+JsonValue to_json(const study::TribometerAngleResult& a, bool with_ramp) {
+  JsonValue j = JsonValue::object();
+  j["angle_degrees"] = a.angle_degrees;
+  j["gross_sliding"] = a.gross_sliding;
+  j["onset_step"] = a.onset_step + 1;  // 1-based, as the ramp CSV's step column
+  j["onset_pull"] = a.onset_pull;
+  j["onset_force"] = a.onset_force;
+  j["onset_normal_force"] = a.onset_normal_force;
+  j["steady_sliding"] = a.steady_sliding;
+  j["sliding_force"] = a.sliding_force;
+  j["sliding_normal_force"] = a.sliding_normal_force;
+  j["sliding_resistance"] = a.sliding_resistance;
+  j["law_resistance"] = a.law_resistance;
+  j["force_angle_degrees"] = a.force_angle_degrees;
+  j["slip_angle_degrees"] = a.slip_angle_degrees;
+  j["measured_mu"] = a.measured_coefficient;
+  j["law_mu"] = a.law_coefficient;
+  j["relative_error"] = a.coefficient_error;
+  j["normality_residual"] = a.normality_residual;
+  if (with_ramp) {
+    JsonValue ramp = JsonValue::array();
+    for (const study::TribometerRampPoint& pt : a.ramp) {
+      JsonValue r = JsonValue::object();
+      r["pull"] = pt.pull;
+      r["normal_force"] = pt.normal_force;
+      r["tangential_force"] = Eigen::VectorXd(pt.tangential_force);
+      r["stick_fraction"] = pt.stick_fraction;
+      r["num_stick"] = pt.num_stick;
+      r["num_slip"] = pt.num_slip;
+      ramp.push_back(std::move(r));
+    }
+    j["ramp"] = std::move(ramp);
+  }
+  return j;
+}
+
+JsonValue to_json(const study::Tribometer::Summary& s) {
+  JsonValue j = JsonValue::object();
+  j["status"] = std::string(to_string(s.status));
+  j["message"] = s.message;
+  j["press_displacement"] = s.press_displacement;
+  j["press_iterations"] = s.press_iterations;
+  j["contact_solves"] = s.contact_solves;
+  j["factorizations"] = s.factorizations;
+  j["time_seconds"] = s.time_seconds;
+  JsonValue angles = JsonValue::array();
+  for (const study::TribometerAngleResult& a : s.angles) angles.push_back(to_json(a));
+  j["angles"] = std::move(angles);
+  return j;
+}
+
 JsonValue to_json(const study::Identification::Summary& s) {
   JsonValue j = status_fields(s.status, s.message);
   j["ceres_brief_report"] = s.ceres_brief_report;

@@ -15,6 +15,7 @@
 #include "frictopt/study/certificate.hpp"
 #include "frictopt/study/elastic_body.hpp"
 #include "frictopt/study/identification.hpp"
+#include "frictopt/study/tribometer.hpp"
 
 namespace frictopt::io {
 
@@ -53,6 +54,11 @@ void add_members(JsonValue& into, const JsonValue& members);
 [[nodiscard]] JsonValue to_json(const optim::DenseQpSolver::Summary& summary);
 /// Estimates, covariance, correlation and Ceres' brief report (the full report has its own file).
 [[nodiscard]] JsonValue to_json(const study::Identification::Summary& summary);
+/// One angle of the virtual tribometer: onset, sliding, the law's μ(φ) and N_W(ŝ), and with
+/// `with_ramp` every ramp point (pull, P, T, stick fraction, counts).
+[[nodiscard]] JsonValue to_json(const study::TribometerAngleResult& angle, bool with_ramp = false);
+/// The tribometer's run: status, press, counters and every angle (without their ramps).
+[[nodiscard]] JsonValue to_json(const study::Tribometer::Summary& summary);
 /// The whole certificate: index sets, pieces with ξ_i and weights, Clarke distance, (MF1) rank,
 /// Mordukhovich check; `options` for the tolerances used.
 [[nodiscard]] JsonValue to_json(const study::Certificate& certificate, const study::CertifyOptions& options);
