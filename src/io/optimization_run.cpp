@@ -25,9 +25,11 @@ const std::vector<std::string>& optimization_history_columns() {
       "iteration",     "evaluations", "step",          "theta",      "t",
       "stationarity_relative",        "aggregate_error_relative",    "bundle_size",
       "serious_steps", "null_steps",  "state_solves",  "coulomb_iterations",
-      "qp_iterations", "weak_nodes",  "state_seconds", "subgradient_seconds", "elapsed_seconds",
+      "qp_iterations", "weak_nodes",
       // The centre's load: a design must not lower Θ by carrying less (study/load_change.hpp).
-      "normal_force",  "tangential_force", "contact_area", "stick_nodes", "slip_nodes", "separated_nodes"};
+      "normal_force",  "tangential_force", "contact_area", "stick_nodes", "slip_nodes", "separated_nodes",
+      // The timings last (they alone differ between a run and its resumed copy).
+      "state_seconds", "subgradient_seconds", "elapsed_seconds"};
   return columns;
 }
 
@@ -158,8 +160,8 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
         std::string(optim::to_string(m.step)), m.f, m.t, m.stationarity, m.aggregate_error,
         static_cast<std::int64_t>(m.bundle.size()), static_cast<std::int64_t>(m.serious_steps),
         static_cast<std::int64_t>(m.null_steps), solves, center.coulomb_iterations, center.qp_iterations,
-        center.weak_nodes, center.state_seconds, center.subgradient_seconds, elapsed, center.normal_force,
-        center.tangential_force, center.contact_area, center.stick_nodes, center.slip_nodes, center.separated_nodes};
+        center.weak_nodes, center.normal_force, center.tangential_force, center.contact_area, center.stick_nodes,
+        center.slip_nodes, center.separated_nodes, center.state_seconds, center.subgradient_seconds, elapsed};
     if (body.orientation_design()) row.emplace_back(orientation_deg(m.x));  // after the fixed columns
     report(fmt::format("{:>5} {:>6} {:>14.6e} {:>14} {:>10.3e} {:>12.3e} {:>8} {:>8.1f}s", m.iteration, m.evaluations, m.f,
                optim::to_string(m.step), m.t, m.stationarity, center.qp_iterations, elapsed));
