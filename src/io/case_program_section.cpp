@@ -102,10 +102,11 @@ study::TribometerDefinition read_experiment(const TableReader& r) {
   }
   e.normal_force =
       r.required_number("normal_force", "the normal force P > 0 in N the platen presses with");
-  if (e.drive == study::TribometerDrive::kDisplacement)
-    e.pull_displacement =
-        r.required_number("pull_displacement", "the final tangential platen displacement > 0 in m");
-  else
+  if (e.drive == study::TribometerDrive::kDisplacement) {
+    // Optional: without it the run chooses the pull from the law and the specimen and ramps on
+    // until the specimen slides steadily (study::Tribometer::automatic_pull_displacement).
+    if (const auto pull = r.optional_number("pull_displacement")) e.pull_displacement = *pull;
+  } else
     e.max_force_ratio = r.required_number(
         "max_force_ratio", "the ramp's final pull force as a multiple of the normal force, > 0");
   if (const auto t = r.optional_number("onset_tolerance")) e.onset_tolerance = *t;

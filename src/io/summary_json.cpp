@@ -246,6 +246,8 @@ JsonValue to_json(const study::Tribometer::Summary& s) {
   j["message"] = s.message;
   j["press_displacement"] = s.press_displacement;
   j["press_iterations"] = s.press_iterations;
+  j["pull_displacement"] = s.pull_displacement;  // the ramp's final pull, the case's or the automatic one
+  j["automatic_pull"] = s.automatic_pull;
   j["contact_solves"] = s.contact_solves;
   j["factorizations"] = s.factorizations;
   j["time_seconds"] = s.time_seconds;

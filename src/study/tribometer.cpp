@@ -36,12 +36,12 @@ void TribometerDefinition::validate() const {
   if (!(normal_force > 0.0 && std::isfinite(normal_force)))
     throw InvalidInput(
         fmt::format("experiment.normal_force = {}; expected a finite force > 0 N", normal_force));
-  if (drive == TribometerDrive::kDisplacement &&
-      !(pull_displacement > 0.0 && std::isfinite(pull_displacement)))
+  if (drive == TribometerDrive::kDisplacement && pull_displacement &&
+      !(*pull_displacement > 0.0 && std::isfinite(*pull_displacement)))
     throw InvalidInput(
         fmt::format("experiment.pull_displacement = {}; expected a finite displacement > 0 m "
-                    "(drive = \"displacement\")",
-                    pull_displacement));
+                    "(drive = \"displacement\"), or no value for one chosen from the law and the specimen",
+                    *pull_displacement));
   if (drive == TribometerDrive::kForce && !(max_force_ratio > 0.0 && std::isfinite(max_force_ratio)))
     throw InvalidInput(fmt::format(
         "experiment.max_force_ratio = {}; expected a finite ratio Q_max/P > 0 (drive = \"force\"; "
@@ -70,7 +70,11 @@ std::string Tribometer::Summary::brief_report() const {
       "contact solves on "
       "{} factorization{}, {:.3f} s",
       to_string(status), message, press_displacement, press_iterations, angles.size(),
-      contact_solves, factorizations, factorizations == 1 ? "" : "s", time_seconds);
+      contact_solves, factorizations, factorizations == 1 ? "" : "s", time_seconds) +
+         (automatic_pull ? fmt::format("; pull chosen: {:.4e} m per ramp of the case's steps (3 × the elastic shear "
+                                       "at sliding), ramped on to steady sliding",
+                                       pull_displacement)
+                         : std::string());
 }
 
 Tribometer::Tribometer(BodyDefinition body, TribometerDefinition experiment)
@@ -178,14 +182,20 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
   const Eigen::VectorXd pressed_tangential = builder.tangential_displacement(pressed.displacement);
 
   // 2. Per angle: ramp the pull from the pressed state; friction acts on each step's increment.
+  // A pull the case gives is ramped in ramp_steps steps; an automatic one goes on in steps of
+  // the same size until the specimen slides steadily (two sliding steps in a row).
+  summary.automatic_pull = !experiment_.pull_displacement;
+  const double final_pull = experiment_.pull_displacement.value_or(automatic_pull_displacement(body_, target));
+  summary.pull_displacement = final_pull;
+  const int max_steps = summary.automatic_pull ? 4 * experiment_.ramp_steps : experiment_.ramp_steps;
   for (double angle_deg : experiment_.angles_degrees) {
     TribometerAngleResult r;
     r.angle_degrees = angle_deg;
     body.set_warm_start(pressed_contact);
     delta = pressed_delta;
     Eigen::VectorXd previous = pressed_tangential;
-    for (int k = 1; k <= experiment_.ramp_steps; ++k) {
-      const double pull = experiment_.pull_displacement * k / experiment_.ramp_steps;
+    for (int k = 1; k <= max_steps; ++k) {
+      const double pull = final_pull * k / experiment_.ramp_steps;
       BodyState s;
       if (!press(pull, angle_deg * kDegree, previous, body.warm_start(),
                  fmt::format("pull {} deg step {}", angle_deg, k), s))
@@ -201,7 +211,12 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
         r.onset_force = c.tangential_force_norm;
         r.onset_normal_force = c.normal_force;
       }
-      if (k == experiment_.ramp_steps && sliding && r.onset_step < k - 1) detail::read_sliding_law(s, law, r);
+      const bool steady = sliding && r.onset_step < k - 1;
+      if (summary.automatic_pull && steady) {
+        detail::read_sliding_law(s, law, r);
+        break;
+      }
+      if (k == experiment_.ramp_steps && steady) detail::read_sliding_law(s, law, r);
     }
     if (on_angle) on_angle(r);
     summary.angles.push_back(std::move(r));
@@ -215,6 +230,20 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
   summary.time_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
+}
+
+double Tribometer::automatic_pull_displacement(const BodyDefinition& specimen, double normal_force) {
+  if (!specimen.contact) throw InvalidInput("experiment: the specimen needs a [contact] table");
+  const contact::FrictionLaw& law = specimen.contact->law;
+  double mu_max = 0.0;
+  for (int k = 0; k < 360; ++k) {
+    const double theta = k * kDegree;
+    mu_max = std::max(mu_max, law.support(Eigen::Vector2d(std::cos(theta), std::sin(theta))));
+  }
+  const double young = specimen.material.young, poisson = specimen.material.poisson;
+  const double shear_modulus = young / (2.0 * (1.0 + poisson));
+  const double shear_at_sliding = mu_max * normal_force * specimen.height / (shear_modulus * specimen.shape.base_measure());
+  return 3.0 * shear_at_sliding;
 }
 
 }  // namespace frictopt::study

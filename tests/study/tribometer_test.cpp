@@ -102,5 +102,35 @@ TEST(Tribometer, BadExperimentIsInvalidInput) {
   EXPECT_THROW(Tribometer(specimen(FrictionLaw::disc(0.3)), e), InvalidInput);
 }
 
+// Without pull_displacement the run chooses the pull from the law and the specimen (three times
+// the elastic shear at sliding, μ_max·P·H/(G·A)) and ramps on until the specimen slides steadily:
+// a user's guess (5× too long in one report) is no longer needed, and the law is read as with a
+// well-chosen pull.
+TEST(Tribometer, WithoutAPullLengthTheRunRampsToSteadySliding) {
+  TribometerDefinition e;
+  e.normal_force = 1e4;
+  e.ramp_steps = 10;
+  e.angles_degrees = {0.0, 45.0, 90.0};
+  const BodyDefinition body = specimen(FrictionLaw::ellipse(0.4, 0.2));
+  const double shear = 0.4 * 1e4 * body.height / (body.material.young / (2.0 * (1.0 + body.material.poisson)) *
+                                                  body.shape.base_measure());
+  EXPECT_NEAR(Tribometer::automatic_pull_displacement(body, e.normal_force), 3.0 * shear, 1e-12 * shear);
+  Tribometer tribometer(body, e);
+  const Tribometer::Summary summary = tribometer.run();
+  ASSERT_EQ(summary.status, Status::kConverged) << summary.brief_report();
+  EXPECT_TRUE(summary.automatic_pull);
+  EXPECT_NEAR(summary.pull_displacement, 3.0 * shear, 1e-12 * shear);
+  EXPECT_NE(summary.brief_report().find("pull chosen"), std::string::npos) << summary.brief_report();
+  for (const TribometerAngleResult& a : summary.angles) {
+    SCOPED_TRACE(a.angle_degrees);
+    ASSERT_TRUE(a.steady_sliding);
+    EXPECT_LE(a.coefficient_error, 1e-6);
+    EXPECT_LE(a.normality_residual, 1e-6);
+    // It stops at the second sliding step: the ramp ends one step after the onset.
+    EXPECT_EQ(static_cast<int>(a.ramp.size()), a.onset_step + 2);
+    EXPECT_LE(static_cast<int>(a.ramp.size()), 4 * e.ramp_steps);
+  }
+}
+
 }  // namespace
 }  // namespace frictopt::study

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,7 +43,10 @@ TribometerDrive parse_tribometer_drive(std::string_view text);
 struct TribometerDefinition {
   TribometerDrive drive = TribometerDrive::kDisplacement;
   double normal_force = 0.0;                ///< P [N] pressed by the platen (or the top traction); > 0
-  double pull_displacement = 0.0;           ///< kDisplacement: final tangential platen displacement [m]; > 0
+  /// kDisplacement: the ramp's final tangential platen displacement [m]; > 0. Absent: chosen
+  /// from the law and the specimen (Tribometer::automatic_pull_displacement) and the ramp goes on
+  /// past it, step by step, until the specimen slides steadily (at most 4·ramp_steps steps).
+  std::optional<double> pull_displacement;
   /// kForce: the ramp's final tangential force as a multiple of P (Q_max = ratio·P); > 0. Set it
   /// above the law's largest coefficient to reach gross sliding in every direction.
   double max_force_ratio = 0.0;
@@ -106,6 +110,9 @@ class Tribometer {
     Status status = Status::kNotRun;
     std::string message = "run() has not been called";
     double press_displacement = kNaN;  ///< platen indentation δ giving P [m]
+    /// kDisplacement: the ramp's final pull [m], the case's or the automatic one (NaN: kForce).
+    double pull_displacement = kNaN;
+    bool automatic_pull = false;       ///< pull_displacement was chosen by the run
     int press_iterations = 0;          ///< secant steps for δ
     int contact_solves = 0;
     int factorizations = 0;
@@ -119,6 +126,13 @@ class Tribometer {
   /// platen on the face "top" and its [[load]]/[[force]] tables are kept. Throws InvalidInput.
   Tribometer(BodyDefinition body, TribometerDefinition experiment);
   [[nodiscard]] Summary run(const AngleCallback& on_angle = {});
+
+  /// The pull length chosen when the case gives none: three times the elastic shear of the
+  /// specimen at sliding, δ_s = μ_max·P·H / (G·A) (the block as a column in shear: H its height,
+  /// A its top area, G = E / (2(1 + ν)), μ_max the law's largest support N_W(e_θ)). The onset of
+  /// gross sliding lies near δ_s (the stick zone shrinks from the rim as the pull grows), so the
+  /// ramp's first third holds the stick–slip transition and the rest the sliding.
+  [[nodiscard]] static double automatic_pull_displacement(const BodyDefinition& specimen, double normal_force);
 
  private:
   /// TribometerDrive::kForce (tribometer_force_ramp.cpp).
