@@ -301,6 +301,16 @@ void Identification::Impl::resolve_measurements() {
     if (std::isfinite(nearest)) spacing = std::max(spacing, nearest);
   }
   if (measurements.empty()) throw InvalidInput("identification: no measurements; expected at least one");
+  if (measurements.size() > kMaxMeasurements)
+    throw InvalidInput(fmt::format("identification: {} measurements; expected at most {} (docs/case-format.md, "
+                                   "\"Size limits\")",
+                                   measurements.size(), kMaxMeasurements));
+  const auto totals = static_cast<std::size_t>(std::count_if(
+      measurements.begin(), measurements.end(), [](const Measurement& row) { return is_total(row.quantity); }));
+  if (totals > kMaxTotalMeasurements)
+    throw InvalidInput(fmt::format("identification: {} measurements of sums over the contact surface (total_*); "
+                                   "expected at most {} (docs/case-format.md, \"Size limits\")",
+                                   totals, kMaxTotalMeasurements));
   // The nodes of Γ_c that a [[dirichlet]] table or a [[constraint]] fixes are supports, not
   // contact nodes: their in-plane coordinates (in the foundation's frame, as plane_coordinates),
   // so that a location nearest to one of them is refused instead of moved to a contact neighbour.
@@ -487,6 +497,14 @@ Identification::Identification(BodyDefinition definition, std::vector<Measuremen
   // The Jacobians need the dense M: let the state solve form it whatever the contact size.
   s.definition.contact->dense_delassus_max_unknowns = std::numeric_limits<int>::max();
   s.body = std::make_unique<ElasticBody>(s.definition);
+  if (s.body->contact_boundary()->num_unknowns() > kMaxIdentificationContactUnknowns)
+    throw InvalidInput(fmt::format(
+        "identification: the contact surface has {} contact unknowns (dim × {} nodes), whose dense Delassus matrix "
+        "needs {:.3g} GB; expected at most {} contact unknowns (a coarser mesh on the contact surface; "
+        "docs/case-format.md, \"Size limits\")",
+        s.body->contact_boundary()->num_unknowns(), s.body->contact_boundary()->num_nodes(),
+        8e-9 * std::pow(static_cast<double>(s.body->contact_boundary()->num_unknowns()), 2.0),
+        kMaxIdentificationContactUnknowns));
   s.setup_contact();
   s.resolve_measurements();
 }

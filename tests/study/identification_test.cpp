@@ -705,6 +705,27 @@ TEST(Identification, RefusesThePetscEngineBeforeAnySolve) {
   EXPECT_NE(e.find("[solver] engine = \"petsc\": identification needs the direct engine"), std::string::npos) << e;
 }
 
+// The work an identification takes on is bounded (docs/case-format.md, "Size limits"): the sums
+// over Γ_c (one Jacobian row per contact node each) and the dense M's contact unknowns.
+TEST(Identification, SumRowsAndContactUnknownsAreBounded) {
+  Identification::Options o;
+  o.parameters = polygon_parameters(kTrueMu);
+  Measurement total;
+  total.quantity = MeasuredQuantity::kTotalNormalForce;
+  const std::vector<Measurement> totals(kMaxTotalMeasurements + 1, total);
+  std::string e = error_of([&] { Identification id(block(kTrueLaw), totals, o); });
+  EXPECT_NE(e.find("identification: 1001 measurements of sums over the contact surface (total_*); expected at most "
+                   "1000"),
+            std::string::npos)
+      << e;
+  // 82 × 82 cells: 83² = 6,889 contact nodes, 20,667 contact unknowns (M would take 3.4 GB).
+  e = error_of([&] { Identification id(block(kTrueLaw, Eigen::Vector2d(4e-5, -3e-5), 82), {total}, o); });
+  EXPECT_NE(e.find("the contact surface has 20667 contact unknowns (dim × 6889 nodes), whose dense Delassus matrix "
+                   "needs 3.42 GB; expected at most 20000"),
+            std::string::npos)
+      << e;
+}
+
 const std::string kCase3d = frictopt::testing::block_header_3d("1.0", "0.5") +
                             frictopt::testing::top_dirichlet("[0.0, 0.0, -1.0e-3]") +
                             frictopt::testing::design_table("[2, 2]", "0.0", "1.0e-3") + R"([contact.friction]
