@@ -618,7 +618,7 @@ Identification::Summary Identification::run() {
   ceres::Solve(solver_options, &problem, &ceres_summary);
   out.ceres_brief_report = ceres_summary.BriefReport();
   out.ceres_full_report = ceres_summary.FullReport();
-  out.iterations = static_cast<int>(ceres_summary.iterations.size()) - 1;
+  out.iterations = std::max(0, static_cast<int>(ceres_summary.iterations.size()) - 1);  // none when it failed at once
   out.initial_cost = ceres_summary.initial_cost;
   out.final_cost = ceres_summary.final_cost;
   out.status = status_of(ceres_summary.termination_type);
@@ -659,6 +659,22 @@ Identification::Summary Identification::run() {
   // Identifiability on the scaled Jacobian J_s = diag(1/σ) J diag(scale): column k is the change
   // of the normalized residuals for a 100% change of parameter k.
   const Eigen::MatrixXd Js = sigma.cwiseInverse().asDiagonal() * final_prediction.jacobian * s.scale.asDiagonal();
+  // A σ too small for its value (σ = 1e-308) overflows the normalized residual or its row of
+  // J_s: no SVD or covariance of non-finite numbers (Eigen's and Ceres' SVDs crash on them).
+  for (Eigen::Index r = 0; r < nm; ++r) {
+    if (std::isfinite(out.residuals(r)) && Js.row(r).allFinite()) continue;
+    const Measurement& m = s.measurements[static_cast<std::size_t>(r)];
+    out.status = Status::kNumericalFailure;
+    out.message = fmt::format(
+        "{}: the normalized residual (fitted − measured)/σ = ({:g} − {:g})/{:g} = {:g} or its derivative is not a "
+        "finite number; expected a standard deviation σ that the value's scale does not overflow",
+        m.label.empty() ? fmt::format("measurement {}", r) : m.label, out.predictions(r), m.value, m.sigma,
+        out.residuals(r));
+    out.state_solves = s.state_solves - solves_before;
+    out.jacobian_evaluations = s.jacobian_evaluations - jacobians_before;
+    out.time_seconds = seconds_since(start);
+    return out;
+  }
   const Eigen::VectorXd column_norms = Js.colwise().norm();
   std::vector<Eigen::Index> live;
   for (Eigen::Index k = 0; k < n; ++k) {

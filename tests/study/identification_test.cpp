@@ -415,6 +415,24 @@ TEST(Identification, RecoversPolygonCoefficientsFromNoiseFreeData) {
   EXPECT_LE(s.chi_square, 1e-8);
 }
 
+// The input files fuzzer's find: a σ of 1e-308 (or a value of 1e308) overflows the normalized
+// residual; Ceres stops at once and the covariance's SVD of the non-finite Jacobian segfaulted.
+TEST(Identification, ASigmaThatOverflowsTheResidualIsANumericalFailureNamingTheMeasurement) {
+  Synthetic data = synthesize(block(kTrueLaw), sensor_templates(49, 1), polygon_parameters(kTrueMu), kTrueMu, 0.01,
+                              kSeed, false);
+  data.measurements[5].sigma = 1e-308;
+  data.measurements[5].label = "data.csv:7";
+  Identification::Options o;
+  o.parameters = polygon_parameters(Eigen::Vector4d::Constant(0.3));
+  Identification id(block(contact::FrictionLaw::polygon({0.3, 0.3, 0.3, 0.3})), data.measurements, o);
+  const Identification::Summary s = id.run();
+  EXPECT_EQ(s.status, Status::kNumericalFailure);
+  EXPECT_NE(s.message.find("data.csv:7: the normalized residual (fitted − measured)/σ = "), std::string::npos)
+      << s.message;
+  EXPECT_NE(s.message.find("/1e-308 = "), std::string::npos) << s.message;
+  EXPECT_EQ(s.iterations, 0);
+}
+
 TEST(Identification, RecoversCoefficientsAndYoungsModulusFromNoiseFreeData) {
   Eigen::VectorXd truth(5);
   truth << kTrueMu, 7e10;
