@@ -1049,19 +1049,19 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   if (!imported) body.resolution = read_mesh(table("mesh", {"cells", "grading", "growth", "refine_box", "vertical_grading", "fine_depth", "vertical_growth"}), geometry);
   body.material = read_material(table("material", {"young", "poisson", "model"}), dim);
 
-  if (const toml::array* loads = top.optional_table_array("load"))
+  if (const toml::array* loads = top.optional_table_array("load", detail::kMaxBodyTables))
     for (std::size_t i = 0; i < loads->size(); ++i)
       body.tractions.push_back(
           read_load(TableReader(*loads->get(i)->as_table(), fmt::format("load[{}]", i), origin,
                                 {"face", "boundary", "traction"}),
                     dim, body.material.young, imported_mesh));
 
-  const toml::array* dirichlet = top.optional_table_array("dirichlet");
+  const toml::array* dirichlet = top.optional_table_array("dirichlet", detail::kMaxBodyTables);
   // Without [[dirichlet]] a body floats: only contact and friction can hold it (issue 12,
   // spec 07 §2; study::ElasticBody solves it with the kernel-aware dual).
   const toml::array no_dirichlet;
   if ((dirichlet == nullptr || dirichlet->empty()) && top.optional_table("contact") == nullptr &&
-      top.optional_table_array("constraint") == nullptr)
+      top.optional_table_array("constraint", detail::kMaxBodyTables) == nullptr)
     top.fail_missing("dirichlet",
                      "at least one [[dirichlet]] table (a body without a "
                      "Dirichlet part and without [contact] has rigid-body modes)");

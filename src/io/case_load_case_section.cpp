@@ -49,7 +49,7 @@ study::LoadCaseDefinition read_load_case(const TableReader& r, std::string_view 
 }  // namespace
 
 void read_load_case_sections(const TableReader& top, std::string_view origin, CaseDescription& c) {
-  const toml::array* tables = top.optional_table_array("load_case");
+  const toml::array* tables = top.optional_table_array("load_case", study::kMaxLoadCases);
   const toml::table* study_table = top.optional_table("study");
   if (tables == nullptr && study_table == nullptr) return;
   if (tables == nullptr || tables->empty())

@@ -11,6 +11,7 @@
 #include "frictopt/mesh/design_extension.hpp"
 #include "frictopt/mesh/gmsh_mesh.hpp"
 #include "frictopt/mesh/graded_coordinates.hpp"
+#include "frictopt/study/build_mesh.hpp"
 
 namespace frictopt::io::detail {
 namespace {
@@ -90,6 +91,7 @@ ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view 
   if (const auto canonical = std::filesystem::weakly_canonical(std::filesystem::absolute(file), ec); !ec)
     file = canonical;
   mesh::GmshMeshOptions options;
+  options.budget_unknowns = study::max_unknowns_within_memory();  // --max-memory bounds Gmsh too
   if (const auto size = r.optional_number("size")) {
     if (!(*size > 0 && std::isfinite(*size))) r.fail_value("size", "a mesh size > 0 [m] for the .geo file");
     if (file.extension() != ".geo")

@@ -131,7 +131,7 @@ study::LoadingProgramDefinition read_program(const TableReader& r, std::string_v
                                              const study::BodyDefinition& body, std::string_view where) {
   const std::string tables = study::step_tables(where);
   study::LoadingProgramDefinition program;
-  const toml::array* steps = r.optional_table_array("step");
+  const toml::array* steps = r.optional_table_array("step", study::kMaxProgramSteps);
   if (steps == nullptr || steps->empty())
     r.fail_missing("step", "at least one " + tables + " table (a program with no steps solves nothing)");
   for (std::size_t k = 0; k < steps->size(); ++k) {
@@ -157,13 +157,13 @@ study::LoadingProgramDefinition read_program(const TableReader& r, std::string_v
 
 void read_program_sections(const TableReader& top, std::string_view origin, int dim,
                            CaseDescription& c) {
-  if (const toml::array* forces = top.optional_table_array("force"))
+  if (const toml::array* forces = top.optional_table_array("force", kMaxBodyTables))
     for (std::size_t i = 0; i < forces->size(); ++i)
       c.body.forces.push_back(
           read_force(TableReader(*forces->get(i)->as_table(), fmt::format("force[{}]", i), origin,
                                  {"at", "tolerance", "box_min", "box_max", "boundary", "force"}),
                      dim));
-  if (const toml::array* constraints = top.optional_table_array("constraint"))
+  if (const toml::array* constraints = top.optional_table_array("constraint", kMaxBodyTables))
     for (std::size_t i = 0; i < constraints->size(); ++i)
       c.body.constraints.push_back(read_constraint(
           TableReader(

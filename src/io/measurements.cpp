@@ -126,6 +126,10 @@ std::vector<study::Measurement> read_measurements(const std::filesystem::path& p
       throw InvalidInput(fmt::format("{}: sigma = \"{}\"; expected a standard deviation > 0", where, detail::printable_excerpt(fields[3], 40)));
     m.sigma = *sigma;
     out.push_back(std::move(m));
+    if (out.size() > study::kMaxMeasurements)
+      throw InvalidInput(fmt::format("{}: measurement {}; expected at most {} measurements in the file "
+                                     "(docs/case-format.md, \"Size limits\")",
+                                     where, out.size(), study::kMaxMeasurements));
   }
   if (!header_seen) throw InvalidInput(fmt::format("{}: empty measurement file; expected the header \"{}\"", path.string(), kHeader));
   if (out.empty()) throw InvalidInput(fmt::format("{}: no measurements after the header", path.string()));

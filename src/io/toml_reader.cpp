@@ -230,12 +230,16 @@ const toml::table* TableReader::optional_table(std::string_view key) const {
   return t;
 }
 
-const toml::array* TableReader::optional_table_array(std::string_view key) const {
+const toml::array* TableReader::optional_table_array(std::string_view key, std::size_t max_tables) const {
   const toml::node* n = node(key);
   if (n == nullptr) return nullptr;
   auto a = n->as_array();
   if (!a || !a->is_array_of_tables())
     fail_type(*n, field(key), fmt::format("a list of tables [[{}]]", field(key)));
+  if (a->size() > max_tables)
+    fail(key, fmt::format("{} has {} tables; expected at most {} [[{}]] tables (docs/case-format.md, \"Size "
+                          "limits\")",
+                          field(key), a->size(), max_tables, field(key)));
   return a;
 }
 

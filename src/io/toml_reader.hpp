@@ -7,6 +7,7 @@
 
 #include <toml++/toml.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
@@ -15,6 +16,11 @@
 #include <vector>
 
 namespace frictopt::io::detail {
+
+/// The most tables of one [[kind]] of the body ([[load]], [[dirichlet]], [[force]],
+/// [[constraint]]; docs/case-format.md, "Size limits"): each is applied node by node, and every
+/// program step and load case carries one scale per table.
+inline constexpr std::size_t kMaxBodyTables = 1'000;
 
 /// "origin:line: message" (or "origin: message" when `node` is null or has no position).
 [[nodiscard]] std::string located(std::string_view origin, const toml::node* node,
@@ -56,8 +62,9 @@ class TableReader {
   [[nodiscard]] std::vector<int> int_list(std::string_view key, std::string_view what) const;
   /// The sub-table at `key`, or null when absent; throws if `key` holds no table.
   [[nodiscard]] const toml::table* optional_table(std::string_view key) const;
-  /// The array of tables at `key` ([[key]]), or null when absent.
-  [[nodiscard]] const toml::array* optional_table_array(std::string_view key) const;
+  /// The array of tables at `key` ([[key]]), or null when absent; throws when it holds more than
+  /// `max_tables` tables (a size limit of docs/case-format.md, "Size limits").
+  [[nodiscard]] const toml::array* optional_table_array(std::string_view key, std::size_t max_tables) const;
 
   /// Throws "origin:line: field = value; expected <expectation>" for the value at `key`.
   [[noreturn]] void fail_value(std::string_view key, std::string_view expectation) const;

@@ -263,6 +263,9 @@ Checked check_input(const std::filesystem::path& file, const GmshMeshOptions& op
                                    name));
   if (!(options.max_unknowns > 0))
     throw InvalidInput(fmt::format("{}: GmshMeshOptions::max_unknowns = {}; expected > 0", name, options.max_unknowns));
+  if (options.budget_unknowns < 0)
+    throw InvalidInput(
+        fmt::format("{}: GmshMeshOptions::budget_unknowns = {}; expected >= 0", name, options.budget_unknowns));
   if (!(options.time_limit_seconds > 0 && options.time_limit_seconds <= 1e6))
     throw InvalidInput(
         fmt::format("{}: GmshMeshOptions::time_limit_seconds = {}; expected (0, 1e6]", name, options.time_limit_seconds));
@@ -609,10 +612,13 @@ GmshMesh::GmshMesh(const std::filesystem::path& file, const GmshMeshOptions& opt
   // Gmsh's memory for a mesh within the unknowns limit (measured: well below 1 KB per unknown
   // for the subdivided box of docs/meshes.md), with room: a .geo whose own sizes or
   // Transfinite counts ask for far more cells ends in the child's allocation failure.
-  const std::uint64_t budget = kGmshBaseBytes + kGmshBytesPerUnknown * static_cast<std::uint64_t>(options.max_unknowns);
+  const std::int64_t sized_for =
+      options.budget_unknowns > 0 ? std::min(options.budget_unknowns, options.max_unknowns) : options.max_unknowns;
+  const std::uint64_t budget = kGmshBaseBytes + kGmshBytesPerUnknown * static_cast<std::uint64_t>(sized_for);
   const std::uint64_t available = available_memory_bytes();
   limits.memory_bytes = available > 0 ? std::min(available, budget) : budget;
-  limits.memory_hint = fmt::format("the limit of {} unknowns gives Gmsh {:.2g} GB", options.max_unknowns,
+  limits.memory_hint = fmt::format("the limit of {} unknowns{} gives Gmsh {:.2g} GB", sized_for,
+                                   sized_for < options.max_unknowns ? " (those whose solve fits the memory limit)" : "",
                                    static_cast<double>(limits.memory_bytes) / 1e9);
   const bool is_geo = checked.is_geo;
   std::string bytes = detail::run_in_child(file.string(), limits,

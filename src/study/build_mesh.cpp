@@ -39,6 +39,19 @@ double estimated_peak_bytes(std::int64_t unknowns) {
 void set_memory_limit(std::uint64_t bytes) { memory_limit_bytes().store(bytes); }
 std::uint64_t memory_limit() { return memory_limit_bytes().load(); }
 
+std::int64_t max_unknowns_within_memory() {
+  const std::uint64_t set = memory_limit();
+  const std::uint64_t limit = set > 0 ? set : mesh::available_memory_bytes();
+  const auto fits = [&](std::int64_t n) { return estimated_peak_bytes(n) <= static_cast<double>(limit); };
+  if (limit == 0 || fits(kMaxUnknowns)) return kMaxUnknowns;
+  std::int64_t lo = 1, hi = kMaxUnknowns;  // estimated_peak_bytes increases: bisect on fits
+  while (hi - lo > 1) {
+    const std::int64_t mid = lo + (hi - lo) / 2;
+    (fits(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 void check_mesh_size(const mesh::Mesh& mesh, const std::string& source) {
   const std::int64_t unknowns = static_cast<std::int64_t>(mesh.num_nodes()) * mesh.dim();
   const double estimate = estimated_peak_bytes(unknowns);

@@ -19,6 +19,7 @@
 #include "frictopt/linalg/linear_operator.hpp"
 #include "frictopt/core/enum_table.hpp"
 #include "frictopt/core/error.hpp"
+#include "frictopt/fem/node_selection.hpp"
 #include "frictopt/sensitivity/adjoint.hpp"
 #include "frictopt/sensitivity/friction_parameters.hpp"
 #include "frictopt/sensitivity/index_sets.hpp"
@@ -72,6 +73,24 @@ std::string format_point(const Eigen::VectorXd& x) {
   std::string s = "(";
   for (Eigen::Index k = 0; k < x.size(); ++k) s += fmt::format("{}{:g}", k ? ", " : "", x(k));
   return s + ")";
+}
+
+// The input that fixes a component of mesh node `node` (for messages): "dirichlet[k] (face ...)"
+// or "constraint[k]", the first that selects the node.
+std::string what_fixes(const BodyDefinition& definition, const mesh::Mesh& mesh, int node) {
+  for (std::size_t k = 0; k < definition.dirichlet.size(); ++k) {
+    const fem::FaceDirichlet& d = definition.dirichlet[k];
+    if (!mesh.has_boundary(d.boundary)) continue;
+    const std::vector<int>& nodes = mesh.boundary(d.boundary).nodes;
+    if (std::find(nodes.begin(), nodes.end(), node) != nodes.end())
+      return fmt::format("dirichlet[{}] (face \"{}\")", k, d.boundary);
+  }
+  for (std::size_t k = 0; k < definition.constraints.size(); ++k) {
+    const std::string field = fmt::format("constraint[{}]", k);
+    const std::vector<int> nodes = fem::select_nodes(mesh, definition.constraints[k].where, field);
+    if (std::binary_search(nodes.begin(), nodes.end(), node)) return field;
+  }
+  return "a [[dirichlet]] table or a [[constraint]]";
 }
 
 }  // namespace
@@ -239,7 +258,24 @@ void Identification::Impl::setup_contact() {
   const fem::LinearElasticity& fem = body->elasticity();
   dim = boundary.dim();
   num_nodes = boundary.num_nodes();
-  FRICTOPT_ASSERT(s.contact->delassus_matrix != nullptr, "dense_delassus_max_unknowns is unlimited here");
+  if (num_nodes == 0) {
+    // A node of Γ_c with a fixed component is a support, not a contact node (docs/theory/problem.md
+    // §3): with every node fixed there is no contact force to measure and no friction to identify.
+    const mesh::BoundarySet& surface = body->mesh().boundary(definition.contact_surface);
+    throw InvalidInput(fmt::format(
+        "identification: the contact surface \"{}\" has no contact node: each of its {} nodes has a component "
+        "fixed by a [[dirichlet]] table or a [[constraint]] ({} fixes node {}), and a fixed node is a support, not a "
+        "contact node; expected free nodes on the contact surface (remove that constraint or select fewer nodes)",
+        definition.contact_surface, surface.nodes.size(),
+        surface.nodes.empty() ? std::string("none") : what_fixes(definition, body->mesh(), surface.nodes.front()),
+        surface.nodes.empty() ? -1 : surface.nodes.front()));
+  }
+  // The constructor refuses the engines that do not form the dense M (the PETSc engine's is a
+  // Krylov operator): a state without it is a defect, reported rather than dereferenced.
+  if (!s.contact->delassus_matrix)
+    throw NumericalFailure(fmt::format("identification: the {} engine's state has no dense Delassus matrix; the "
+                                       "identification needs it",
+                                       body->engine().name()));
   M0 = s.contact->delassus_matrix;
   M0_op = std::make_unique<contact::DenseDelassus>(M0);
   const Eigen::VectorXd l_traction = fem.dofs().restrict(fem.traction_load(s.positions));
@@ -265,6 +301,35 @@ void Identification::Impl::resolve_measurements() {
     if (std::isfinite(nearest)) spacing = std::max(spacing, nearest);
   }
   if (measurements.empty()) throw InvalidInput("identification: no measurements; expected at least one");
+  if (measurements.size() > kMaxMeasurements)
+    throw InvalidInput(fmt::format("identification: {} measurements; expected at most {} (docs/case-format.md, "
+                                   "\"Size limits\")",
+                                   measurements.size(), kMaxMeasurements));
+  const auto totals = static_cast<std::size_t>(std::count_if(
+      measurements.begin(), measurements.end(), [](const Measurement& row) { return is_total(row.quantity); }));
+  if (totals > kMaxTotalMeasurements)
+    throw InvalidInput(fmt::format("identification: {} measurements of sums over the contact surface (total_*); "
+                                   "expected at most {} (docs/case-format.md, \"Size limits\")",
+                                   totals, kMaxTotalMeasurements));
+  // The nodes of Γ_c that a [[dirichlet]] table or a [[constraint]] fixes are supports, not
+  // contact nodes: their in-plane coordinates (in the foundation's frame, as plane_coordinates),
+  // so that a location nearest to one of them is refused instead of moved to a contact neighbour.
+  std::vector<int> fixed_nodes;
+  Eigen::MatrixXd fixed_plane;
+  {
+    const mesh::Mesh& mesh = body->mesh();
+    const std::vector<int>& contact_nodes = boundary.nodes();
+    const std::set<int> free(contact_nodes.begin(), contact_nodes.end());
+    for (const int node : mesh.boundary(definition.contact_surface).nodes)
+      if (free.count(node) == 0) fixed_nodes.push_back(node);
+    fixed_plane.resize(static_cast<Eigen::Index>(fixed_nodes.size()), dim - 1);
+    for (std::size_t k = 0; k < fixed_nodes.size(); ++k) {
+      const Eigen::RowVectorXd X = mesh.reference_positions().row(fixed_nodes[k]);
+      fixed_plane.row(static_cast<Eigen::Index>(k)) =
+          boundary.standard_foundation() ? Eigen::RowVectorXd(X.head(dim - 1))
+                                         : Eigen::RowVectorXd(X * boundary.foundation().frame.tangents);
+    }
+  }
   std::vector<Eigen::Triplet<double>> tz, tg;
   for (std::size_t r = 0; r < measurements.size(); ++r) {
     Measurement& meas = measurements[r];
@@ -300,6 +365,18 @@ void Identification::Impl::resolve_measurements() {
                                        "expected a point on the contact surface, within one node spacing ({:.4g} m)",
                                        where, format_point(*meas.point), distance, best,
                                        format_point(plane.row(best).transpose()), spacing));
+      if (fixed_plane.rows() > 0) {
+        Eigen::Index fixed = 0;
+        const double to_fixed = (fixed_plane.rowwise() - meas.point->transpose()).rowwise().norm().minCoeff(&fixed);
+        const int node = fixed_nodes[static_cast<std::size_t>(fixed)];
+        if (to_fixed < distance)
+          throw InvalidInput(fmt::format(
+              "{}: location {} is nearest to mesh node {} at {}, which {} fixes: a support, not a contact node, so "
+              "no contact force or slip is computed there; expected a location nearest to a free contact node "
+              "(the nearest is contact node {} at {}, {:.4g} m away)",
+              where, format_point(*meas.point), node, format_point(fixed_plane.row(fixed).transpose()),
+              what_fixes(definition, body->mesh(), node), best, format_point(plane.row(best).transpose()), distance));
+      }
       meas.node = static_cast<int>(best);
     } else if (meas.node < 0 || meas.node >= p) {
       throw InvalidInput(fmt::format("{}: node = {}; expected a contact node index in [0, {}) or a location", where,
@@ -404,6 +481,11 @@ Identification::Identification(BodyDefinition definition, std::vector<Measuremen
   options.validate();
   Impl& s = *impl_;
   if (!definition.contact) throw InvalidInput("identification needs a body in contact: add a [contact] table to the case");
+  if (definition.engine.kind != StateEngine::kDirect)
+    throw InvalidInput(
+        "[solver] engine = \"petsc\": identification needs the direct engine (its trial points are contact "
+        "solves on the dense Delassus matrix M = G A⁻¹ Gᵀ, and its Jacobians differentiate them); expected "
+        "engine = \"direct\" (docs/identification.md)");
   // The Jacobian is exact only for a state far more accurate than Ceres' steps.
   auto& co = definition.contact->coulomb;
   tighten_for_derivatives(co, options.state_tolerance);
@@ -415,6 +497,14 @@ Identification::Identification(BodyDefinition definition, std::vector<Measuremen
   // The Jacobians need the dense M: let the state solve form it whatever the contact size.
   s.definition.contact->dense_delassus_max_unknowns = std::numeric_limits<int>::max();
   s.body = std::make_unique<ElasticBody>(s.definition);
+  if (s.body->contact_boundary()->num_unknowns() > kMaxIdentificationContactUnknowns)
+    throw InvalidInput(fmt::format(
+        "identification: the contact surface has {} contact unknowns (dim × {} nodes), whose dense Delassus matrix "
+        "needs {:.3g} GB; expected at most {} contact unknowns (a coarser mesh on the contact surface; "
+        "docs/case-format.md, \"Size limits\")",
+        s.body->contact_boundary()->num_unknowns(), s.body->contact_boundary()->num_nodes(),
+        8e-9 * std::pow(static_cast<double>(s.body->contact_boundary()->num_unknowns()), 2.0),
+        kMaxIdentificationContactUnknowns));
   s.setup_contact();
   s.resolve_measurements();
 }
@@ -528,7 +618,7 @@ Identification::Summary Identification::run() {
   ceres::Solve(solver_options, &problem, &ceres_summary);
   out.ceres_brief_report = ceres_summary.BriefReport();
   out.ceres_full_report = ceres_summary.FullReport();
-  out.iterations = static_cast<int>(ceres_summary.iterations.size()) - 1;
+  out.iterations = std::max(0, static_cast<int>(ceres_summary.iterations.size()) - 1);  // none when it failed at once
   out.initial_cost = ceres_summary.initial_cost;
   out.final_cost = ceres_summary.final_cost;
   out.status = status_of(ceres_summary.termination_type);
@@ -569,6 +659,22 @@ Identification::Summary Identification::run() {
   // Identifiability on the scaled Jacobian J_s = diag(1/σ) J diag(scale): column k is the change
   // of the normalized residuals for a 100% change of parameter k.
   const Eigen::MatrixXd Js = sigma.cwiseInverse().asDiagonal() * final_prediction.jacobian * s.scale.asDiagonal();
+  // A σ too small for its value (σ = 1e-308) overflows the normalized residual or its row of
+  // J_s: no SVD or covariance of non-finite numbers (Eigen's and Ceres' SVDs crash on them).
+  for (Eigen::Index r = 0; r < nm; ++r) {
+    if (std::isfinite(out.residuals(r)) && Js.row(r).allFinite()) continue;
+    const Measurement& m = s.measurements[static_cast<std::size_t>(r)];
+    out.status = Status::kNumericalFailure;
+    out.message = fmt::format(
+        "{}: the normalized residual (fitted − measured)/σ = ({:g} − {:g})/{:g} = {:g} or its derivative is not a "
+        "finite number; expected a standard deviation σ that the value's scale does not overflow",
+        m.label.empty() ? fmt::format("measurement {}", r) : m.label, out.predictions(r), m.value, m.sigma,
+        out.residuals(r));
+    out.state_solves = s.state_solves - solves_before;
+    out.jacobian_evaluations = s.jacobian_evaluations - jacobians_before;
+    out.time_seconds = seconds_since(start);
+    return out;
+  }
   const Eigen::VectorXd column_norms = Js.colwise().norm();
   std::vector<Eigen::Index> live;
   for (Eigen::Index k = 0; k < n; ++k) {

@@ -30,6 +30,16 @@ void check_scales(const std::vector<double>& scales, std::size_t expected, std::
 void LoadCasesDefinition::validate(std::size_t num_tractions, std::size_t num_dirichlet, std::size_t num_forces) const {
   if (cases.empty())
     throw InvalidInput("load_case: no load case; expected at least one [[load_case]] table");
+  if (cases.size() > kMaxLoadCases)
+    throw InvalidInput(fmt::format("load_case: {} load cases; expected at most {} [[load_case]] tables (every "
+                                   "evaluation solves each; docs/case-format.md, \"Size limits\")",
+                                   cases.size(), kMaxLoadCases));
+  std::size_t total_steps = 0;
+  for (const LoadCaseDefinition& c : cases) total_steps += c.num_steps();
+  if (total_steps > kMaxProgramSteps)
+    throw InvalidInput(fmt::format("load_case.step: the load cases have {} steps in all; expected at most {} (every "
+                                   "evaluation solves each; docs/case-format.md, \"Size limits\")",
+                                   total_steps, kMaxProgramSteps));
   std::set<std::string> names;
   double total_weight = 0.0;
   for (std::size_t k = 0; k < cases.size(); ++k) {

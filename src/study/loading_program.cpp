@@ -101,6 +101,10 @@ void LoadingProgramDefinition::validate(const BodyDefinition& body, std::string_
   if (steps.empty())
     throw InvalidInput(fmt::format("{}.step: the program has no steps; expected at least one {} table", where,
                                    step_tables(where)));
+  if (steps.size() > kMaxProgramSteps)
+    throw InvalidInput(fmt::format("{}.step: the program has {} steps; expected at most {} {} tables (each is a "
+                                   "contact solve; docs/case-format.md, \"Size limits\")",
+                                   where, steps.size(), kMaxProgramSteps, step_tables(where)));
   for (std::size_t k = 0; k < steps.size(); ++k) {
     check_scales(steps[k].load_scale, body.tractions.size(), where, k, "load_scale", "load");
     check_scales(steps[k].dirichlet_scale, body.dirichlet.size(), where, k, "dirichlet_scale", "dirichlet");

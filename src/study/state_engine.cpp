@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/study/state_engine.hpp"
 
+#include <stdexcept>
+
 #include "frictopt/contact/contact_resultants.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/fem/stress_recovery.hpp"
@@ -29,8 +31,8 @@ void StateEngine::solve(BodyState& state, const StateRequest& request) {
 std::vector<sensitivity::AdjointSensitivity::Result> StateEngine::subgradients(
     const BodyState& state, const std::vector<sensitivity::Piece>& pieces, const sensitivity::CostPartials& j,
     const Eigen::MatrixXd& gap_matrix) {
-  FRICTOPT_ASSERT(state.contact && state.contact->delassus && state.contact->law,
-                  "subgradients: the last solved state in contact, with its Delassus operator");
+  if (!(state.contact && state.contact->delassus && state.contact->law))  // checked in Release too
+    throw std::logic_error("subgradients: expected the last solved state in contact, with its Delassus operator");
   const sensitivity::AdjointSensitivity adjoint(elasticity_, *boundary_, gap_matrix, *state.contact->law);
   std::vector<sensitivity::AdjointSensitivity::Result> out;
   for (const sensitivity::Piece& piece : pieces)
@@ -42,8 +44,8 @@ std::vector<sensitivity::AdjointSensitivity::Result> StateEngine::subgradients(
 sensitivity::AdjointSensitivity::StateDerivative StateEngine::state_derivative(
     const BodyState& state, const sensitivity::Piece& piece, const Eigen::MatrixXd& gap_matrix,
     const Eigen::Ref<const Eigen::VectorXd>& h) const {
-  FRICTOPT_ASSERT(state.contact && state.contact->delassus && state.contact->law,
-                  "state_derivative: the last solved state in contact, with its Delassus operator");
+  if (!(state.contact && state.contact->delassus && state.contact->law))  // checked in Release too
+    throw std::logic_error("state_derivative: expected the last solved state in contact, with its Delassus operator");
   const sensitivity::AdjointSensitivity adjoint(elasticity_, *boundary_, gap_matrix, *state.contact->law);
   return adjoint.state_derivative(piece, *state.contact->delassus, state.positions, state.displacement,
                                   state.contact->state, h);

@@ -58,6 +58,16 @@ void TribometerDefinition::validate() const {
                                      i, angles_degrees[i]));
   if (ramp_steps < 1 || ramp_steps > 100000)
     throw InvalidInput(fmt::format("experiment.ramp_steps = {}; expected 1..100000", ramp_steps));
+  if (angles_degrees.size() > kMaxTribometerAngles)
+    throw InvalidInput(fmt::format("experiment.angles_degrees has {} angles; expected at most {} pull directions "
+                                   "(docs/case-format.md, \"Size limits\")",
+                                   angles_degrees.size(), kMaxTribometerAngles));
+  const auto ramp_solves = static_cast<std::int64_t>(angles_degrees.size()) * ramp_steps;
+  if (ramp_solves > kMaxTribometerRampSolves)
+    throw InvalidInput(fmt::format("experiment.angles_degrees has {} angles with ramp_steps = {}: {} ramp solves; "
+                                   "expected at most {} (fewer angles or ramp steps; docs/case-format.md, \"Size "
+                                   "limits\")",
+                                   angles_degrees.size(), ramp_steps, ramp_solves, kMaxTribometerRampSolves));
 }
 
 std::string Tribometer::Summary::brief_report() const {

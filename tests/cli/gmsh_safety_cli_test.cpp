@@ -113,6 +113,18 @@ TEST(CliGmshSafety, ResumeRefusesAGeoThatSwappedTheClampedGroup) {
   EXPECT_NE(resumed.output.find("the mesh ("), std::string::npos) << resumed.output;
 }
 
+// The input files fuzzer's find: a .geo whose own size factor asks for millions of cells kept
+// Gmsh meshing for 29 s up to the memory of 2,000,000 unknowns (8.5 GB) whatever --max-memory
+// said; the child's memory is now that of the unknowns the limit allows.
+TEST(CliGmshSafety, GeoAskingForMillionsOfCellsEndsAtTheMemoryLimit) {
+  const fs::path dir = fresh_directory("cli_geo_size_factor");
+  const fs::path case_path = copy_gmsh_body(dir, "Mesh.MeshSizeFactor = 1e-6;\n");
+  const RunResult r = run("solve " + case_path.string() + " -o " + (dir / "out").string() + " --max-memory 1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("unknowns (those whose solve fits the memory limit) gives Gmsh 0.51 GB"), std::string::npos)
+      << r.output;
+}
+
 TEST(CliGmshSafety, BodyBeyondTheMemoryLimitIsRefusedBeforeAssembly) {
   const RunResult r = run("solve " FRICTOPT_SOURCE_DIR "/tests/cli/data/small3d.toml -o " +
                           fresh_directory("cli_max_memory").string() + " --max-memory 0.001");

@@ -171,6 +171,65 @@ TEST(CaseLimits, ProblemSettingsIgnoreLayoutAndRunControls) {
   EXPECT_NE(a.problem_settings, c.problem_settings);
 }
 
+// Lists that set the amount of work (docs/case-format.md, "Size limits"): the fuzzer's cases with
+// thousands of program steps, load cases or tribometer angles were accepted and ran for hours.
+std::string repeated(std::string_view text, std::size_t n) {
+  std::string out;
+  out.reserve(text.size() * n);
+  for (std::size_t k = 0; k < n; ++k) out += text;
+  return out;
+}
+
+TEST(CaseLimits, LoadingProgramStepsAreBounded) {
+  const std::string step = "[[program.step]]\nload_scale = [1.0]\n";
+  EXPECT_NO_THROW((void)parse_case(std::string(kCase2d) + repeated(step, 3), "case.toml"));
+  expect_invalid_case(std::string(kCase2d) + repeated(step, 100'001),
+                      {"program.step has 100001 tables; expected at most 100000 [[program.step]] tables",
+                       "Size limits"});
+}
+
+TEST(CaseLimits, LoadCasesAndTheirStepsAreBounded) {
+  const std::string cost = "\n[cost]\nkind = \"compliance\"\n";
+  std::string cases;
+  for (int k = 0; k < 1'001; ++k) cases += "[[load_case]]\nname = \"c" + std::to_string(k) + "\"\n";
+  expect_invalid_case(std::string(kCase2d) + cost + cases,
+                      {"load_case has 1001 tables; expected at most 1000 [[load_case]] tables"});
+  // Two cases of 60,000 steps each: within the bound of one program, beyond it together.
+  const std::string steps = repeated("[[load_case.step]]\nload_scale = [1.0]\n", 60'000);
+  expect_invalid_case(std::string(kCase2d) + "\n[cost]\nkind = \"dissipation\"\n" + "[[load_case]]\nname = \"a\"\n" +
+                          steps + "[[load_case]]\nname = \"b\"\n" + steps,
+                      {"load_case.step: the load cases have 120000 steps in all; expected at most 100000"});
+}
+
+TEST(CaseLimits, TribometerAnglesAndRampSolvesAreBounded) {
+  const auto experiment = [](const std::string& angles, int ramp_steps) {
+    return kCase3d + "\n[experiment]\nnormal_force = 1.0e4\npull_displacement = 1.0e-5\nramp_steps = " +
+           std::to_string(ramp_steps) + "\nangles_degrees = [" + angles + "]\n";
+  };
+  EXPECT_NO_THROW((void)parse_case(experiment("0, 90", 20), "case.toml"));
+  std::string many = "0";
+  for (int k = 1; k < 10'001; ++k) many += ", " + std::to_string(k % 360);
+  expect_invalid_case(experiment(many, 1),
+                      {"experiment.angles_degrees has 10001 angles; expected at most 10000 pull directions"});
+  std::string hundred = "0";
+  for (int k = 1; k < 100; ++k) hundred += ", " + std::to_string(k);
+  expect_invalid_case(experiment(hundred, 100'000),
+                      {"experiment.angles_degrees has 100 angles with ramp_steps = 100000: 10000000 ramp solves; "
+                       "expected at most 1000000"});
+}
+
+TEST(CaseLimits, BodyTablesAreBounded) {
+  const std::string load = "[[load]]\nface = \"top\"\ntraction = [0.0, -1.0]\n";
+  expect_invalid_case(std::string(kCase2d) + repeated(load, 1'000),
+                      {"load has 1001 tables; expected at most 1000 [[load]] tables"});
+  const std::string force = "[[force]]\nboundary = \"top\"\nforce = [0.0, -1.0]\n";
+  expect_invalid_case(std::string(kCase2d) + repeated(force, 1'001),
+                      {"force has 1001 tables; expected at most 1000 [[force]] tables"});
+  const std::string constraint = "[[constraint]]\nat = [0.0, 1.0]\ntolerance = 0.1\n";
+  expect_invalid_case(std::string(kCase2d) + repeated(constraint, 1'001),
+                      {"constraint has 1001 tables; expected at most 1000 [[constraint]] tables"});
+}
+
 class CaseFiles : public frictopt::testing::TemporaryDirectoryTest {};
 
 TEST_F(CaseFiles, AnEmptyCaseFileIsReportedAsEmpty) {
@@ -193,6 +252,23 @@ TEST_F(CaseFiles, AByteOrderMarkIsSkippedInCaseFilesAndMeasurementCsvs) {
   const auto rows = read_measurements(csv);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].value, 1.0);
+}
+
+TEST_F(CaseFiles, AMeasurementFileIsBoundedInRows) {
+  const auto csv = dir_ / "many.csv";
+  {
+    std::ofstream out(csv);
+    out << "quantity,location,value,sigma\n";
+    for (int k = 0; k < 100'001; ++k) out << "normal_force,0,1.0,0.1\n";
+  }
+  try {
+    (void)read_measurements(csv);
+    FAIL() << "no InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("many.csv:100002: measurement 100001; expected at most 100000 measurements"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

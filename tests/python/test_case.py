@@ -67,3 +67,31 @@ def test_to_toml_writes_tables_arrays_of_tables_and_numbers() -> None:
     assert "[a]" in text and "x = 1e-05" in text and "[[d]]" in text and 's = "q\\"t"' in text
     import tomllib
     assert tomllib.loads(text) == {"a": {"x": 1e-5, "y": [1, 2], "s": "q\"t"}, "d": [{"face": "top"}, {"face": "left"}]}
+
+
+def test_a_geo_that_runs_the_shell_is_refused_unless_trusted(root, tmp_path) -> None:
+    """A .geo named by a case is read restricted (docs/meshes.md, "A .geo file runs no code"):
+    `System` is refused by load_case and parse_case, and runs only with trust_geo=True."""
+    marker = tmp_path / "PWNED"
+    source = root / "cases2d" / "gmsh-body"
+    (tmp_path / "body.geo").write_text((source / "body.geo").read_text() + f'System "touch {marker}";\n')
+    text = (source / "case.toml").read_text()
+    (tmp_path / "case.toml").write_text(text)
+    refusal = r"body\.geo:\d+: the \.geo uses 'System', which runs a shell command"
+    with pytest.raises(ValueError, match=refusal):
+        frictopt.load_case(tmp_path / "case.toml")
+    with pytest.raises(ValueError, match=refusal):
+        frictopt.parse_case(text, str(tmp_path / "case.toml"))
+    with pytest.raises(ValueError, match=refusal):
+        frictopt.Case.from_file(tmp_path / "case.toml")
+    assert not marker.exists()
+    # The explicit opt-in runs every Gmsh command, for a file the user has read.
+    trusted = frictopt.load_case(tmp_path / "case.toml", trust_geo=True)
+    assert trusted.dim == 2
+    assert marker.exists()
+    marker.unlink()
+    assert frictopt.parse_case(text, str(tmp_path / "case.toml"), trust_geo=True).dim == 2
+    assert marker.exists()
+    # The default is restored after a trusted read: the next one is restricted again.
+    with pytest.raises(ValueError, match=refusal):
+        frictopt.load_case(tmp_path / "case.toml")

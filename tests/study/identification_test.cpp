@@ -415,6 +415,24 @@ TEST(Identification, RecoversPolygonCoefficientsFromNoiseFreeData) {
   EXPECT_LE(s.chi_square, 1e-8);
 }
 
+// The input files fuzzer's find: a σ of 1e-308 (or a value of 1e308) overflows the normalized
+// residual; Ceres stops at once and the covariance's SVD of the non-finite Jacobian segfaulted.
+TEST(Identification, ASigmaThatOverflowsTheResidualIsANumericalFailureNamingTheMeasurement) {
+  Synthetic data = synthesize(block(kTrueLaw), sensor_templates(49, 1), polygon_parameters(kTrueMu), kTrueMu, 0.01,
+                              kSeed, false);
+  data.measurements[5].sigma = 1e-308;
+  data.measurements[5].label = "data.csv:7";
+  Identification::Options o;
+  o.parameters = polygon_parameters(Eigen::Vector4d::Constant(0.3));
+  Identification id(block(contact::FrictionLaw::polygon({0.3, 0.3, 0.3, 0.3})), data.measurements, o);
+  const Identification::Summary s = id.run();
+  EXPECT_EQ(s.status, Status::kNumericalFailure);
+  EXPECT_NE(s.message.find("data.csv:7: the normalized residual (fitted − measured)/σ = "), std::string::npos)
+      << s.message;
+  EXPECT_NE(s.message.find("/1e-308 = "), std::string::npos) << s.message;
+  EXPECT_EQ(s.iterations, 0);
+}
+
 TEST(Identification, RecoversCoefficientsAndYoungsModulusFromNoiseFreeData) {
   Eigen::VectorXd truth(5);
   truth << kTrueMu, 7e10;
@@ -635,6 +653,95 @@ TEST(Identification, RejectsUnknownNodesLocationsBoundsAndSigmaNamingTheItem) {
   // The point resolves to the nearest node.
   Identification id(block(kTrueLaw), {m}, o);
   EXPECT_EQ(id.measurements()[0].node, 24);  // centre of the 7 × 7 contact grid
+}
+
+// A node of the contact surface that a [[constraint]] or a [[dirichlet]] face fixes is a
+// support, not a contact node (docs/theory/problem.md §3): with every node of "bottom" fixed in
+// x3 the identification segfaulted resolving its measurements (no contact node to measure),
+// and a location at a fixed node was silently moved to a contact neighbour.
+TEST(Identification, RefusesAContactSurfaceWhoseNodesAreAllConstrained) {
+  Identification::Options o;
+  o.parameters = polygon_parameters(kTrueMu);
+  BodyDefinition b = block(kTrueLaw);
+  fem::NodalConstraint pin;
+  pin.where.boundary = "bottom";
+  pin.components = {2};
+  b.constraints = {pin};
+  Measurement m;
+  m.quantity = MeasuredQuantity::kPressure;
+  m.point = Eigen::Vector2d(0.5, 0.5);
+  const std::string e = error_of([&] { Identification id(b, {m}, o); });
+  EXPECT_NE(e.find("the contact surface \"bottom\" has no contact node: each of its 49 nodes has a component "
+                   "fixed"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("constraint[0] fixes node 0"), std::string::npos) << e;
+  m.point.reset();
+  m.quantity = MeasuredQuantity::kTotalNormalForce;
+  EXPECT_NE(error_of([&] { Identification id(b, {m}, o); }).find("has no contact node"), std::string::npos);
+}
+
+TEST(Identification, RefusesALocationAtAConstrainedNodeOfTheContactSurface) {
+  Identification::Options o;
+  o.parameters = polygon_parameters(kTrueMu);
+  BodyDefinition b = block(kTrueLaw, Eigen::Vector2d(4e-5, -3e-5), 4);  // contact nodes every 0.25 m
+  fem::NodalConstraint pin;
+  pin.where.box_min = Eigen::Vector3d(0.2, 0.2, -0.1);
+  pin.where.box_max = Eigen::Vector3d(0.3, 0.3, 0.1);
+  pin.components = {2};
+  b.constraints = {pin};
+  Measurement m;
+  m.quantity = MeasuredQuantity::kPressure;
+  m.label = "data.csv:3";
+  m.point = Eigen::Vector2d(0.26, 0.24);  // nearest to the pinned node (0.25, 0.25)
+  const std::string e = error_of([&] { Identification id(b, {m}, o); });
+  EXPECT_NE(e.find("data.csv:3: location (0.26, 0.24) is nearest to mesh node 6 at (0.25, 0.25), which "
+                   "constraint[0] fixes: a support, not a contact node"),
+            std::string::npos)
+      << e;
+  // The same for a node on a clamped face, and a location nearest to a free node still resolves.
+  b = block(kTrueLaw, Eigen::Vector2d(4e-5, -3e-5), 4);
+  b.dirichlet.push_back({"left", {0}, {}});
+  m.point = Eigen::Vector2d(0.05, 0.5);
+  EXPECT_NE(error_of([&] { Identification id(b, {m}, o); }).find("which dirichlet[1] (face \"left\") fixes"),
+            std::string::npos);
+  m.point = Eigen::Vector2d(0.2, 0.5);
+  Identification id(b, {m}, o);
+  EXPECT_EQ(id.measurements()[0].node, 8);  // (0.25, 0.5): row 2 of the 4 × 5 free nodes
+}
+
+// The identification solves its trial points on the direct engine's dense M: the PETSc engine
+// (a Krylov operator) segfaulted in DenseDelassus::size() once asserts were compiled out.
+TEST(Identification, RefusesThePetscEngineBeforeAnySolve) {
+  Identification::Options o;
+  o.parameters = polygon_parameters(kTrueMu);
+  BodyDefinition b = block(kTrueLaw);
+  b.engine.kind = StateEngine::kPetsc;
+  Measurement m;
+  m.quantity = MeasuredQuantity::kTotalNormalForce;
+  const std::string e = error_of([&] { Identification id(b, {m}, o); });
+  EXPECT_NE(e.find("[solver] engine = \"petsc\": identification needs the direct engine"), std::string::npos) << e;
+}
+
+// The work an identification takes on is bounded (docs/case-format.md, "Size limits"): the sums
+// over Γ_c (one Jacobian row per contact node each) and the dense M's contact unknowns.
+TEST(Identification, SumRowsAndContactUnknownsAreBounded) {
+  Identification::Options o;
+  o.parameters = polygon_parameters(kTrueMu);
+  Measurement total;
+  total.quantity = MeasuredQuantity::kTotalNormalForce;
+  const std::vector<Measurement> totals(kMaxTotalMeasurements + 1, total);
+  std::string e = error_of([&] { Identification id(block(kTrueLaw), totals, o); });
+  EXPECT_NE(e.find("identification: 1001 measurements of sums over the contact surface (total_*); expected at most "
+                   "1000"),
+            std::string::npos)
+      << e;
+  // 82 × 82 cells: 83² = 6,889 contact nodes, 20,667 contact unknowns (M would take 3.4 GB).
+  e = error_of([&] { Identification id(block(kTrueLaw, Eigen::Vector2d(4e-5, -3e-5), 82), {total}, o); });
+  EXPECT_NE(e.find("the contact surface has 20667 contact unknowns (dim × 6889 nodes), whose dense Delassus matrix "
+                   "needs 3.42 GB; expected at most 20000"),
+            std::string::npos)
+      << e;
 }
 
 const std::string kCase3d = frictopt::testing::block_header_3d("1.0", "0.5") +

@@ -33,6 +33,11 @@ struct GmshMeshOptions {
   /// The most unknowns (nodes × dim) the mesh may have; a larger mesh is refused when Gmsh
   /// has made or read it, before anything is assembled (docs/case-format.md, "Size limits").
   std::int64_t max_unknowns = 2'000'000;
+  /// The unknowns the Gmsh child's memory is sized for (> 0, at most max_unknowns); 0: as
+  /// max_unknowns. The case reader passes the unknowns whose solve fits the memory limit
+  /// (study::max_unknowns_within_memory), so a .geo asking for far more cells ends within
+  /// seconds in the child's allocation failure, not after minutes of meshing.
+  std::int64_t budget_unknowns = 0;
   /// Wall-clock seconds the Gmsh child process may take (reading, meshing); then it is killed
   /// and the file refused.
   double time_limit_seconds = 600.0;

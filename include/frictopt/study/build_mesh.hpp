@@ -38,6 +38,11 @@ inline constexpr std::int64_t kMaxUnknowns = 2'000'000;
 /// gives 0.28, 2.07 and 4.97 GB). An upper bound for 2D bodies (n log n).
 double estimated_peak_bytes(std::int64_t unknowns);
 
+/// The most unknowns (at most kMaxUnknowns, at least 1) whose estimated_peak_bytes fits the
+/// memory limit of check_mesh_size (memory_limit(), else the memory available): what a Gmsh
+/// child process that meshes a body's .geo is given memory for (mesh::GmshMeshOptions).
+[[nodiscard]] std::int64_t max_unknowns_within_memory();
+
 /// The memory limit of check_mesh_size [bytes], process-wide (the command line's --max-memory);
 /// 0 (the default) means the memory available when the mesh is checked.
 void set_memory_limit(std::uint64_t bytes);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -43,6 +44,14 @@ std::string_view to_string(MeasuredQuantity quantity);
 MeasuredQuantity parse_measured_quantity(std::string_view text);
 /// True for the sums over Γ_c (they take no location).
 bool is_total(MeasuredQuantity quantity);
+
+/// Bounds of an identification (docs/case-format.md, "Size limits"; docs/identification.md,
+/// "Limits"): the measurements (each a residual and a row of the dense Jacobian), the sums over
+/// Γ_c among them (each a row with one entry per contact node), and the contact unknowns dim·p
+/// (the dense Delassus matrix has (dim·p)² entries: 3.2 GB at the bound).
+inline constexpr std::size_t kMaxMeasurements = 100'000;
+inline constexpr std::size_t kMaxTotalMeasurements = 1'000;
+inline constexpr std::int64_t kMaxIdentificationContactUnknowns = 20'000;
 
 /// One measured value with its standard deviation.
 struct Measurement {

@@ -52,6 +52,10 @@ struct LoadCaseDefinition {
   [[nodiscard]] std::size_t num_steps() const { return program ? program->steps.size() : 1; }
 };
 
+/// The largest number of load cases of a study (docs/case-format.md, "Size limits"): every
+/// evaluation of the objective solves every case.
+inline constexpr std::size_t kMaxLoadCases = 1'000;
+
 /// [[load_case]] tables with [study] combine.
 struct LoadCasesDefinition {
   CaseCombination combine = CaseCombination::kWorst;
@@ -59,7 +63,8 @@ struct LoadCasesDefinition {
   /// Throws InvalidInput naming "load_case[k].field": no case, an empty or duplicate name, a
   /// scale list whose length is not the number of the body's tables of its kind (given here),
   /// a scale that is not finite, a weight that is negative or not finite, all weights zero, or
-  /// a case with both scale lists and [[load_case.step]] tables (or a program with no steps).
+  /// a case with both scale lists and [[load_case.step]] tables (or a program with no steps),
+  /// more than kMaxLoadCases cases, or more than kMaxProgramSteps steps over all the cases.
   void validate(std::size_t num_tractions, std::size_t num_dirichlet, std::size_t num_forces) const;
   /// True when some case has its own loading program.
   [[nodiscard]] bool has_programs() const;

@@ -6,6 +6,7 @@
 // on its history.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -25,12 +26,17 @@ struct LoadStepDefinition {
   bool friction = true;                 ///< false: a frictionless step (W = {0})
 };
 
-/// [[program.step]] tables; at least one step.
+/// The largest number of steps of a loading program (docs/case-format.md, "Size limits"): every
+/// step is a contact solve and, in a cost on the history, a kept state; a study's load cases
+/// share the bound (LoadCasesDefinition::validate).
+inline constexpr std::size_t kMaxProgramSteps = 100'000;
+
+/// [[program.step]] tables; at least one step, at most kMaxProgramSteps.
 struct LoadingProgramDefinition {
   std::vector<LoadStepDefinition> steps;
   /// Throws InvalidInput naming "<where>.step[k].field" when there are no steps or a scale
   /// list has the wrong length for `body` (a step referring to a load the case does not have),
-  /// or a scale is not finite. `where` names the tables: "program" for [[program.step]],
+  /// a scale is not finite, or there are more than kMaxProgramSteps steps. `where` names the tables: "program" for [[program.step]],
   /// "load_case[j]" for a load case's own [[load_case.step]].
   void validate(const BodyDefinition& body, std::string_view where = "program") const;
   /// The steps with the scales in force at each: every scale list full (an empty list carries

@@ -12,6 +12,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -39,6 +41,11 @@ std::string_view to_string(TribometerDrive drive);
 /// Inverse of to_string; throws InvalidInput listing the accepted spellings.
 TribometerDrive parse_tribometer_drive(std::string_view text);
 
+/// Bounds of the tribometer's work (docs/case-format.md, "Size limits"): the pull directions,
+/// and the ramp's contact solves over all of them (angles × ramp_steps).
+inline constexpr std::size_t kMaxTribometerAngles = 10'000;
+inline constexpr std::int64_t kMaxTribometerRampSolves = 1'000'000;
+
 /// [experiment] of a case.
 struct TribometerDefinition {
   TribometerDrive drive = TribometerDrive::kDisplacement;
@@ -54,7 +61,8 @@ struct TribometerDefinition {
   int ramp_steps = 20;                      ///< ramp increments from 0 to the final pull; >= 1
   /// kForce: the bisection on the onset force stops at this relative bracket width (0, 1e-2].
   double onset_tolerance = 1e-6;
-  /// Throws InvalidInput naming "experiment.<field>".
+  /// Throws InvalidInput naming "experiment.<field>" (also beyond kMaxTribometerAngles angles or
+  /// kMaxTribometerRampSolves ramp solves).
   void validate() const;
 };
 
