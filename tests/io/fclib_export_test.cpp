@@ -217,7 +217,7 @@ TEST_F(FclibExport3d, SiUnitsAndNormalizedUnitsDescribeTheSameProblem) {
   FclibExportOptions si_units;
   si_units.normalize_units = false;
   const FclibLocalProblem si = frictopt::io::make_fclib_local(*body_, *state_, si_units);
-  FclibExportOptions normalized;  // the default (issue 17: SI broke other solvers' settings)
+  FclibExportOptions normalized;  // the default (SI units broke other solvers' settings)
   EXPECT_TRUE(normalized.normalize_units);
   EXPECT_NE(frictopt::io::make_fclib_local(*body_, *state_, normalized).description.find("Units: normalized"),
             std::string::npos);

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// io::RunDirectory (issue 17 items 1, 3, 4, 7): --force removes only frictopt's files and
-// refuses a directory holding anything else; one process at a time (flock); a resumed
-// history is cut back to the checkpoint and tolerates a torn last row; stray files in the
-// VTK series are left alone; checkpoint fields are validated.
+// io::RunDirectory (docs/case-format.md, "Run directories"): --force removes only frictopt's files
+// and refuses a directory holding anything else; one process at a time (flock); a resumed history
+// is cut back to the checkpoint and tolerates a torn last row; stray files in the VTK series are
+// left alone; checkpoint fields are validated.
 #include "frictopt/io/run_directory.hpp"
 
 #include <fcntl.h>

@@ -23,7 +23,7 @@ Eigen::VectorXd wavy_design(int d, double base, double amplitude) {
   return alpha;
 }
 
-// Exact volume from the linear formula: base·C4 − ∫G_α = base·C4 − wᵀα (spec 01, §4.2).
+// Exact volume from the linear formula: base·C4 − ∫G_α = base·C4 − wᵀα (docs/theory/problem.md §2).
 double linear_volume(const shape::BezierShape& s, double height, const Eigen::VectorXd& alpha) {
   return s.base_measure() * height - s.integral_weights().dot(alpha);
 }

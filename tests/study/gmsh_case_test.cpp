@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Case files with an imported body ([mesh] file = ..., issue 11): what they read into, and the
-// bad inputs of issue 11 item 9 — each an InvalidInput naming the file, the field and the group.
+// Case files with an imported body ([mesh] file = ..., docs/meshes.md): what they read into, and
+// the bad inputs — each an InvalidInput naming the file, the field and the group.
 #include <gtest/gtest.h>
 
 #include <filesystem>
