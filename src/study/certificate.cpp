@@ -55,8 +55,8 @@ using detail::scaled_certificate;
 struct LocalRow {
   Eigen::VectorXd s, c;
   double gap = 0.0;
-  // u_t = 0 of the contact-and-stick alternative of an I₀ node (rule R2): the rows the spec's
-  // table of §11.1 does not list (it counts such nodes as (T) without (S)).
+  // u_t = 0 of the contact-and-stick alternative of an I₀ node (rule R2): the rows the row table
+  // (docs/theory/stationarity.md §3) does not list; it counts such nodes as (T) without (S).
   bool beyond_spec_table = false;
   Eigen::VectorXd stacked() const {
     Eigen::VectorXd v(s.size() + c.size() + 1);
@@ -171,7 +171,7 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   // H in the unknowns (α, z) after eliminating u = A(α)⁻¹(l(α) + Gᵀz) from the equilibrium rows:
   // row s·(Gu)_i + c·z_i + gap·(B̃α)_i has ∂/∂z = s·M_(i,:) + c·e_(z_i) and
   // ∂/∂α = −s·N_(i,:) + gap·B̃_(i,:). Eliminating u with the invertible A changes neither the
-  // row rank deficiency nor full row rank, so this H is equivalent to the spec's
+  // row rank deficiency nor full row rank, so this H is equivalent to the natural
   // (3p + m₀) × (d + 3p) matrix in the variables (α, u_t, u_ν, λ) (2D): ours has p fewer rows and
   // p fewer columns (q replaces u_t, u_ν is eliminated), and the same rows − rank.
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n_rows, d + m);
@@ -203,7 +203,7 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   out.tolerance = options.rank_tolerance * out.sigma_max;
   out.rank = static_cast<int>((sv.array() > out.tolerance).count());
   out.full_row_rank = out.rank == out.rows;
-  // The same test on the rows of the spec's table alone (without the R2 stick rows).
+  // The same test on the rows of the row table alone (without the R2 stick rows).
   std::vector<Eigen::Index> spec_rows;
   Eigen::Index index = 0;
   for (const auto& node_rows : rows)
@@ -247,7 +247,7 @@ MordukhovichReport mordukhovich_report(const Certificate& c, const Eigen::Vector
   const optim::StationarityOptions qp{options.active_tolerance};
   std::vector<bool> is_extreme(rep.size(), false);
   for (std::size_t i = 0; i < rep.size(); ++i) {
-    // Spec 06 §6.3 step 1 as a distance: e_i = dist(ξ_i, conv{ξ_j : j ∈ D_i}) = dist(0, conv{ξ_j − ξ_i})
+    // docs/theory/stationarity.md §4 step 1 as a distance: e_i = dist(ξ_i, conv{ξ_j : j ∈ D_i}) = dist(0, conv{ξ_j − ξ_i})
     // by the min-norm QP; the LP "ξ_i ∈ conv D_i" is infeasible iff e_i > 0.
     double e = std::numeric_limits<double>::infinity();
     if (rep.size() > 1) {

@@ -154,7 +154,7 @@ TEST(StructuredMesh, FacesAreTheNamedBoundarySetsOfItsMesh) {
   }
 }
 
-// Issue 17, item 6: the column and node counts overflowed 32-bit int (UBSan) for large
+// The column and node counts overflowed 32-bit int (UBSan) for large
 // resolutions. The counts are 64-bit and computed without allocating anything.
 TEST(StructuredMesh, CountsOfAHugeGridDoNotOverflow) {
   const StructuredGridSizes sizes = structured_grid_sizes(3, {{100000, 100000, 100000}, 1.0});

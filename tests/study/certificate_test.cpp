@@ -89,7 +89,7 @@ TEST(Certify, WeakPointEnumeratesLAndReportsTheMf1Rank) {
   EXPECT_EQ(c.mf1.rows, 2 * p + c.mf1.extra_conditions);
   EXPECT_EQ(c.mf1.cols, 15 + 2 * p);
   // Zero load: z = 0 gives u = 0 whatever α, so u_t cannot be steered by the design and the
-  // u_t = 0 rows are dependent (one per node); the spec's table (λ, q, gap per node) is full rank.
+  // u_t = 0 rows are dependent (one per node); the row table (λ, q, gap per node) is full rank.
   EXPECT_EQ(c.mf1.rows - c.mf1.rank, p);
   EXPECT_EQ(c.mf1.spec_rows, 3 * p);
   EXPECT_TRUE(c.mf1.spec_full_row_rank);
@@ -125,7 +125,7 @@ TEST(Certify, DistanceFallsAlongAShortOptimization) {
   EXPECT_LT(after.clarke.distance, before.clarke.distance);
 }
 
-// Issue 16: a study run that says "converged" must pass `certify`'s test (the exact Clarke
+// A study run that says "converged" must pass `certify`'s test (the exact Clarke
 // distance at x over all enumerated pieces, relative tolerance 1e-3), not only the optimizer's
 // bundle certificate. With ε = 0.1 the optimizer's own test and certificate pass early, at a
 // point whose Clarke distance is above 1e-3 of max‖ξ‖: the run must say so (stalled, not

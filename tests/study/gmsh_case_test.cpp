@@ -44,7 +44,7 @@ TEST(GmshCase, ReadsAnImportedBodyWithExtentsFromTheMesh) {
   EXPECT_EQ(body.contact_boundary()->num_nodes(), 9);
 }
 
-// Issue 11 items 3 and 4: on a tilted foundation the design moves the patch along the
+// On a tilted foundation the design moves the patch along the
 // foundation's normal (not along x3), and the chart lies in the foundation plane.
 TEST(GmshCase, TiltedFoundationSetsTheDesignMotionsFrame) {
   const io::CaseDescription c = io::parse_case(
