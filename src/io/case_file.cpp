@@ -567,7 +567,7 @@ Friction read_contact(const TableReader& r, int dim, std::string_view origin) {
   return {FrictionKind::kNone, dim == 2 ? contact::FrictionLaw::interval(0.0, 0.0) : contact::FrictionLaw::disc(0.0)};
 }
 
-// Solver limits (docs/case-format.md, "Solver settings"): a relative tolerance below the
+// Solver limits (docs/case-format.md, "[solver]"): a relative tolerance below the
 // double precision floor cannot be met, so with a large iteration cap a solve would run for
 // hours before reporting the cap; both are bounded. [solver.coulomb] and [solver.qp] override
 // the Coulomb fixed point's and the Tresca QP's own defaults (absent keys keep them).
