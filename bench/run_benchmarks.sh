@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the FE and contact benchmarks (issues 2, 3, 4) and prints Markdown tables for
+# Runs the FE and contact benchmarks and prints Markdown tables for
 # docs/benchmarks.md. Needs a Release build in ./build (scripts/build.sh). The largest sizes
 # take minutes and ~3 GB of memory: run on an otherwise idle machine; timings on a loaded
 # machine are not comparable (the tables print the load average next to them).

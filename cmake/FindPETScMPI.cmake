@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-# PETSc with its MPI (the petsc module, issue 14). Debian's petsc-dev ships a pkg-config file
+# PETSc with its MPI (the petsc module, docs/petsc-engine.md). Debian's petsc-dev ships a pkg-config file
 # (PETSc) but no CMake config, and its headers include mpi.h, which the pkg-config flags do not
 # name: MPI comes from CMake's FindMPI. Defines PkgConfig::PETSC and MPI::MPI_C, PETScMPI_FOUND,
 # PETSC_VERSION and FRICTOPT_MPIEXEC (mpiexec, for the tests).

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-# Every third-party package frictopt uses, found in one place (issue 10, item 5). Which module
+# Every third-party package frictopt uses, found in one place (docs/architecture.md §1). Which module
 # links which package is said in that module's src/<module>/CMakeLists.txt; the installed
 # package config (cmake/frictoptConfig.cmake.in) finds again only what the requested
 # components need. The Debian packages behind these are listed in scripts/install-deps.sh.
@@ -11,7 +11,7 @@ find_package(fmt REQUIRED)
 # linalg: the sparse Cholesky backend and the dense kernels (private). Debian's SuiteSparse 5.x
 # ships no CMake config; CHOLMOD is found through our small module cmake/FindCholmod.cmake.
 find_package(Cholmod REQUIRED)
-# mesh: the Gmsh library reads .msh files and meshes .geo files (issue 11; private). Debian's
+# mesh: the Gmsh library reads .msh files and meshes .geo files (docs/meshes.md; private). Debian's
 # libgmsh-dev ships no CMake config: cmake/FindGmsh.cmake finds gmsh.h and libgmsh.
 find_package(Gmsh REQUIRED)
 # The generic libblas/liblapack names, which Debian's alternatives point at OpenBLAS — the BLAS
@@ -41,13 +41,13 @@ if(NOT FRICTOPT_OPENBLAS_LIBRARY)
   endif()
   message(WARNING "frictopt: OpenBLAS not found; CHOLMOD and LAPACK use whatever BLAS the loader finds first")
 endif()
-# study: identification (least squares, covariance; issue 7).
+# study: identification (least squares, covariance; docs/identification.md).
 find_package(Ceres REQUIRED)
 # io: case files (TOML), VTK XML output, JSON.
 find_package(tomlplusplus REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(VTK REQUIRED COMPONENTS CommonCore CommonDataModel IOXML)
-# io: FCLIB export (HDF5, issue 3 item 6). Debian's libfclib-dev ships a CMake config
+# io: FCLIB export (HDF5; docs/contact.md, "FCLIB export"). Debian's libfclib-dev ships a CMake config
 # (FCLIB::fclib, which finds the HDF5 C and HL libraries itself). CMake's FindHDF5 (called by
 # fclib's config) probes the HDF5 compiler wrappers with a C try_compile, so C must be enabled;
 # no C source is compiled.

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-# `cmake --install` (issue 10, item 6): the public headers, one static library per module, and a
+# `cmake --install` (docs/architecture.md §5): the public headers, one static library per module, and a
 # CMake package `frictopt` whose components are the modules:
 #   find_package(frictopt REQUIRED COMPONENTS optim)    # imports frictopt::optim (and core)
 #   target_link_libraries(app PRIVATE frictopt::optim)
@@ -55,7 +55,7 @@ function(frictopt_install)
                 ${PROJECT_BINARY_DIR}/frictopt-components.cmake ${PROJECT_SOURCE_DIR}/cmake/FindCholmod.cmake
                 ${PROJECT_SOURCE_DIR}/cmake/FindGmsh.cmake
           DESTINATION ${package_dir})
-  if(FRICTOPT_HAVE_PETSC)  # the petsc module's dependencies (issue 14)
+  if(FRICTOPT_HAVE_PETSC)  # the petsc module's dependencies (docs/petsc-engine.md)
     install(FILES ${PROJECT_SOURCE_DIR}/cmake/FindPETScMPI.cmake DESTINATION ${package_dir})
   endif()
 endfunction()

@@ -2,7 +2,7 @@
 include(GNUInstallDirs)
 
 # One helper per kind of target, so each module's CMake is a few lines and the layering of
-# DESIGN.md (a module links only modules above it) is a link-time fact.
+# docs/architecture.md §1 (a module links only modules above it) is a link-time fact.
 
 # OpenBLAS (FRICTOPT_OPENBLAS_LIBRARY) as the first DT_NEEDED entry of an executable or module,
 # ahead of every library the link line names (link options precede the objects and libraries):

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The quick tests under AddressSanitizer and UndefinedBehaviorSanitizer (issue 17), in a second
+# The quick tests under AddressSanitizer and UndefinedBehaviorSanitizer, in a second
 # build tree ./build-asan (RelWithDebInfo: -O2 -g, frictopt's asserts on; -fno-sanitize-recover
 # makes any undefined behaviour fail its test). CI runs it after scripts/test.sh.
 #   scripts/test-sanitizers.sh            the quick tests (label quick, without the slow ones)

@@ -22,9 +22,9 @@
 
 namespace frictopt::app {
 
-// frictopt certify: the optimality certificate (thesis §5.3; spec 06 §6) of a run's final design,
-// printed and written to RUN_DIR/certificate.json. Reads RUN_DIR/case.toml (the copy `optimize`
-// made) and RUN_DIR/final_design.json.
+// frictopt certify: the optimality certificate (thesis §5.3; docs/theory/stationarity.md) of a
+// run's final design, printed and written to RUN_DIR/certificate.json. Reads RUN_DIR/case.toml (the
+// copy `optimize` made) and RUN_DIR/final_design.json.
 int run_certify(const std::filesystem::path& run_dir, int cap, double sample_radius, int samples) {
   using namespace frictopt;
   io::RunDirectory run(run_dir, io::RunOpening::kExisting);
@@ -45,7 +45,7 @@ int run_certify(const std::filesystem::path& run_dir, int cap, double sample_rad
   fmt::print("{}: {} design variables, {} contact nodes, cost {}\n{}", run_dir.string(),
              body.num_design_variables(), body.contact_boundary()->num_nodes(), oracle.cost().name(), c.report());
   io::JsonValue json = io::JsonValue::object();
-  if (const study::OrientationDesign* o = body.orientation_design()) {  // issue 13 item 3: x = (α, s)
+  if (const study::OrientationDesign* o = body.orientation_design()) {  // x = (α, s)
     const double phi_deg = o->angle(alpha(alpha.size() - 1)) * 180.0 / std::numbers::pi;
     fmt::print("friction orientation φ = {:.6f} deg (the last of the {} variables, s = k φ, k = {:.6e} m/rad; the "
                "generators' last row is dΘ/ds)\n",

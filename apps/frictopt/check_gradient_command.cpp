@@ -41,13 +41,13 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
   const study::GradientCheck check = study::check_gradient(oracle, alpha, relative_step);
   const study::Evaluation& e = check.evaluation;
   fmt::print("{}: cost {}, Θ = {:.10e}\n", case_path.string(), oracle.cost().name(), e.value);
-  if (const study::LoadCases* cases = oracle.load_cases())  // issue 13: every case's J_k
+  if (const study::LoadCases* cases = oracle.load_cases())  // every load case's J_k
     for (std::size_t k = 0; k < e.case_values.size(); ++k)
       fmt::print("load case {:<16} J = {:.10e}  w J = {:.10e}{}\n", (*cases)[static_cast<int>(k)].name, e.case_values[k],
                  (*cases)[static_cast<int>(k)].weight * e.case_values[k],
                  static_cast<int>(k) == e.selected_case ? "  (selected)" : "");
   int weak_nodes = e.index_sets.num_weak_nodes();
-  if (const study::ProgramHistory* history = oracle.history()) {  // issue 13 item 2: every step's sets
+  if (const study::ProgramHistory* history = oracle.history()) {  // every step's sets
     fmt::print("loading program: {} steps; the cost ({}) reads {}\n", history->num_steps(), history->name(),
                history->dissipation() ? std::string("every step") : fmt::format("step {}", history->cost_step() + 1));
     weak_nodes = 0;
@@ -112,7 +112,7 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
              check.components.size() - kinks - mismatches, study::kGradientCheckAgreement, kinks, mismatches);
   for (const std::string& warning : check.warnings) fmt::print("warning: {}\n", warning);
   fmt::print("largest error relative to max|ξ|: {:.2e}\n", check.worst_relative_error);
-  if (const study::OrientationDesign* o = body.orientation_design())  // issue 13 item 3: k = last
+  if (const study::OrientationDesign* o = body.orientation_design())  // k = last
     fmt::print("component {} is the friction orientation s = k φ (k = {:.6e} m/rad, φ = {:.6f} deg): dΘ/dφ = "
                "{:.10e} (adjoint), {:.10e} (central difference)\n",
                alpha.size() - 1, o->scale(), o->angle(alpha(alpha.size() - 1)) * 180.0 / std::numbers::pi,

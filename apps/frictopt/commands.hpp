@@ -27,10 +27,11 @@ int run_check_gradient(const std::filesystem::path& case_path, const std::filesy
 int run_optimize(const std::filesystem::path& case_argument, const std::filesystem::path& out_dir, bool resume,
                  bool force);
 #ifdef FRICTOPT_HAVE_PETSC
-/// optimize --resume under mpirun (issue 14): rank 0 owns the run directory `out_dir` (its lock,
-/// checkpoint and history); it broadcasts the files a resume reads (case.toml, checkpoint.json,
-/// history.csv) and every other rank writes them into its own `out_dir` (its scratch
-/// directory), so that every rank's bundle method resumes from rank 0's checkpoint. Collective.
+/// optimize --resume under mpirun (docs/petsc-engine.md): rank 0 owns the run directory `out_dir`
+/// (its lock, checkpoint and history); it broadcasts the files a resume reads (case.toml,
+/// checkpoint.json, history.csv) and every other rank writes them into its own `out_dir` (its
+/// scratch directory), so that every rank's bundle method resumes from rank 0's checkpoint.
+/// Collective.
 void mirror_run_for_resume(const std::filesystem::path& out_dir);
 #endif
 int run_certify(const std::filesystem::path& run_dir, int cap, double sample_radius = 0.0, int samples = 0);

@@ -21,7 +21,7 @@
 namespace frictopt::app {
 
 // frictopt identify: friction coefficients (and E) from the measurements named in the case's
-// [identification] table (issue 7, docs/identification.md). Writes fit.csv (measured vs fitted
+// [identification] table (docs/identification.md). Writes fit.csv (measured vs fitted
 // per measurement), summary.json (estimates, covariance, correlation, Ceres report) and
 // ceres_report.txt. With --generate-synthetic it instead writes measurements.csv: the rows of
 // the case's measurement file with values from the case's own law plus N(0, σ²) noise (--seed).

@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? kExitOk : kExitInvalidInput;
   }
 #ifdef FRICTOPT_HAVE_PETSC
-  // PETSc/MPI lifetime (issue 14): the guard initializes PETSc only when a case selects
+  // PETSc/MPI lifetime (docs/petsc-engine.md): the guard initializes PETSc only when a case selects
   // engine = "petsc", so a direct run never needs mpirun. Under mpirun every rank runs the
   // command (the engine is collective); rank 0 alone prints and writes into the output
   // directory, the other ranks write into a private scratch directory removed at the end.

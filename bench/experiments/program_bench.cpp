@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Loading programs (issue 12, item 8): a program of K steps reuses ONE factorization of the
+// Loading programs (docs/experiments.md §6): a program of K steps reuses ONE factorization of the
 // stiffness and one Delassus matrix. Reported against the natural floor, one factorization
 // (+ M) + K contact solves, and against K independent static solves (K factorizations).
 // The body is the punch of cases3d/punch (dish-shaped bottom, 16-gon μ = 0.3) pressed down and

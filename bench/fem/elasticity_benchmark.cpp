@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Elasticity phases on 3D meshes of ~20k, ~100k and ~200k unknowns: assembly, symbolic
 // analysis, numeric factorization and solve (linalg::SpdSolver, CHOLMOD supernodal), with peak memory and the
-// ratio assembly / factorization (issue 2, target <= 0.25 at the largest size).
+// ratio assembly / factorization (target <= 0.25 at the largest size).
 //   build/bench/fem/elasticity_benchmark --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>

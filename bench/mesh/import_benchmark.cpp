@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Imported bodies (issue 11, item 8): the cost of importing a Gmsh body and setting up its design
-// extension against one state solve at about 100k unknowns, and the state solve on imported
-// meshes against the structured grid of (about) equal unknowns. Medians of `repeats` runs, each
-// on a fresh body (the state solve includes the symbolic analysis, as a first solve does).
+// Imported bodies (docs/meshes.md, "Performance"): the cost of importing a Gmsh body and setting up
+// its design extension against one state solve at about 100k unknowns, and the state solve on
+// imported meshes against the structured grid of (about) equal unknowns. Medians of `repeats` runs,
+// each on a fresh body (the state solve includes the symbolic analysis, as a first solve does).
 //   build/bench/mesh/import_benchmark [repeats=3] [n=40]
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Measures the bundle trust BEFORE issue 16 (commit 47d6906, fixed step bound T = 10/‖g1‖,
+# Measures the bundle trust BEFORE the adaptive step bound (commit 47d6906, fixed step bound T = 10/‖g1‖,
 # absolute stopping test) on the CURRENT Lukšan–Vlček problem set, for the "previous" column
 # of docs/optim-testset.md. Exports the old optim/core sources, adds the current problem files
 # and compiles them with bench/optim/previous_table.cpp. Usage (from the repository root):

@@ -10,7 +10,7 @@
 // relative accuracy checked (default: 1e-4). --confirm passes every "converged" through
 // confirm_in_point_units (point_units_check.hpp; evaluations include it), whatever the units'
 // spread; --no-units-check switches off BundleTrust's default confirmation of stops whose units
-// spread by more than Options::point_units_spread (the method before round 8 of issue 16), and
+// spread by more than Options::point_units_spread (the method before that confirmation), and
 // --units-spread S sets that threshold. --metric switches on
 // BundleTrust::Options::variable_metric (--metric-ratio, --metric-memory, --metric-damping set its
 // bound, memory and damping). --baseline adds the projected subgradient method

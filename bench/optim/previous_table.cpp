@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The bundle trust of commit 47d6906 (before issue 16) on the current Lukšan–Vlček set: per problem
-// "name|f|relative error|evaluations|iterations|status" and a SUMMARY line. Built and run by
-// measure_previous.sh (not part of the CMake build: it compiles against the old optim sources).
+// The bundle trust of commit 47d6906 (fixed step bound, absolute stopping test) on the current
+// Lukšan–Vlček set: per problem "name|f|relative error|evaluations|iterations|status" and a
+// SUMMARY line. Built and run by measure_previous.sh (not part of the CMake build: it compiles
+// against the old optim sources).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>

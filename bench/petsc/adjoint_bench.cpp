@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The PETSc engine's subgradient against its state (issue 14, item 2; docs/scaling.md): one
+// The PETSc engine's subgradient against its state (docs/scaling.md): one
 // Coulomb state and one subgradient ξ (one transposed Krylov solve) of a 3D case at a given
 // grid, with the case's cost (target pressure for punch-anisotropic: ∇_z J ≠ 0). Prints one
 // line from rank 0: unknowns, contact nodes, Newton/Krylov iterations of the state, Krylov

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Bundle-trust iterations of a large case with the PETSc engine (issue 14, item 5;
-# docs/scaling.md): cases3d/punch-anisotropic (4-gon, target-pressure cost) at a given grid,
+# Bundle-trust iterations of a large case with the PETSc engine
+# (docs/scaling.md): cases3d/punch-anisotropic (4-gon, target-pressure cost) at a given grid,
 # `frictopt optimize` with max_iterations = ITERATIONS and no VTK, under mpiexec on RANKS ranks.
 # Prints one line: unknowns, contact nodes, iterations, evaluations (state solves), wall and CPU
 # (all processes, GNU time) of the run, wall per evaluation, the last centre's state and

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Scale bench of the PETSc engine (issue 14, item 5; docs/scaling.md): one Coulomb state of the
+# Scale bench of the PETSc engine (docs/scaling.md): one Coulomb state of the
 # shipped punch (cases3d/punch: 16-gon, μ = 0.3) at a given grid, solved by `frictopt solve`
 # with engine = "direct" or "petsc" on N ranks. Prints one line: engine, ranks, cells, unknowns,
 # contact nodes, wall time, CPU time of all processes (robust to other load on the machine),

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The call overhead of the Python module (issue 15 item 7): Body.solve and one oracle evaluation
+# The call overhead of the Python module (docs/python.md, "Performance: call overhead"): Body.solve and one oracle evaluation
 # on the demo case from Python vs the same C++ calls, alternated call by call
 # (docs/python.md, "Performance: call overhead").
 #   bash bench/python/run_overhead.sh [REPETITIONS]

@@ -7,7 +7,7 @@
 #
 # Defaults: the 2D thesis cases 3 times each, the 3D demo (cases3d/punch-anisotropic) and the
 # other 3D studies once each. --large adds cases3d/punch-large (about 100k unknowns; tens of
-# minutes: run it under nohup). Targets (issue 6 item 7): each 2D thesis case < 5 s, the 3D demo
+# minutes: run it under nohup). Targets (docs/studies.md §3): each 2D thesis case < 5 s, the 3D demo
 # < 2 min, punch-large < 30 min on 2 cores.
 #
 # Besides the wall time the table shows the CPU time (user + sys) of the optimize run: on a shared

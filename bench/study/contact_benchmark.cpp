@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // One Coulomb state solve and one subgradient on 3D punch problems of about 20k, 100k and 200k
 // unknowns (625, 1681 and 2601 contact nodes), against the floor of one sparse Cholesky
-// factorization + solve of the same stiffness matrix (issue 3 item 8, issue 4 item 7).
+// factorization + solve of the same stiffness matrix (docs/benchmarks.md §2).
 //   build/bench/study/contact_benchmark                 (all sizes; the largest takes minutes)
 //   build/bench/study/contact_benchmark --benchmark_filter=cells:24/
 #include <benchmark/benchmark.h>

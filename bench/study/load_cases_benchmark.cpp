@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Load cases (issue 13, item 5): the time of one oracle evaluation with K = 1, 2, 4, 8 load cases
+// Load cases (docs/benchmarks.md §2c): the time of one oracle evaluation with K = 1, 2, 4, 8 load cases
 // on the demo's mesh against its floor, one factorization + K contact solves + K adjoints (each
 // part timed on its own at the same design), and a K = 8 worst-case optimization against the
 // single-load one. The body, law and loads are cases3d/grip-worst-case: the demo's block under

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# BLAS threads on an idle and on a busy machine, side by side (issue 18, item 4).
+# BLAS threads on an idle and on a busy machine, side by side (docs/benchmarks.md §2b).
 #
 #   bench/threading/run_threading.sh [--binary PATH] [--repeat N] [--case CASE_TOML] [--nice N] [--out DIR]
 #

@@ -91,8 +91,8 @@ constexpr auto kFrictionKindNames = frictopt::detail::make_enum_table<FrictionKi
     std::pair{FrictionKind::kPolygon, "polygon"}, std::pair{FrictionKind::kEllipse, "ellipse"},
     std::pair{FrictionKind::kEllipseExact, "ellipse_exact"}, std::pair{FrictionKind::kDiscExact, "disc_exact"});
 
-// [geometry]: the box (0,a)×(0,b)×(G_α, height) (spec 01 §2.1, §3); its numbers go into the
-// Bézier shape (a, b) and the body (height).
+// [geometry]: the box (0,a)×(0,b)×(G_α, height) (docs/theory/problem.md §2); its numbers go into
+// the Bézier shape (a, b) and the body (height).
 struct Geometry {
   int dim = 2;
   double a = 0.0, b = 0.0, height = 0.0;
@@ -163,7 +163,7 @@ Geometry read_geometry(const TableReader& r) {
   return g;
 }
 
-// In-plane grading (issue 18, item 1): mesh.growth in (1, 2] switches it on, mesh.refine_box
+// In-plane grading (docs/case-format.md, "[mesh]"): growth in (1, 2] switches it on, refine_box
 // ([x1min, x1max] in 2D, [x1min, x1max, x2min, x2max] in 3D, metres) says where the columns
 // are finest. Whether the cells suffice is checked here with the mesh's own construction of
 // the column lines, so the message points at the case file's line.
@@ -264,7 +264,7 @@ fem::IsotropicMaterial read_material(const TableReader& r, int dim) {
 
 // A traction above Young's modulus means a strain above 1: outside linear elasticity.
 // The part of the boundary a [[load]] or [[dirichlet]] table names: `face` on the structured
-// box, `boundary` (a physical group) on an imported body (issue 11; null: the box).
+// box, `boundary` (a physical group) on an imported body (docs/meshes.md; null: the box).
 std::string read_part(const TableReader& r, int dim, const mesh::Mesh* imported) {
   const std::string_view other = imported ? "face" : "boundary";
   if (r.has(other))
@@ -378,8 +378,8 @@ void read_design(const TableReader& r, const Geometry& g, study::BodyDefinition&
   }
   if (auto c2 = r.optional_number("volume")) {
     // meas Ω(α) = A·(height − mean of G_α) and 0 <= G_α <= C0 (convex-hull property,
-    // spec 01 §2.1), so only this interval is reachable; outside it Υ is empty (the trap
-    // of the thesis' printed formula, spec 01 §4.2).
+    // docs/theory/problem.md §2), so only this interval is reachable; outside it Υ is empty (the
+    // trap of the thesis' printed formula, docs/theory/problem.md §6).
     const double base = dim == 2 ? g.a : g.a * g.b;
     const double lo = base * (g.height - d.upper_bound);
     const double hi = base * g.height;
@@ -392,9 +392,9 @@ void read_design(const TableReader& r, const Geometry& g, study::BodyDefinition&
   }
   if (auto s = read_enum(r, "slope_scaling", shape::kSlopeScalingNames)) d.slope_scaling = *s;
 
-  // friction_orientation (issue 13 item 3): the law's orientation φ is a design variable too,
-  // within [orientation_lower_deg, orientation_upper_deg]; the law itself is checked once the
-  // [contact] table is read (study::OrientationDesign).
+  // friction_orientation (docs/theory/friction-design.md): the law's orientation φ is a design
+  // variable too, within [orientation_lower_deg, orientation_upper_deg]; the law itself is checked
+  // once the [contact] table is read (study::OrientationDesign).
   const bool orientation = r.optional_bool("friction_orientation").value_or(false);
   const std::optional<double> lower = r.optional_number("orientation_lower_deg");
   const std::optional<double> upper = r.optional_number("orientation_upper_deg");
@@ -422,8 +422,8 @@ struct Friction {
   std::size_t num_vertices = 0;  ///< 3D "polygon": the length of mu_vertices
 };
 
-// The law of a kind and its coefficients (DESIGN.md, "Friction sets"); the law validates
-// convexity itself, and its message gets the table's name.
+// The law of a kind and its coefficients (docs/theory/state-problem.md §3, "Friction sets"); the
+// law validates convexity itself, and its message gets the table's name.
 Friction read_friction(const TableReader& r, int dim) {
   Friction f;
   const std::string kinds = dim == 2
@@ -567,7 +567,7 @@ Friction read_contact(const TableReader& r, int dim, std::string_view origin) {
   return {FrictionKind::kNone, dim == 2 ? contact::FrictionLaw::interval(0.0, 0.0) : contact::FrictionLaw::disc(0.0)};
 }
 
-// Solver limits (docs/case-format.md, "Solver settings"): a relative tolerance below the
+// Solver limits (docs/case-format.md, "[solver]"): a relative tolerance below the
 // double precision floor cannot be met, so with a large iteration cap a solve would run for
 // hours before reporting the cap; both are bounded. [solver.coulomb] and [solver.qp] override
 // the Coulomb fixed point's and the Tresca QP's own defaults (absent keys keep them).
@@ -605,7 +605,7 @@ contact::CoulombSolver::Options read_solver(const TableReader& r, std::string_vi
   return s;
 }
 
-// [cost] step and the loading programs a history cost reads (issue 13 items 1 and 2;
+// [cost] step and the loading programs a history cost reads (docs/theory/history-adjoint.md;
 // study/history.hpp): `step` is "last" (the default) or a 1-based step of the [[program.step]]
 // tables — or, with load cases given as programs ([[load_case.step]]), of every case's program (a
 // static case is one step). A step or the dissipation on a case without a program is a history
@@ -662,7 +662,7 @@ void read_cost_history(const TableReader& r, const std::optional<study::LoadingP
   if (program) c.program = std::make_shared<const study::LoadingProgramDefinition>(*program);
 }
 
-// [cost] into the study's cost definition (spec 05 §2.4). `dim` checks the traction target.
+// [cost] into the study's cost definition (docs/theory/costs.md). `dim` checks the traction target.
 study::CostDefinition read_cost(const TableReader& r, int dim) {
   using cost::CostKind;
   study::CostDefinition c;
@@ -778,7 +778,7 @@ OutputSpec read_output(const TableReader& r, std::string default_name) {
 }
 
 
-// [identification] (issue 7, docs/identification.md). Needs [contact]: the parameter names
+// [identification] (docs/identification.md). Needs [contact]: the parameter names
 // depend on the friction kind, so a misspelt or foreign name is reported with the valid ones.
 // Each identified scalar becomes one study::ParameterSpec ("mu_vertices" one per vertex).
 IdentificationSetup read_identification(const TableReader& r, const CaseDescription& c,
@@ -1005,9 +1005,9 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   const TableReader top(root, "", origin,
                         {"geometry", "mesh", "material", "load", "dirichlet", "design", "contact",
                          "solver", "cost", "optimization", "output", "identification",
-                         // issue 12's sections (case_program_section.hpp)
+                         // friction experiments (case_program_section.hpp)
                          "force", "constraint", "program", "experiment", "foundation",
-                         // issue 13's load cases (case_load_case_section.hpp)
+                         // load cases (case_load_case_section.hpp)
                          "load_case", "study"});
   const auto table = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
     const toml::table* t = top.optional_table(key);
@@ -1018,7 +1018,8 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   CaseDescription c;
   c.origin = origin;
   study::BodyDefinition& body = c.body;
-  // An imported body (issue 11, [mesh] file = ...): the geometry's extents come from its mesh.
+  // An imported body ([mesh] file = ..., docs/meshes.md): the geometry's extents come from its
+  // mesh.
   const bool imported = detail::names_mesh_file(root);
   Geometry geometry;
   const mesh::Mesh* imported_mesh = nullptr;
@@ -1026,8 +1027,8 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
     const TableReader g = table("geometry", {"dim"});
     geometry.dim = g.required_int("dim", "2 or 3");
     if (geometry.dim != 2 && geometry.dim != 3) g.fail_value("dim", "2 or 3");
-    // The design moves the patch along the foundation's normal (issue 11 item 3), so a tilted
-    // [foundation] sets the motion's frame and the patch chart's plane too.
+    // The design moves the patch along the foundation's normal (docs/meshes.md, "The design on a
+    // patch"), so a tilted [foundation] sets the motion's frame and the patch chart's plane too.
     mesh::PlaneFrame design_frame = mesh::PlaneFrame::standard(geometry.dim);
     if (const toml::table* foundation = top.optional_table("foundation"))
       design_frame = detail::read_foundation(TableReader(*foundation, "foundation", origin, {"normal", "offset", "axis1"}),
@@ -1057,8 +1058,8 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                     dim, body.material.young, imported_mesh));
 
   const toml::array* dirichlet = top.optional_table_array("dirichlet", detail::kMaxBodyTables);
-  // Without [[dirichlet]] a body floats: only contact and friction can hold it (issue 12,
-  // spec 07 §2; study::ElasticBody solves it with the kernel-aware dual).
+  // Without [[dirichlet]] a body floats: only contact and friction can hold it
+  // (docs/experiments.md §5; study::ElasticBody solves it with the kernel-aware dual).
   const toml::array no_dirichlet;
   if ((dirichlet == nullptr || dirichlet->empty()) && top.optional_table("contact") == nullptr &&
       top.optional_table_array("constraint", detail::kMaxBodyTables) == nullptr)

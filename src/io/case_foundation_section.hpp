@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The case's [foundation] table (issue 11 item 4; docs/case-format.md, "[foundation]"): the
+// The case's [foundation] table (docs/case-format.md, "[foundation]"): the
 // rigid plane n·x = d the body rests on (normal, offset) and the first in-plane axis of the
 // friction law's frame (axis1). Private to io; called by case_file.cpp.
 #pragma once

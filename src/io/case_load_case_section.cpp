@@ -34,8 +34,8 @@ study::LoadCaseDefinition read_load_case(const TableReader& r, std::string_view 
     c.weight = *w;
   }
   if (r.has("step")) {
-    // A load case given as a loading program (issue 13 item 1): its own steps, which give the
-    // scales; the case's cost reads its history ([cost] step or the dissipation).
+    // A load case given as a loading program (docs/theory/load-cases.md §5): its own steps, which
+    // give the scales; the case's cost reads its history ([cost] step or the dissipation).
     for (const char* key : {"load_scale", "dirichlet_scale", "force_scale"})
       if (r.has(key))
         r.fail(key, fmt::format("load_case[{}].{} with [[load_case.step]] tables; expected either the scales of a static "

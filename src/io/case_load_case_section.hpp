@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The case-file sections of load cases (issue 13): [[load_case]] (a name, scales of the case's
-// [[load]] / [[dirichlet]] / [[force]] tables or a loading program of its own in
+// The case-file sections of load cases (docs/theory/load-cases.md): [[load_case]] (a name, the
+// case's scales of [[load]] / [[dirichlet]] / [[force]] tables or a loading program of its own in
 // [[load_case.step]] tables, a weight) and [study] (combine = "worst" | "weighted", and optionally
 // the subset `cases` to combine). Called once from parse_case after [cost] is read, before
 // [cost] step is checked against the cases' programs. Schema: docs/case-format.md.

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The [mesh] table of a case that imports its body from a Gmsh file (issue 11), the vertical
-// grading keys of a structured [mesh] (issue 18), and the names of the body's boundary groups
+// The [mesh] table of a case that imports its body from a Gmsh file (docs/meshes.md), the vertical
+// grading keys of a structured [mesh], and the names of the body's boundary groups
 // in [[load]] / [[dirichlet]] tables. Private to io.
 #pragma once
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The engine keys of a case's [solver] table (issue 14; docs/case-format.md, "Solver settings"):
+// The engine keys of a case's [solver] table (docs/case-format.md, "[solver]"):
 // engine = "direct" | "petsc", petsc_options, and [solver.newton] for the PETSc engine's
 // Newton method. Private to io; called by case_file.cpp.
 #pragma once

@@ -120,7 +120,7 @@ void CsvWriter::write_line(const std::string& line) {
     return;
   }
   // Flushing each line hands it to the OS, so a crash or kill of the run loses at most the
-  // line being written (STYLE.md §4, "Observation").
+  // line being written (an observer's hook).
   out_ << line << '\n';
   out_.flush();
   if (!out_) {

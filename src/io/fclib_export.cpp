@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// FCLIB local-problem export: our dual contact problem (spec 02, §7 and §9.2) rewritten in
-// FCLIB's variables, and the HDF5 file through fclib's C API (kept out of the public header).
+// FCLIB local-problem export: our dual contact problem (docs/theory/state-problem.md §5) rewritten
+// in FCLIB's variables, and the HDF5 file through fclib's C API (kept out of the public header).
 #include "frictopt/io/fclib_export.hpp"
 
 #include <fmt/format.h>
@@ -66,8 +66,8 @@ IsotropicReading isotropic_reading(const contact::FrictionLaw& law, std::string_
       return out;
     }
     case FrictionLawKind::kRegularPolygon:
-      // The thesis' n-gon has its vertices on the circle of radius μ (spec 02, §10.2); their
-      // largest norm is μ to rounding (the law keeps no other copy of μ).
+      // The thesis' n-gon has its vertices on the circle of radius μ (docs/theory/state-problem.md
+      // §3); their largest norm is μ to rounding (the law keeps no other copy of μ).
       out.mu = law.max_coefficient();
       out.exact = false;
       return out;
@@ -143,8 +143,8 @@ FclibLocalProblem make_fclib_local(const study::ElasticBody& body, const study::
     throw InvalidInput(fmt::format("{}: the contact state has {} unknowns; the body has {}",
                                    case_name, result.state.z.size(), m));
 
-  // Our dual data (spec 02, §9.2): M = G A⁻¹ Gᵀ as the state solve formed it (its dense
-  // copy, or the dense M from its Schur factor: 2m³/3 flops, no second factorization of the
+  // Our dual data (docs/theory/state-problem.md §5): M = G A⁻¹ Gᵀ as the state solve formed it (its
+  // dense copy, or the dense M from its Schur factor: 2m³/3 flops, no second factorization of the
   // stiffness), c = G A⁻¹ l + (0, g) by one solve with the factorization of the last solve.
   const linalg::SpdSolver& cholesky = body.elasticity().factorization();
   const Eigen::MatrixXd M = state_delassus(result, cholesky, *boundary);

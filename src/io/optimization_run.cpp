@@ -79,14 +79,14 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   oracle.set_case_cuts(options.use_piece_cuts);
 
   OptimizationRunResult result;
-  // friction_orientation (issue 13 item 3): x = (α, s), s = k φ; φ of x in degrees.
+  // friction_orientation (docs/theory/friction-design.md): x = (α, s), s = k φ; φ of x in degrees.
   const auto orientation_deg = [&](const Eigen::VectorXd& x) {
     return body.orientation_design()->angle(x(x.size() - 1)) * 180.0 / std::numbers::pi;
   };
   std::optional<CsvWriter> history;
   if (run) {
     const int start_iteration = checkpoint ? checkpoint->method.iteration : 0;
-    // friction_orientation (issue 13 item 3): one more column, φ of x_k in degrees.
+    // friction_orientation: one more column, φ of x_k in degrees.
     std::vector<std::string> columns = optimization_history_columns();
     if (body.orientation_design()) columns.push_back("friction_orientation_deg");
     history.emplace(run->open_history(columns, start_iteration, result.notes,

@@ -255,7 +255,7 @@ std::string toml_string(const std::string& text) {
 
 std::string case_copy_text(const std::string& text, const fs::path& case_path) {
   // The copy lives in the run directory, so a mesh file named relative to the user's case
-  // ([mesh] file, issue 11) is named absolutely in it; `certify RUN_DIR` and `--resume` then
+  // ([mesh] file) is named absolutely in it; `certify RUN_DIR` and `--resume` then
   // read the same mesh. Only that value's text changes (the rest of the file stays as written);
   // a case that does not parse is copied as it is (its parse reports the error).
   toml::table root;

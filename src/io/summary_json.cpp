@@ -311,7 +311,8 @@ JsonValue to_json(const study::Certificate& c, const study::CertifyOptions& opti
   json["cardinality_L"] = c.cardinality;
   json["sampled"] = c.sampled;
   json["cap"] = options.cap;
-  // A cost along a loading history (issue 13 item 2): each step's index sets and |L_k|.
+  // A cost along a loading history (docs/theory/history-adjoint.md §4): each step's index sets and
+  // |L_k|.
   if (!c.history_steps.empty()) {
     JsonValue steps = JsonValue::array();
     for (const std::string& line : c.history_steps) steps.push_back(line);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Captures the errors and warnings a VTK object reports, instead of letting VTK print them
-// (the library never prints, STYLE.md §5): VTK hands a message to an ErrorEvent/WarningEvent
+// (the library never prints): VTK hands a message to an ErrorEvent/WarningEvent
 // observer when the reporting object has one, and prints only otherwise.
 #pragma once
 

@@ -19,7 +19,7 @@ struct CholmodSolver::Impl {
   std::vector<int> trailing;
   Impl() {
     cholmod_start(&common);
-    common.print = 0;  // the library never prints (STYLE.md §5): statuses are reported instead
+    common.print = 0;  // the library never prints: statuses are reported instead
   }
   ~Impl() {
     if (factor) cholmod_free_factor(&factor, &common);

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The Delassus matrix M = G A⁻¹ Gᵀ applied by Krylov solves with the distributed stiffness
-// (private to the petsc module): what the sensitivity module reads (blocks of M, spec 03 §7,
-// §14.6) when the state came from the PETSc engine. Each column is one preconditioned CG
-// solve with A = K restricted to the free DOFs; blocks are formed column by column.
+// (private to the petsc module): what the sensitivity module reads (blocks of M,
+// docs/theory/sensitivity.md §5) when the state came from the PETSc engine. Each column is one
+// preconditioned CG solve with A = K restricted to the free DOFs; blocks are formed column by
+// column.
 #pragma once
 
 #include <functional>

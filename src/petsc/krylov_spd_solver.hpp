@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // linalg::SpdSolver served by the PETSc engine's Krylov solves with the stiffness (private to
 // the petsc module): installed in fem::LinearElasticity when engine = "petsc", so that the
-// sensitivity module's solves A⁻¹b (the adjoint, spec 03 §9) run in the same engine as the
-// state, without a CHOLMOD factorization.
+// sensitivity module's solves A⁻¹b (the adjoint, docs/theory/sensitivity.md §6) run in the same
+// engine as the state, without a CHOLMOD factorization.
 #pragma once
 
 #include <functional>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The one linear solve of the PETSc engine's adjoint (issue 14, item 2; docs/petsc-engine.md):
+// The one linear solve of the PETSc engine's adjoint (docs/petsc-engine.md, "Subgradient"):
 // Jᵀψ = b with J the generalized Jacobian of the semismooth Newton system at the converged
 // state (private to the petsc module). Jᵀ is formed explicitly (MatTranspose: O(nnz), a small
 // fraction of one Krylov solve) rather than solved by KSPSolveTranspose, because the default

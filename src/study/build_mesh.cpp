@@ -80,7 +80,8 @@ mesh::Mesh build_mesh(const BodyDefinition& definition) {
   const mesh::Mesh& reference = *imported.reference;
   check_mesh_size(reference, imported.file.string());
   const std::string& patch = imported.motion.patch;
-  // Γ_d ⊂ Γ_c (spec 07 §5): the gap of a contact node moves with the patch only.
+  // Γ_d ⊂ Γ_c (docs/meshes.md, "The design on a patch"): the gap of a contact node moves with the
+  // patch only.
   if (definition.contact) {
     const std::vector<int>& surface = reference.boundary(definition.contact_surface).nodes;
     const std::vector<int>& patch_nodes = reference.boundary(patch).nodes;

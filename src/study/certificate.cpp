@@ -55,8 +55,8 @@ using detail::scaled_certificate;
 struct LocalRow {
   Eigen::VectorXd s, c;
   double gap = 0.0;
-  // u_t = 0 of the contact-and-stick alternative of an I₀ node (rule R2): the rows the spec's
-  // table of §11.1 does not list (it counts such nodes as (T) without (S)).
+  // u_t = 0 of the contact-and-stick alternative of an I₀ node (rule R2): the rows the row table
+  // (docs/theory/stationarity.md §3) does not list; it counts such nodes as (T) without (S).
   bool beyond_spec_table = false;
   Eigen::VectorXd stacked() const {
     Eigen::VectorXd v(s.size() + c.size() + 1);
@@ -65,14 +65,15 @@ struct LocalRow {
   }
 };
 
-// The tight system of spec 03 §11.1, node by node. READING: the spec's table lists, per node,
+// The tight system of docs/theory/stationarity.md §3, node by node. READING: its row table lists,
+// per node,
 // the equations of both branches of each degenerate alternative ((T) and (S) for weak stick, (C)
 // and (Z) for weak contact). We take, for every node, a basis of the span of the equations that
 // any of its node alternatives imposes (sensitivity::node_alternatives, i.e. exactly the pieces
 // of 𝕃). For strict nodes this is the piece's own dim rows; for K₀± and for I₀ nodes that slip it
-// is the spec's table (one extra row each). For I₀ nodes with u_t = 0 (rule R2: zero force, or
+// is the row table (one extra row each). For I₀ nodes with u_t = 0 (rule R2: zero force, or
 // contact with slip+/slip−/stick) the span is {λ = 0, gap = 0, q = 0, u_t = 0}: two extra rows
-// where the spec's table counts one, because the contact-and-stick alternative needs both λ > 0
+// where the row table counts one, because the contact-and-stick alternative needs both λ > 0
 // and |q| < μλ to be attained nearby; full row rank of this larger matrix is the sufficient
 // condition for every piece of 𝕃 to be essentially active. The 3D branches (ray slip, smooth slip)
 // are covered by the same construction.
@@ -170,7 +171,7 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   // H in the unknowns (α, z) after eliminating u = A(α)⁻¹(l(α) + Gᵀz) from the equilibrium rows:
   // row s·(Gu)_i + c·z_i + gap·(B̃α)_i has ∂/∂z = s·M_(i,:) + c·e_(z_i) and
   // ∂/∂α = −s·N_(i,:) + gap·B̃_(i,:). Eliminating u with the invertible A changes neither the
-  // row rank deficiency nor full row rank, so this H is equivalent to the spec's
+  // row rank deficiency nor full row rank, so this H is equivalent to the natural
   // (3p + m₀) × (d + 3p) matrix in the variables (α, u_t, u_ν, λ) (2D): ours has p fewer rows and
   // p fewer columns (q replaces u_t, u_ν is eliminated), and the same rows − rank.
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n_rows, d + m);
@@ -202,7 +203,7 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   out.tolerance = options.rank_tolerance * out.sigma_max;
   out.rank = static_cast<int>((sv.array() > out.tolerance).count());
   out.full_row_rank = out.rank == out.rows;
-  // The same test on the rows of the spec's table alone (without the R2 stick rows).
+  // The same test on the rows of the row table alone (without the R2 stick rows).
   std::vector<Eigen::Index> spec_rows;
   Eigen::Index index = 0;
   for (const auto& node_rows : rows)
@@ -246,7 +247,7 @@ MordukhovichReport mordukhovich_report(const Certificate& c, const Eigen::Vector
   const optim::StationarityOptions qp{options.active_tolerance};
   std::vector<bool> is_extreme(rep.size(), false);
   for (std::size_t i = 0; i < rep.size(); ++i) {
-    // Spec 06 §6.3 step 1 as a distance: e_i = dist(ξ_i, conv{ξ_j : j ∈ D_i}) = dist(0, conv{ξ_j − ξ_i})
+    // docs/theory/stationarity.md §4 step 1 as a distance: e_i = dist(ξ_i, conv{ξ_j : j ∈ D_i}) = dist(0, conv{ξ_j − ξ_i})
     // by the min-norm QP; the LP "ξ_i ∈ conv D_i" is infeasible iff e_i > 0.
     double e = std::numeric_limits<double>::infinity();
     if (rep.size() > 1) {
@@ -300,7 +301,7 @@ MordukhovichReport mordukhovich_report(const Certificate& c, const Eigen::Vector
   return out;
 }
 
-// The generators of one loading history's pseudodifferential (issue 13 item 2; docs/theory/
+// The generators of one loading history's pseudodifferential (docs/theory/
 // history-adjoint.md §4): the default ξ (every step's default piece) first, then each step's
 // pieces varied one step at a time with the others at their defaults. That is all of
 // 𝕃 = Π_k 𝕃_k when at most one step has more than one piece (always for one step: a static load
@@ -349,7 +350,7 @@ HistoryGenerators history_generators(ProgramHistory& history, const CertifyOptio
   return out;
 }
 
-// Load cases (issue 13; docs/theory/load-cases.md): the generators of the composite's Clarke
+// Load cases (docs/theory/load-cases.md §2): the generators of the composite's Clarke
 // subdifferential. "worst": Θ = max_k w_k J_k, ∂Θ(α) ⊂ conv ∪_{k active} w_k ∂J_k(α), so the
 // columns are the union of the active cases' w_k ξ_{k,i}. "weighted": ∂Θ ⊂ Σ_k w_k ∂J_k, and
 // Σ_k conv G_k = conv{Σ_k g_k : g_k ∈ G_k}, so the columns are the sums over one generator per
@@ -454,7 +455,7 @@ bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, con
   return true;
 }
 
-// A cost along one loading history (issue 13 item 2): its generators (history_generators).
+// A cost along one loading history: its generators (history_generators).
 bool single_history_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const CertifyOptions& options,
                                Certificate& c) {
   // pieces() re-solves the program if the oracle's cache answered without touching the state:
@@ -548,7 +549,7 @@ std::string Certificate::report() const {
                      mf1.full_row_rank ? "full row rank, so dTheta = conv{xi_i}"
                                        : fmt::format("rank deficient by {}", mf1.rows - mf1.rank));
   if (mf1.computed && mf1.spec_rows != mf1.rows)
-    s += fmt::format("  rows of spec 03 §11.1's table only (no R2 stick rows): {} x {}, rank {}: {}\n", mf1.spec_rows,
+    s += fmt::format("  rows of the (MF1') row table only (no R2 stick rows): {} x {}, rank {}: {}\n", mf1.spec_rows,
                      mf1.cols, mf1.spec_rank, mf1.spec_full_row_rank ? "full row rank" : "rank deficient");
   s += "Mordukhovich (extreme-point test): " + mordukhovich.message + "\n";
   if (goldstein.computed) s += "sampled certificate: " + goldstein.message + "\n";

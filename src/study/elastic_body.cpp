@@ -29,8 +29,8 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
   fem::add_nodal_constraints(*mesh_, definition_.constraints, prescribed);
   const std::vector<int> prescribed_by_user = prescribed.dofs;
   const fem::DofMap user_dofs(mesh_->num_dofs(), prescribed);
-  // A floating body (spec 07 §2): rigid modes the Dirichlet conditions leave free are held by
-  // contact and friction only. Hold r DOFs off Γ_c at 0 so that the factorized block is SPD
+  // A floating body (docs/experiments.md §5): rigid modes the Dirichlet conditions leave free are
+  // held by contact and friction only. Hold r DOFs off Γ_c at 0 so that the factorized block is SPD
   // (its inverse is a generalized inverse A⁺); the modes come back as Rβ in solve().
   const Eigen::MatrixXd modes = free_rigid_modes(mesh_->reference_positions(), prescribed_by_user);
   if (modes.cols() > 0) {
@@ -47,7 +47,8 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
                                                  definition_.linear_solver);
   admissible_ = shape::make_admissible_set(definition_.shape, definition_.admissible);
   if (definition_.friction_orientation) {
-    // issue 13 item 3: x = (α, s), Υ gets the bound on s (study/orientation_design.hpp).
+    // Orientation as a design (docs/theory/friction-design.md): x = (α, s), Υ gets the bound on s
+    // (study/orientation_design.hpp).
     if (!definition_.contact)
       throw InvalidInput("design.friction_orientation = true needs a [contact] table with an anisotropic 3D law");
     orientation_design_.emplace(*definition_.friction_orientation, definition_.contact->law,

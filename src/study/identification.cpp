@@ -158,7 +158,7 @@ std::string Identification::Summary::brief_report() const {
 }
 
 // ------------------------------------------------------------------------------------------
-// The model: the contact problem of the body at its design, in contact space (spec 02, §7):
+// The model: the body's contact problem in contact space (docs/theory/state-problem.md §5):
 // z solves the Coulomb problem with M(E) = (E₀/E) M₀ and c(E) = (E₀/E) c_traction + c_dirichlet
 // + (0, g): A(E) = (E/E₀) A₀ and the Dirichlet lifting −A_fd u_d scales with E, the tractions do not.
 

@@ -69,7 +69,7 @@ ShapeOracle::ShapeOracle(ElasticBody& body, const CostDefinition& definition) : 
     return;
   }
   if (definition.program) {
-    // A cost along a loading history (issue 13 item 2; study/history.hpp).
+    // A cost along a loading history (study/history.hpp).
     history_ = std::make_unique<ProgramHistory>(body_, definition, gap_matrix_);
     return;
   }

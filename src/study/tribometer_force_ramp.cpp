@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The force-driven tribometer (TribometerDrive::kForce; docs/experiments.md §4): the specimen
 // floats — its [[dirichlet]] tables are dropped, so every rigid-body mode is held by contact and
-// friction alone (spec 07 §2, the floating-body solver) — and its top face carries the normal
-// force P and a tangential force Q e_θ as uniform tractions. Q is ramped from 0 in ramp_steps
-// increments, friction acting on each step's slip increment (loading programs, spec 07 §1).
+// friction alone (docs/experiments.md §5, the floating-body solver) — and its top face carries the
+// normal force P and a tangential force Q e_θ as uniform tractions. Q is ramped from 0 in
+// ramp_steps increments, friction acting on each step's slip increment
+// (docs/theory/loading-program.md).
 //
 // Why force control answers a different question than the platen: under a prescribed pull the
 // specimen always has an equilibrium and the force saturates at the law's capacity; under a

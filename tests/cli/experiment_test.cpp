@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// End-to-end checks of issue 12's commands: `solve` of a case with a loading program writes one
-// .vtu per step, a .pvd and a summary with the resultants of every step; `experiment` writes the
-// tribometer CSVs; a plain `solve` reports the contact resultants; bad programs exit 2 naming
-// the field.
+// End-to-end checks of the friction experiments' commands: `solve` of a case with a loading program
+// writes one .vtu per step, a .pvd and a summary with the resultants of every step; `experiment`
+// writes the tribometer CSVs; a plain `solve` reports the contact resultants; bad programs exit 2
+// naming the field.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Costs along a loading history through the command line (issue 13 items 1, 2 and 6): check-gradient
-// and certify read the [[program.step]] tables of the shipped press-and-drag punch, check-gradient
-// the [[load_case.step]] tables of the shipped grip dragged in three directions; a history cost
-// on a one-step case, a step out of range or of the wrong type, and the compliance with a program
-// exit 2 naming the field.
+// Costs along a loading history through the command line (docs/theory/history-adjoint.md):
+// check-gradient and certify read the [[program.step]] tables of the shipped press-and-drag punch,
+// check-gradient the [[load_case.step]] tables of the shipped grip dragged in three directions; a
+// history cost on a one-step case, a step out of range or of the wrong type, and the compliance
+// with a program exit 2 naming the field.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -57,7 +57,7 @@ TEST(HistoryCli, CheckGradientReadsTheProgram) {
 }
 
 TEST(HistoryCli, CheckGradientReadsLoadCasesGivenAsPrograms) {
-  // cases3d/grip-press-drag-directions: three load cases, each a three-step program (issue 13 item 1).
+  // cases3d/grip-press-drag-directions: three load cases, each a three-step program.
   const RunResult r =
       run("check-gradient " + std::string(FRICTOPT_SOURCE_DIR) + "/cases3d/grip-press-drag-directions/case.toml");
   ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The reproducers of issue 17 ("Nothing lost, nothing silent"), end to end through the
+// Reproducers of the "nothing lost, nothing silent" guarantees, end to end through the
 // command line: each gives a clean, documented outcome (README "Command line", docs/case-
 // format.md "Run directories", "Size limits", "Physical bounds"), never a crash, never a
 // deleted or overwritten file frictopt did not write.

@@ -82,7 +82,7 @@ TEST(StudiesSmoke, EveryShipped3dCaseSolvesOnACoarsenedCopy) {
     const std::string name = c.parent_path().filename().string();
     const fs::path dir = fresh_directory("solve_" + name);
     const fs::path coarse = dir / (name + ".toml");
-    // An imported body (issue 11: [mesh] file = ...) keeps its mesh, named by its absolute path
+    // An imported body ([mesh] file = ...) keeps its mesh, named by its absolute path
     // since the copy lives elsewhere; the structured ones get a coarse grid.
     const std::string text = read_text(c);
     const std::smatch file = [&] {
@@ -172,7 +172,7 @@ TEST(StudiesSmoke, OptimizeNamesItsOutputsAfterTheCaseNotTheRunDirectory) {
 
 namespace {
 
-// issue 13 item 3: the orientation case through the CLI on a coarsened copy — optimize writes φ,
+// The orientation case through the CLI on a coarsened copy — optimize writes φ,
 // a resumed run repeats the uninterrupted one bit for bit, certify and check-gradient report
 // the φ component, and a law without an orientation that matters is refused with exit code 2.
 TEST(StudiesSmoke, OrientationDesignThroughTheCommandLine) {

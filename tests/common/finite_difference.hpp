@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The shared derivative checker of STYLE.md §7: central differences with
+// The shared derivative checker: central differences with
 // h = cbrt(eps)·max(1, |x|) along seeded random directions, plus a Taylor test whose observed
 // error ratios tell a bug (ratio ~ 2 for a first-order error) from round-off.
 #pragma once

@@ -18,10 +18,10 @@ inline study::ContactDefinition tight_contact(const contact::FrictionLaw& law) {
   return c;
 }
 
-/// The thesis' 2D body (spec 05 §2.1, A-BC: left side clamped, top traction (−80, −50) MPa,
-/// E = 1 GPa, ν = 0.3, plane strain) on an n1 × nv mesh with the admissible set of the examples
-/// (C0 = 0.75, C2 = 1.9: Σα = 0.75, which the flat start α = 0.05 satisfies) and the solver
-/// tolerances finite differences need (state error / FD step far below 1e-5).
+/// The thesis' 2D body (docs/theory/examples.md §1–§2: left side clamped, top traction (−80, −50)
+/// MPa, E = 1 GPa, ν = 0.3, plane strain) on an n1 × nv mesh with the admissible set of the
+/// examples (C0 = 0.75, C2 = 1.9: Σα = 0.75, which the flat start α = 0.05 satisfies) and the
+/// solver tolerances finite differences need (state error / FD step far below 1e-5).
 inline study::BodyDefinition thesis_body_2d(const contact::FrictionLaw& law = contact::FrictionLaw::interval(0.25, 0.25),
                                             int n1 = 20, int nv = 8) {
   study::BodyDefinition b;

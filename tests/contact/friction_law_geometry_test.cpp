@@ -53,7 +53,7 @@ Eigen::Vector2d random_vector(const FrictionLaw& law, std::mt19937_64& rng, doub
   return scale * v;
 }
 
-// The shared checker's central-difference Jacobian (STYLE.md §7) of a map f: R² → R² at x
+// The shared checker's central-difference Jacobian of a map f: R² → R² at x
 // along the law's tangential components (2D: component 0 only), with h = cbrt(eps)·max(1, |x|).
 template <class F>
 Eigen::Matrix2d central_difference(const F& f, const Eigen::Vector2d& x, int components) {

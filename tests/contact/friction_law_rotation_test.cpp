@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Turned friction laws (FrictionLaw::rotated, issue 12 item 4): every method of the turned law
-// equals the unturned law's conjugated by the rotation, a regular n-gon is invariant under a
-// turn by 2π/n, and a contact problem turned about the normal (law, tangential loads and the
-// tangential blocks of M) has the same λ and turned q.
+// Turned friction laws (FrictionLaw::rotated, docs/theory/friction-frame.md §1): every method of
+// the turned law equals the unturned law's conjugated by the rotation, a regular n-gon is invariant
+// under a turn by 2π/n, and a contact problem turned about the normal (law, tangential loads and
+// the tangential blocks of M) has the same λ and turned q.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -71,7 +71,7 @@ TEST(FrictionLaw, ThesisPolygonHasVerticesOnTheCircleAtOddMultiplesOfPiOverN) {
     const double phi = std::numbers::pi * (2 * j + 1) / n;  // thesis φ_{j+1}
     EXPECT_NEAR(law.vertices()[j].x(), 0.5 * std::cos(phi), 4 * kEps);
     EXPECT_NEAR(law.vertices()[j].y(), 0.5 * std::sin(phi), 4 * kEps);
-    // Edge j normal at angle 2π(j+1)/n, height μ cos(π/n) (spec 02, §10.2).
+    // Edge j normal at angle 2π(j+1)/n, height μ cos(π/n) (docs/theory/state-problem.md §3).
     const double psi = 2 * std::numbers::pi * (j + 1) / n;
     EXPECT_NEAR(law.edge_normals()[j].x(), std::cos(psi), 8 * kEps);
     EXPECT_NEAR(law.edge_normals()[j].y(), std::sin(psi), 8 * kEps);

@@ -1,4 +1,4 @@
-// Hertz contact on an imported body (issue 11, item 7): a cylinder of radius 0.5 m and height
+// Hertz contact on an imported body (docs/meshes.md): a cylinder of radius 0.5 m and height
 // 0.5 m above a spherical cap of curvature radius R = 2 m (OpenCASCADE), apex at the origin,
 // pressed on the rigid plane x3 = 0 by moving its top down (tests/study/gmsh_hertz_cap_slow_test.cpp).
 // Gmsh meshes it into tetrahedra of size s_apex within 0.2 m of the apex, growing to 0.12 m

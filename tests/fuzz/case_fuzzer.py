@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Mutation-based fuzzer of frictopt's case files (issue 17), run by ctest (label `fuzz`).
+"""Mutation-based fuzzer of frictopt's case files, run by ctest (label `fuzz`).
 
 Seeds are the shipped cases and the test cases, coarsened to a small grid so that a valid
 mutant solves in a fraction of a second. Each mutant (a few line- and value-level mutations:

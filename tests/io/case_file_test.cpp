@@ -32,7 +32,8 @@ using fem::PlaneModel;
 using mesh::Face;
 using shape::SlopeScaling;
 
-// The thesis' 2D example (spec 01 §4.4, 05-examples): a = 2, C4 = 1, d = 15, C2 = 1.9.
+// The thesis' 2D example (docs/theory/problem.md §6, docs/theory/examples.md §1): a = 2, C4 = 1,
+// d = 15, C2 = 1.9.
 constexpr std::string_view kValid2d = R"(
 [geometry]
 dim = 2
@@ -292,8 +293,8 @@ TEST(ParseCase, CostAndOptimizationTablesAreValidated) {
   EXPECT_FALSE(no_cuts.optimization.use_piece_cuts);
   expect_invalid_case(std::string(kValid2d) + "\n[optimization]\ncase_cuts = \"no\"\n",
                       {"optimization.case_cuts"});
-  // The confirmation in the point's units is on by default (issue 16, eighth round); a case can
-  // switch it off or move its threshold, never below 1.
+  // The confirmation in the point's units is on by default (docs/optim.md, "Confirmation in the
+  // point's units"); a case can switch it off or move its threshold, never below 1.
   EXPECT_TRUE(c.optimization.confirm_in_point_units);
   EXPECT_EQ(c.optimization.point_units_spread, 10.0);
   const CaseDescription units = parse_case(
@@ -310,7 +311,7 @@ TEST(ParseCase, CostAndOptimizationTablesAreValidated) {
   expect_invalid_case(std::string(kValid2d) + "\n[cost]\nkind = \"compliance\"\nexponent = 4\n", {"cost.exponent"});
   expect_invalid_case(std::string(kValid2d) + "\n[optimization]\nbundle_size = 2\n", {"optimization.bundle_size"});
   expect_invalid_case(std::string(kValid2d) + "\n[optimization]\nmax_iters = 2\n", {"optimization.max_iters"});
-  // [study] (issue 13) combines load cases: alone it is an error naming the missing tables.
+  // [study] combines load cases: alone it is an error naming the missing tables.
   expect_invalid_case(std::string(kValid2d) + "\n[study]\n", {"load_case", "is missing"});
 }
 
@@ -375,8 +376,8 @@ TEST(ParseCase, MissingRequiredFieldsAreNamed) {
   expect_invalid_case(replaced(kValid3d, "b = 1\n", ""), {"geometry.b is missing", "in 3D"});
 }
 
-// Without [contact]; with it the body floats, held by contact and friction (issue 12; the
-// floating-body tests of tests/study/floating_body_test.cpp and tests/cli/experiment_test.cpp).
+// Without [contact]; with it the body floats, held by contact and friction (docs/experiments.md §5;
+// the floating-body tests of tests/study/floating_body_test.cpp and tests/cli/experiment_test.cpp).
 TEST(ParseCase, AtLeastOneDirichletConditionIsRequired) {
   const std::string text = replaced(
       replaced(replaced(kValid2d, "[[dirichlet]]\nface = \"left\"\n", ""),
@@ -414,7 +415,7 @@ TEST(ParseCase, OutOfRangeValuesNameFieldValueAndRange) {
 
 TEST(ParseCase, UnreachableVolumeIsRejectedWithTheReachableInterval) {
   // The thesis' printed formula reads C2 as d·(mean height); as an area, 28.5 is far outside
-  // [a·(C4 − C0), a·C4] = [0.5, 2] (spec 01 §4.2).
+  // [a·(C4 − C0), a·C4] = [0.5, 2] (docs/theory/problem.md §6).
   expect_invalid_case(replaced(kValid2d, "volume = 1.9", "volume = 28.5"),
                  {"design.volume = 28.5; expected 0.5 <= volume <= 2"});
 }

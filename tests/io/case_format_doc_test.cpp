@@ -50,7 +50,8 @@ TEST(CaseFormatDoc, FullExamplesParseToTheirStatedDimension) {
   EXPECT_EQ(c3.dim(), 3);
   EXPECT_EQ(c3.body.shape.num_controls(), 12);
   // The documented initial design is feasible for the documented volume: the mean control
-  // height equals height − volume/(a·b) (spec 01 §3, A-3DUPS), up to summation round-off.
+  // height equals height − volume/(a·b) (docs/theory/problem.md §6, the 3D set), up to summation
+  // round-off.
   const double mean = c3.body.initial_design.mean();
   EXPECT_NEAR(mean, 1.0 - *c3.body.admissible.volume / 2.0, 1e-15);
   ASSERT_TRUE(c3.body.contact.has_value());

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Issue 17 items 5, 6, 9, 10: the case parser refuses, up front and naming the field, sizes
+// The case parser refuses, up front and naming the field, sizes
 // beyond the documented limits (with a memory estimate, never a wrapped count), values
 // outside the physical bounds, a mesh without free unknowns above the contact surface, a load
 // on a face fixed in the loaded component, bad output names; it reports an empty file as
@@ -82,7 +82,7 @@ TEST(CaseLimits, AHugeGridIsRefusedAtOnceWithAMemoryEstimate) {
 }
 
 TEST(CaseLimits, ControlPointCountsAreBoundedAndNeverReportedWrapped) {
-  // Issue 17 item 6: 100000² wrapped to "a list of 1410065408 numbers".
+  // 100000² wrapped to "a list of 1410065408 numbers".
   expect_invalid_case(replaced(kCase3d, "control_points = [4, 4]", "control_points = [100000, 100000]"),
                  {"design.control_points[0] = 100000", "[2, 64]"}, {"1410065408"});
   expect_invalid_case(replaced(kCase2d, "control_points = [15]", "control_points = [1000000]"),
@@ -122,7 +122,7 @@ TEST(CaseLimits, SolverSettingsThatCouldNeverBeMetAreRefused) {
 }
 
 TEST(CaseLimits, AMeshWithoutFreeUnknownsAboveTheContactSurfaceIsRefused) {
-  // Issue 17 item 5: one cell layer under a fully fixed top (3D [4,4,1], 2D [29,1]) left an
+  // One cell layer under a fully fixed top (3D [4,4,1], 2D [29,1]) left an
   // empty free block and crashed in the factorization.
   expect_invalid_case(replaced(kCase3d, "cells = [4, 4, 2]", "cells = [4, 4, 1]"),
                  {"mesh.cells = [4, 4, 1]", "no free unknown", "mesh.cells[2] >= 2"});
@@ -152,7 +152,7 @@ TEST(CaseLimits, ALoadOnAComponentFixedOnTheSameFaceIsRefused) {
 }
 
 TEST(CaseLimits, OutputNamesThatCannotBeFileNamesAreRefused) {
-  // Issue 17 item 10: a NUL byte cut "<name>.vtu" and "<name>_contact.csv" to one file.
+  // A NUL byte cut "<name>.vtu" and "<name>_contact.csv" to one file.
   for (std::string_view bad : {R"("a\u0000b")", R"("")", R"("a/b")", R"("..")", R"("x\ny")"}) {
     SCOPED_TRACE(std::string(bad));
     expect_invalid_case(std::string(kCase2d) + "\n[output]\nname = " + std::string(bad) + "\n", {"output.name"});

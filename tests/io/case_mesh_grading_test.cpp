@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The grading keys of [mesh] (issue 18, item 1): growth and refine_box (in-plane),
+// The grading keys of [mesh] (docs/case-format.md, "[mesh]"): growth and refine_box (in-plane),
 // vertical_grading, fine_depth and vertical_growth; their defaults, and the messages naming
 // the field.
 #include <gtest/gtest.h>

@@ -217,7 +217,7 @@ TEST_F(FclibExport3d, SiUnitsAndNormalizedUnitsDescribeTheSameProblem) {
   FclibExportOptions si_units;
   si_units.normalize_units = false;
   const FclibLocalProblem si = frictopt::io::make_fclib_local(*body_, *state_, si_units);
-  FclibExportOptions normalized;  // the default (issue 17: SI broke other solvers' settings)
+  FclibExportOptions normalized;  // the default (SI units broke other solvers' settings)
   EXPECT_TRUE(normalized.normalize_units);
   EXPECT_NE(frictopt::io::make_fclib_local(*body_, *state_, normalized).description.find("Units: normalized"),
             std::string::npos);
@@ -355,7 +355,7 @@ TEST_F(FclibExportCli, WritesAFileFclibReads) {
       "export-fclib " + polygon_case.string() + " " + temp_file("polygon.hdf5").string());
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("isotropic Coulomb cones"), std::string::npos) << bad.output;
-  // Issue 17: the refusal comes before the solve (no solver report is printed).
+  // The refusal comes before the solve (no solver report is printed).
   EXPECT_EQ(bad.output.find("Coulomb fixed point"), std::string::npos) << bad.output;
   EXPECT_EQ(bad.output.find("iterations"), std::string::npos) << bad.output;
 }
@@ -380,7 +380,7 @@ TEST_F(FclibExportCli, NormalizedUnitsAreTheDefaultAndSiIsAnOption) {
 }
 
 TEST_F(FclibExportCli, ADeviceOrALinkAsTargetIsRefusedAndLeftAsItWas) {
-  // Issue 17 item 2: as root, export-fclib CASE /dev/full replaced the device by a file.
+  // As root, export-fclib CASE /dev/full replaced the device by a file.
   const auto dev = frictopt::testing::run_frictopt("export-fclib " + (kData / "small3d_disc.toml").string() +
                                                    " /dev/null");
   EXPECT_EQ(dev.exit_code, 2) << dev.output;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Issue 17 item 2: outputs are regular files only. A symbolic link, a device or a directory at
+// Outputs are regular files only. A symbolic link, a device or a directory at
 // an output path is refused and left as it was (never replaced, never written through), and
 // the atomic replacement never clobbers a foreign file next to the target.
 #include <gtest/gtest.h>

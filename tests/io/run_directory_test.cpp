@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// io::RunDirectory (issue 17 items 1, 3, 4, 7): --force removes only frictopt's files and
-// refuses a directory holding anything else; one process at a time (flock); a resumed
-// history is cut back to the checkpoint and tolerates a torn last row; stray files in the
-// VTK series are left alone; checkpoint fields are validated.
+// io::RunDirectory (docs/case-format.md, "Run directories"): --force removes only frictopt's files
+// and refuses a directory holding anything else; one process at a time (flock); a resumed history
+// is cut back to the checkpoint and tolerates a torn last row; stray files in the VTK series are
+// left alone; checkpoint fields are validated.
 #include "frictopt/io/run_directory.hpp"
 
 #include <fcntl.h>
@@ -58,7 +58,7 @@ TEST_F(RunDirectoryTest, RecognizesExactlyTheFilesFrictoptWrites) {
 }
 
 TEST_F(RunDirectoryTest, ForceRefusesAForeignEntryAndRemovesNothing) {
-  // Issue 17 item 1: --force deleted foreign/precious.txt (and with -o . the case itself).
+  // --force once deleted foreign/precious.txt (and with -o . the case itself).
   const fs::path run = dir_ / "run";
   fs::create_directories(run / "subfolder");
   write(run / "history.csv", "iteration\n");
@@ -101,7 +101,7 @@ TEST_F(RunDirectoryTest, ANewRunRefusesAnExistingRun) {
 }
 
 TEST_F(RunDirectoryTest, ASecondProcessIsRefusedWhileTheFirstHoldsTheLock) {
-  // Issue 17 item 3: two runs into one directory interleaved history.csv. flock conflicts
+  // Two runs into one directory interleaved history.csv. flock conflicts
   // between two open file descriptions even within one process, so this models two processes.
   {
     RunDirectory first(dir_, RunOpening::kOutput);
@@ -251,7 +251,7 @@ TEST(Checkpoint, RoundTripsTheVariableMetricState) {
 }
 
 TEST(Checkpoint, OutOfRangeFieldsAreRefusedNamingThem) {
-  // Issue 17 item 4: iteration = -5 and 10^12 (which wrapped to a negative int) were accepted.
+  // iteration = -5 and 10^12 (which wrapped to a negative int) were accepted.
   for (const auto& [key, value, fragment] :
        std::vector<std::tuple<std::string, JsonValue, std::string>>{
            {"iteration", JsonValue(-5), "iteration = -5"},

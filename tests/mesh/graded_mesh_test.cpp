@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// In-plane graded structured grids (issue 18, item 1): the column lines, the morph X_ref + V α on
-// them, and the refusals.
+// In-plane graded structured grids (docs/case-format.md, "[mesh]"): the column lines, the morph
+// X_ref + V α on them, and the refusals.
 #include <gtest/gtest.h>
 
 #include <algorithm>

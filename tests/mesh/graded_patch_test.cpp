@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Patch test on an in-plane graded, vertically graded (power law and "contact") and morphed
-// structured grid (issue 18, item 1): Q1 cells reproduce every linear displacement field
-// exactly on any mesh of convex cells, so a linear field prescribed on the whole boundary must
-// come back exactly inside.
+// structured grid (docs/case-format.md, "[mesh]"): Q1 cells reproduce every linear displacement
+// field exactly on any mesh of convex cells, so a linear field prescribed on the whole boundary
+// must come back exactly inside.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -24,7 +24,7 @@ TEST(GradedStructuredMesh, PassesThePatchTestIn2DAnd3D) {
     GridResolution resolution{{12, 10, 5}, 1.6};
     resolution.growth = 1.25;
     resolution.refine_box = std::array<double, 4>{0.35, 0.6, 0.3, 0.5};
-    if (contact_layers) {  // issue 18: equal layers down to 0.25 m, growing by <= 1.5 above
+    if (contact_layers) {  // equal layers down to 0.25 m, growing by <= 1.5 above
       resolution.grading = 1.0;
       resolution.cells[2] = 8;
       resolution.vertical_grading = VerticalGrading::kContact;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Manufactured-solution convergence of linear elasticity on imported unstructured Gmsh meshes
-// (issue 11, item 7): Q1 cells from Gmsh's subdivision of triangles (2D, a plate with a hole)
+// (docs/meshes.md): Q1 cells from Gmsh's subdivision of triangles (2D, a plate with a hole)
 // and tetrahedra (3D, a box), three refinements each; the L2 error must fall like h² and the
 // H1 error like h. Table in docs/meshes.md.
 //

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The full patch test on distorted imported meshes (issue 11, item 7): Q1 cells reproduce every
+// The full patch test on distorted imported meshes (docs/meshes.md): Q1 cells reproduce every
 // affine displacement exactly on any mesh of convex cells, so an affine field with a general
 // gradient (stretch, shear and rotation in every direction), prescribed at every boundary
 // node with ν = 0.3, must come back exactly at the interior nodes. The meshes are Gmsh's

@@ -23,7 +23,7 @@ Eigen::VectorXd wavy_design(int d, double base, double amplitude) {
   return alpha;
 }
 
-// Exact volume from the linear formula: base·C4 − ∫G_α = base·C4 − wᵀα (spec 01, §4.2).
+// Exact volume from the linear formula: base·C4 − ∫G_α = base·C4 − wᵀα (docs/theory/problem.md §2).
 double linear_volume(const shape::BezierShape& s, double height, const Eigen::VectorXd& alpha) {
   return s.base_measure() * height - s.integral_weights().dot(alpha);
 }
@@ -154,7 +154,7 @@ TEST(StructuredMesh, FacesAreTheNamedBoundarySetsOfItsMesh) {
   }
 }
 
-// Issue 17, item 6: the column and node counts overflowed 32-bit int (UBSan) for large
+// The column and node counts overflowed 32-bit int (UBSan) for large
 // resolutions. The counts are 64-bit and computed without allocating anything.
 TEST(StructuredMesh, CountsOfAHugeGridDoNotOverflow) {
   const StructuredGridSizes sizes = structured_grid_sizes(3, {{100000, 100000, 100000}, 1.0});

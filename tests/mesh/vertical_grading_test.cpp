@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The vertical grading "contact" of structured grids (issue 18, item 1): equal layers down to
-// mesh.fine_depth, geometric growth above; the morph X_ref + V α on them, and the refusals.
+// The vertical grading "contact" of structured grids (docs/contact-validation.md §1c): equal layers
+// down to mesh.fine_depth, geometric growth above; the morph X_ref + V α on them, and the refusals.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `mpiexec -n N frictopt solve` with engine = "petsc" (issue 14, item 3): exit 0, rank 0's
+# `mpiexec -n N frictopt solve` with engine = "petsc" (docs/petsc-engine.md, "Use"): exit 0, rank 0's
 # output directory holds the .vtu and summary.json, one progress block is printed (rank 0
 # only), no scratch directory of the other ranks is left behind; an unknown PETSc option is
 # exit 2 naming the option. Arguments: MPIEXEC FRICTOPT_BINARY SOURCE_DIR RANKS.

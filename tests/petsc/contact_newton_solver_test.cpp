@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The PETSc engine against the direct engine (issue 14, item 4): the shipped 3D punch cases at
-// a coarse resolution, solved by the semismooth Newton method (any number of ranks: the
-// `mpi` ctest entries run this binary under mpiexec -n 2 and -n 4) and by the dual QP fixed
+// The PETSc engine against the direct engine (docs/petsc-engine.md, "Agreement"): the shipped 3D
+// punch cases at a coarse resolution, solved by the semismooth Newton method (any number of ranks:
+// the `mpi` ctest entries run this binary under mpiexec -n 2 and -n 4) and by the dual QP fixed
 // point on CHOLMOD's Delassus matrix. Both are solved far below the compared tolerance.
 #include "frictopt/petsc/contact_newton_solver.hpp"
 
@@ -69,7 +69,7 @@ TEST_P(PetscAgreesWithDirect, InNormalForcesAndDisplacements) {
         << "contact node " << i;
 
   // Item 4 of the issue: the piece of the Newton linearization at the solution is the
-  // sensitivity module's classification (spec 03 §3.2, §14.2) at every strict node.
+  // sensitivity module's classification (docs/theory/sensitivity.md §3) at every strict node.
   const sensitivity::IndexSets sets = sensitivity::classify(state, definition.contact->law);
   const std::vector<ContactNewtonSolver::NodePiece> piece = solver.newton_piece();
   ASSERT_EQ(piece.size(), sets.nodes.size());

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The PETSc engine's adjoint (issue 14, item 2; docs/petsc-engine.md, "Subgradient"): one
+// The PETSc engine's adjoint (docs/petsc-engine.md, "Subgradient"): one
 // transposed Krylov solve with the Newton Jacobian at the converged state gives the same ξ as
 // the direct engine's adjoint (CHOLMOD, dual contact system; itself checked against central
 // differences in tests/sensitivity) on the shipped 3D cases, for costs that exercise every

@@ -39,7 +39,7 @@ TEST(ProjectionJacobian, MatchesCentralDifferencesForEveryLaw) {
       ASSERT_LE((lin.value - c.law.project(x, s)).norm(), 1e-14 * s) << c.name;
       // Central differences with h = cbrt(eps)·scale; the projection is piecewise smooth, so
       // a pair whose two sides lie on different faces (|one-sided difference| mismatch) is
-      // skipped: the check is at smooth points only (STYLE.md §7).
+      // skipped: the check is at smooth points only.
       const double h = 6e-6 * s;
       Eigen::Matrix2d fd_x;
       bool smooth = true;

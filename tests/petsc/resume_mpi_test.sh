@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `mpiexec -n N frictopt optimize --resume` with engine = "petsc" (issue 14, item 3): a run
+# `mpiexec -n N frictopt optimize --resume` with engine = "petsc" (docs/petsc-engine.md, "Use"): a run
 # stopped after 1 bundle-trust iteration (its checkpoint) and resumed to 3 ends at the design
 # and cost of an uninterrupted 3-iteration run, to the engine's tolerance (1e-6 relative: the
 # Newton warm start is not part of the checkpoint, so the states agree to the solver tolerance

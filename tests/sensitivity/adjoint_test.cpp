@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The adjoint subgradient against central differences of Θ where every index set is strict
-// (spec 03, §17.1), for 2D and 3D, isotropic and anisotropic laws, and several costs.
+// (docs/sensitivity.md §5), for 2D and 3D, isotropic and anisotropic laws, and several costs.
 #include "frictopt/sensitivity/adjoint.hpp"
 
 #include <gtest/gtest.h>
@@ -36,7 +36,7 @@ enum class CostKind { kTargetForce, kCompliance, kForcePower, kPressureNorm, kTo
 std::unique_ptr<cost::CostFunctional> make_cost(CostKind kind, study::ElasticBody& body) {
   switch (kind) {
     case CostKind::kTargetForce: {
-      // Target: the initial total force spread evenly (spec 05 §2.3).
+      // Target: the initial total force spread evenly (docs/theory/costs.md).
       const study::BodyState s = body.solve(body.definition().initial_design);
       const Eigen::VectorXd lambda = s.contact->state.normal_forces();
       return cost::make_target_normal_force(Eigen::VectorXd::Constant(lambda.size(), lambda.mean()));
@@ -143,7 +143,7 @@ Eigen::VectorXd flatten_derivative(study::ShapeOracle& oracle, const AdjointSens
   return y;
 }
 
-// AdjointSensitivity::Options (DESIGN.md: Options in, Summary out): validated at construction;
+// AdjointSensitivity::Options (Options in, Summary out): validated at construction;
 // the default threshold is kSingularReciprocalCondition; a threshold above the piece's reciprocal
 // condition turns the same solve into a reported failure.
 TEST(AdjointOptions, AreValidatedAndTheSingularityThresholdIsApplied) {

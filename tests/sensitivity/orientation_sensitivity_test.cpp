@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The orientation φ of a turned friction law as a parameter (issue 13 item 3): the forward
-// derivative of the contact state in φ (friction_parameter_rows with orientation_parameter,
+// The orientation φ of a turned friction law as a parameter (docs/theory/friction-frame.md §2): the
+// forward derivative of the contact state in φ (friction_parameter_rows with orientation_parameter,
 // then contact_state_derivative) against central differences of fresh state solves, for every
 // 3D law at a point whose index sets are strict; and the parameter bookkeeping.
 #include <gtest/gtest.h>

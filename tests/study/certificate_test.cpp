@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// study::certify (thesis §5.3; spec 06 §6, spec 03 §8, §11.1): the distance at a strict point
+// study::certify (thesis §5.3; docs/theory/stationarity.md): the distance at a strict point
 // against its closed form, |𝕃| and the (MF1′) matrix at a constructed weak point, and the
 // distance falling along a short optimization run.
 #include "frictopt/study/certificate.hpp"
@@ -18,9 +18,9 @@
 namespace frictopt::study {
 namespace {
 
-// The thesis' 2D body (spec 05 §2.1) on a coarse mesh with tight solver tolerances, and the
-// volume equality Σα = 0.75 (C2 = 1.9 with a = 2, C4 = 1, d = 15: Σα = d(C4 − C2/a)), which the
-// initial design α = 0.05 satisfies.
+// The thesis' 2D body (docs/theory/examples.md §1) on a coarse mesh with tight solver tolerances,
+// and the volume equality Σα = 0.75 (C2 = 1.9 with a = 2, C4 = 1, d = 15: Σα = d(C4 − C2/a)), which
+// the initial design α = 0.05 satisfies.
 BodyDefinition thesis_body_2d(int n1, int nv) {
   return frictopt::testing::thesis_body_2d(contact::FrictionLaw::interval(0.25, 0.25), n1, nv);
 }
@@ -83,13 +83,13 @@ TEST(Certify, WeakPointEnumeratesLAndReportsTheMf1Rank) {
   EXPECT_NEAR(c.clarke.weights.sum(), 1.0, 1e-12);
   EXPECT_GE(c.clarke.weights.minCoeff(), 0.0);
   // Each R2 node contributes λ = 0, gap = 0, q = 0 and u_t = 0: two conditions beyond a piece's
-  // two rows (spec 03 §11.1 reading in certificate.cpp).
+  // two rows (the row-table reading in certificate.cpp).
   ASSERT_TRUE(c.mf1.computed);
   EXPECT_EQ(c.mf1.extra_conditions, 2 * p);
   EXPECT_EQ(c.mf1.rows, 2 * p + c.mf1.extra_conditions);
   EXPECT_EQ(c.mf1.cols, 15 + 2 * p);
   // Zero load: z = 0 gives u = 0 whatever α, so u_t cannot be steered by the design and the
-  // u_t = 0 rows are dependent (one per node); the spec's table (λ, q, gap per node) is full rank.
+  // u_t = 0 rows are dependent (one per node); the row table (λ, q, gap per node) is full rank.
   EXPECT_EQ(c.mf1.rows - c.mf1.rank, p);
   EXPECT_EQ(c.mf1.spec_rows, 3 * p);
   EXPECT_TRUE(c.mf1.spec_full_row_rank);
@@ -125,7 +125,7 @@ TEST(Certify, DistanceFallsAlongAShortOptimization) {
   EXPECT_LT(after.clarke.distance, before.clarke.distance);
 }
 
-// Issue 16: a study run that says "converged" must pass `certify`'s test (the exact Clarke
+// A study run that says "converged" must pass `certify`'s test (the exact Clarke
 // distance at x over all enumerated pieces, relative tolerance 1e-3), not only the optimizer's
 // bundle certificate. With ε = 0.1 the optimizer's own test and certificate pass early, at a
 // point whose Clarke distance is above 1e-3 of max‖ξ‖: the run must say so (stalled, not

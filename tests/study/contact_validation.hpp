@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Shared set-up of the physical validation tests of the contact solver (issue 3, item 7): blocks
-// with a parabolic (2D) or paraboloidal (3D) Bézier bottom pressed on the rigid foundation,
-// nodal pressures, the estimators of contact and stick radii, and residual checks.
+// Shared set-up of the physical validation tests of the contact solver
+// (docs/contact-validation.md): blocks with a parabolic (2D) or paraboloidal (3D) Bézier bottom
+// pressed on the rigid foundation, nodal pressures, the estimators of contact and stick radii, and
+// residual checks.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -39,12 +40,13 @@ struct BlockSpec {
   contact::FrictionLaw law = contact::FrictionLaw::disc(0.0);
   contact::CoulombMethod method = contact::CoulombMethod::kFixedPoint;
   int dense_max_unknowns = 1500;
-  /// In-plane grading (issue 18, item 1): growth > 1 grades the columns toward the square
-  /// [refine_min, refine_max]² around the apex; 1 keeps the uniform grid.
+  /// In-plane grading (docs/contact-validation.md §1b): growth > 1 grades the columns toward the
+  /// square [refine_min, refine_max]² around the apex; 1 keeps the uniform grid.
   double growth = 1.0;
   double refine_min = 0.0, refine_max = 0.0;  ///< [m], both in-plane directions
-  /// Vertical grading "contact" (issue 18) when fine_depth > 0: equal layers down to fine_depth,
-  /// growing by <= vertical_growth above; otherwise the power law of bottom_grading.
+  /// Vertical grading "contact" (docs/contact-validation.md §1c) when fine_depth > 0: equal layers
+  /// down to fine_depth, growing by <= vertical_growth above; otherwise the power law of
+  /// bottom_grading.
   double fine_depth = 0.0, vertical_growth = 1.2;
 };
 
@@ -382,7 +384,7 @@ inline std::string fmt_rate(double rate) {
 /// Relative error |a − b| / |b|.
 inline double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
-/// Tolerance of the KKT residual and complementarity gap on every case (issue 3, item 7):
+/// Tolerance of the KKT residual and complementarity gap on every case:
 /// dimensionless, ~100× above the solvers' 1e-10 stopping tolerances.
 inline constexpr double kResidualTolerance = 1e-8;
 

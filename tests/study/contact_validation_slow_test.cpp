@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Physical validation of the contact solver through ElasticBody (issue 3, item 7), slow part:
-// the 3D Hertz convergence table (finest mesh 48 × 48 × 16 hexahedra) and the convergence of
+// Physical validation of the contact solver through ElasticBody (docs/contact-validation.md), slow
+// part: the 3D Hertz convergence table (finest mesh 48 × 48 × 16 hexahedra) and the convergence of
 // the n-gon laws to the disc and the ellipse. Tables (docs/contact-validation.md):
 //   ./build/tests/study/study_slow_test | grep '^|'
 #include <gtest/gtest.h>
@@ -26,7 +26,7 @@ using contact::FrictionLaw;
 // model: symmetry planes cannot be used, see docs/contact-validation.md), clamped top pushed
 // down 12 mm, E = 1 GPa, ν = 0.3, μ = 0: a ≈ 0.156 m (0.16 of the width). Meshes 16, 32, 48
 // cells across (a/h ≈ 2.5, 5, 7.5), 16/3 layers graded so the bottom layer is about one cell
-// thick. Tolerance: 5% on a and p0 on the finest mesh (issue 3), 10% on the coarser ones.
+// thick. Tolerance: 5% on a and p0 on the finest mesh, 10% on the coarser ones.
 TEST(HertzContact3D, RadiusAndPeakPressureConvergeToHertzTheory) {
   std::printf("| mesh (cells) | a/h | P [N] | a Hertz [m] | a moment [m] | err | a fit [m] | err | p0 Hertz [Pa] | p peak [Pa] | err | KKT | time [s] |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
@@ -53,9 +53,9 @@ TEST(HertzContact3D, RadiusAndPeakPressureConvergeToHertzTheory) {
   }
 }
 
-// Accuracy per unknown (issue 18, item 1): the block above on the uniform grid and on the grid
-// graded in-plane toward the square [0.3, 0.7]² m around the apex (growth 1.2; the contact zone
-// is [0.344, 0.656]), with the same cells, hence the same unknowns. Errors: a (profile fit and
+// Accuracy per unknown (docs/contact-validation.md §1b): the block above on the uniform grid and on
+// the grid graded in-plane toward the square [0.3, 0.7]² m around the apex (growth 1.2; the contact
+// zone is [0.344, 0.656]), with the same cells, hence the same unknowns. Errors: a (profile fit and
 // moment) and p0 against Hertz for the measured load; the load P against the finest graded
 // grid's (a finite block has no closed-form load for a prescribed top displacement).
 // Table in docs/contact-validation.md:

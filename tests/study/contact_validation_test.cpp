@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Physical validation of the contact solver through ElasticBody (issue 3, item 7), quick part:
-// 2D Hertz convergence table, a coarse 3D Hertz check, Cattaneo–Mindlin stick zone, anisotropic
-// gross sliding, μ = 0 = frictionless, split = fixed point, bad input. The 3D Hertz table and the
-// n-gon → disc/ellipse convergence are in contact_validation_slow_test.cpp. Tables are printed
-// (and copied to docs/contact-validation.md):
+// Physical validation of the contact solver through ElasticBody (docs/contact-validation.md), quick
+// part: 2D Hertz convergence table, a coarse 3D Hertz check, Cattaneo–Mindlin stick zone,
+// anisotropic gross sliding, μ = 0 = frictionless, split = fixed point, bad input. The 3D Hertz
+// table and the n-gon → disc/ellipse convergence are in contact_validation_slow_test.cpp. Tables
+// are printed (and copied to docs/contact-validation.md):
 //   ./build/tests/study/study_test --gtest_filter='*' | grep '^|'
 #include <gtest/gtest.h>
 
@@ -28,7 +28,7 @@ using contact::FrictionLaw;
 
 // Block 1 m × 1 m, R = 2 m, E = 1 GPa, ν = 0.3, top pushed down 9 mm: a ≈ 0.106 m ≈ 0.11 of the
 // width. Meshes of 50, 100, 200 cells across (a/h ≈ 5, 11, 21).
-// Tolerance: 5% on a and p0 on the finest mesh (issue 3), 10% on the coarser ones (the nodal
+// Tolerance: 5% on a and p0 on the finest mesh, 10% on the coarser ones (the nodal
 // pressure at a/h ≈ 5 carries O((h/a)²) lumping error). The remaining ≈ 0.7% on the finest mesh is
 // the finite block (the half-space of Hertz theory is 1 m wide and 1 m deep here).
 TEST(HertzContact2D, RadiusAndPeakPressureConvergeToHertzTheory) {
@@ -62,9 +62,10 @@ TEST(HertzContact2D, RadiusAndPeakPressureConvergeToHertzTheory) {
 }
 
 // The 2D block above on the grid graded in-plane toward [0.35, 0.65] m (contact zone
-// [0.394, 0.606]), growth 1.2, against the uniform grid of the same cells (issue 18, item 1):
-// the graded grid runs in 2D through the whole solve and meets the uniform grid's tolerances.
-// Rows printed in the 2D table's format; docs/contact-validation.md, section 1b.
+// [0.394, 0.606]), growth 1.2, against the uniform grid of the same cells
+// (docs/contact-validation.md §1b): the graded grid runs in 2D through the whole solve and meets
+// the uniform grid's tolerances. Rows printed in the 2D table's format; docs/contact-validation.md,
+// section 1b.
 TEST(HertzContact2D, GradedGridMeetsTheToleranceAtEqualUnknowns) {
   for (const int cells : {50, 100}) {
     for (const bool graded : {false, true}) {
@@ -98,7 +99,7 @@ TEST(HertzContact2D, GradedGridMeetsTheToleranceAtEqualUnknowns) {
 }
 
 // Hertz, 3D, coarse: 24 × 24 × 8 hexahedra (a/h ≈ 3.7). The finer meshes and the table are in
-// the slow binary. Tolerance 5% (issue 3); at this resolution the errors are ≈ 1%.
+// the slow binary. Tolerance 5%; at this resolution the errors are ≈ 1%.
 TEST(HertzContact3D, CoarseMeshIsWithinFivePercentOfHertzTheory) {
   BlockSpec s;
   s.cells = 24;
@@ -132,7 +133,7 @@ TEST(HertzContact3D, CoarseMeshIsWithinFivePercentOfHertzTheory) {
 // its slipping neighbour on each side (error ≤ h/2 per edge); (ii) "moment": the deficit
 // d_i = μλ_i − |q_i| is μ(p − |τ|) ≈ μ p0 (c/a) sqrt(1 − x²/c²) in the stick zone and 0 in the
 // slip zone, so c = 2·sqrt(Σd_i(x_i − x̄)²/Σd_i) as for the Hertz radius.
-// Tolerance: 10% (issue 3). Expected deviation ≈ 5%: the tangential traction still changes the
+// Tolerance: 10%. Expected deviation ≈ 5%: the tangential traction still changes the
 // pressure through β (P grows by ≈ 0.2% and the stick zone moves by ≈ 0.1c).
 TEST(CattaneoMindlin2D, StickZoneHalfWidthMatchesTheoryWithinTenPercent) {
   const double mu = 0.3;
@@ -204,7 +205,7 @@ TEST(CattaneoMindlin2D, StickZoneHalfWidthMatchesTheoryWithinTenPercent) {
 // force is μ(θ)·P with μ(θ) = w_j, whose component along the slip is the support function
 // N_W(d_θ). For the ellipse the exposed point turns with the slip direction, so Σq_i is
 // compared with Σλ_i·exposed(u_t^i) (exact) and with P·exposed(d_θ) (within the spread of
-// slip directions, printed). Tolerance 1e-6 relative (issue 3); the solver stops at 1e-10.
+// slip directions, printed). Tolerance 1e-6 relative; the solver stops at 1e-10.
 struct DragCase {
   std::string name;
   FrictionLaw law;
@@ -320,10 +321,10 @@ TEST(ZeroFriction, EveryLawWithZeroCoefficientsReproducesFrictionlessContact) {
   }
 }
 
-// The split variant (spec 02, §8) and the full fixed point solve the same Coulomb problem; with
-// partial slip and μ = 0.3 (2D interval, 3D disc and anisotropic polygon) the solution is unique
-// here and both stop at 1e-10 relative increments: forces agree to 1e-7 relative (κ(M) ≲ 1e3
-// times the stopping tolerance). Also checks that each reports the method it used.
+// The split variant (docs/theory/state-problem.md §6) and the full fixed point solve the same
+// Coulomb problem; with partial slip and μ = 0.3 (2D interval, 3D disc and anisotropic polygon) the
+// solution is unique here and both stop at 1e-10 relative increments: forces agree to 1e-7 relative
+// (κ(M) ≲ 1e3 times the stopping tolerance). Also checks that each reports the method it used.
 TEST(CoulombMethods, SplitVariantAndFullFixedPointAgree) {
   struct Case {
     int dim;
@@ -372,7 +373,7 @@ TEST(ElasticBodyInput, NoDirichletConditionThrowsNamingTheCause) {
   s.top_displacement = Eigen::Vector3d(0.0, 0.0, -0.01);
   BodyDefinition def = block_definition(s);
   def.dirichlet.clear();
-  def.contact.reset();  // with contact the body floats (issue 12; tests/study/floating_body_test.cpp)
+  def.contact.reset();  // with contact the body floats (tests/study/floating_body_test.cpp)
   try {
     ElasticBody body(def);
     FAIL() << "expected InvalidInput";
@@ -385,7 +386,7 @@ TEST(ElasticBodyInput, NoDirichletConditionThrowsNamingTheCause) {
 
 // Only u_3 fixed on the top leaves three rigid modes (translations along x1, x2, rotation about
 // x3). Without contact nothing holds them: InvalidInput naming the cause. With contact the body
-// floats (issue 12, spec 07 §2): contact and friction hold it, solved with the kernel-aware dual;
+// floats (docs/experiments.md §5): contact and friction hold it, solved with the kernel-aware dual;
 // with no tangential load it reaches equilibrium with zero friction force.
 TEST(ElasticBodyInput, DirichletConditionsLeavingRigidModes) {
   for (const bool with_contact : {false, true}) {
@@ -446,9 +447,9 @@ TEST(ElasticBodyInput, BodyThatTouchesNowhereIsValidAndSeparated) {
 // component (the A-BC rule for clamped nodes), which removes the apex from a quarter model.
 TEST(ElasticBodySymmetry, BottomNodesWithAPrescribedComponentAreNotContactNodes) {
   // Documented limitation (docs/contact.md, "Contact nodes"): a bottom node with any
-  // prescribed component — clamped (spec 01 A-BC) or on a symmetry plane — is not a contact
-  // node, so quarter/half models lose their symmetry-plane contact nodes; the validation uses
-  // full models. This pins the behaviour so a change is noticed and documented.
+  // prescribed component — clamped (docs/theory/examples.md §2) or on a symmetry plane — is not a
+  // contact node, so quarter/half models lose their symmetry-plane contact nodes; the validation
+  // uses full models. This pins the behaviour so a change is noticed and documented.
   BlockSpec s;
   s.cells = 4;
   s.layers = 2;

@@ -12,7 +12,7 @@ namespace {
 
 // One cell layer under a top face that is fixed completely (a rigid plate pressed down): the
 // only free DOFs are those of the contact nodes, so the factorization's leading block (the
-// non-contact DOFs) is empty. Issue 17, item 5: this crashed with SIGSEGV in Release
+// non-contact DOFs) is empty. This once crashed with SIGSEGV in Release
 // (`cells = [4, 4, 1]`, 2D `[29, 1]`), CHOLMOD's analysis of the empty block returning NULL.
 BodyDefinition one_layer_body(int dim) {
   BodyDefinition b;

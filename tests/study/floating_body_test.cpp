@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Floating bodies (issue 12, items 2 and 5; spec 07 §2): a block with no Dirichlet condition,
+// Floating bodies (docs/experiments.md §5): a block with no Dirichlet condition,
 // pressed by a top pressure and pulled by a tangential traction, held only by contact and
 // friction. Inside the friction capacity the solve reaches equilibrium: the reaction at every DOF
 // off the contact surface (including the DOFs held for A⁺) vanishes, and the contact forces

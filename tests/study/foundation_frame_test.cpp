@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The foundation plane with any unit normal and offset (issue 11 item 4): a problem rotated
-// rigidly by R — mesh coordinates, design motion, Dirichlet data and tractions turned by R, the
-// foundation normal R e_dim and its first axis R e1 — has the same contact forces (in the
-// foundation's frame), the turned displacement, the same cost Θ and the same subgradient ξ as
-// the unrotated one; an offset d shifts only the gap.
+// The foundation plane with any unit normal and offset (docs/theory/friction-frame.md §3): a
+// problem rotated rigidly by R — mesh coordinates, design motion, Dirichlet data and tractions
+// turned by R, the foundation normal R e_dim and its first axis R e1 — has the same contact forces
+// (in the foundation's frame), the turned displacement, the same cost Θ and the same subgradient ξ
+// as the unrotated one; an offset d shifts only the gap.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>

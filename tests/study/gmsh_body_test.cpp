@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Imported bodies through ElasticBody (issue 11): the patch test on an unstructured Gmsh mesh,
-// the contact boundary's gap matrix and tributary areas on imported and structured meshes.
+// Imported bodies through ElasticBody (docs/meshes.md): the patch test on an unstructured Gmsh
+// mesh, the contact boundary's gap matrix and tributary areas on imported and structured meshes.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Case files with an imported body ([mesh] file = ..., issue 11): what they read into, and the
-// bad inputs of issue 11 item 9 — each an InvalidInput naming the file, the field and the group.
+// Case files with an imported body ([mesh] file = ..., docs/meshes.md): what they read into, and
+// the bad inputs — each an InvalidInput naming the file, the field and the group.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -44,7 +44,7 @@ TEST(GmshCase, ReadsAnImportedBodyWithExtentsFromTheMesh) {
   EXPECT_EQ(body.contact_boundary()->num_nodes(), 9);
 }
 
-// Issue 11 items 3 and 4: on a tilted foundation the design moves the patch along the
+// On a tilted foundation the design moves the patch along the
 // foundation's normal (not along x3), and the chart lies in the foundation plane.
 TEST(GmshCase, TiltedFoundationSetsTheDesignMotionsFrame) {
   const io::CaseDescription c = io::parse_case(

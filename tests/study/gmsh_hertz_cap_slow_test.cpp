@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Hertz contact on a body imported from Gmsh (issue 11, item 7): the spherical cap of
+// Hertz contact on a body imported from Gmsh (docs/meshes.md): the spherical cap of
 // tests/data/hertz_cap.geo (curvature radius R = 2 m under a cylinder of radius 0.5 m),
 // tetrahedra subdivided into hexahedra, pressed on the rigid plane by moving its top down.
 // Contact radius (moment of the nodal forces, and the profile fit) and peak pressure (the

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // cases3d/gmsh-punch imports the demo's body from Gmsh (punch.geo extrudes the structured grid's
 // nodes; the "sweep" extension is the grid's vertical morph): it must reproduce the demo
-// cases3d/punch-anisotropic — Θ, the contact forces λ and the subgradient ξ at α⁰ (issue 11).
+// cases3d/punch-anisotropic — Θ, the contact forces λ and the subgradient ξ at α⁰.
 #include <gtest/gtest.h>
 
 #include <cmath>

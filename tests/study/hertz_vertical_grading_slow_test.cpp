@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Issue 18, item 1 "done when": contact radius and peak pressure within 0.1 % of Hertz on the 3D
+// The target: contact radius and peak pressure within 0.1 % of Hertz on the 3D
 // block with at most 60k unknowns, by the vertical grading "contact" combined with the in-plane
 // grading (docs/contact-validation.md, section 1c). The same cells and layers with the
 // power-law vertical grading (the grid of section 1b) are solved alongside: the peak pressure

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Costs along a loading history (issue 13 item 2; docs/theory/history-adjoint.md): the backward
+// Costs along a loading history (docs/theory/history-adjoint.md): the backward
 // adjoint's ξ against central differences where every step's index sets are strict (a last-step
 // cost and the dissipation, 3D and 2D); without the steps' coupling ξ is wrong; at a kink each
 // one-sided derivative is that of an enumerated selection of pieces; a one-step program is the

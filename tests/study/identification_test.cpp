@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Identification of friction coefficients and E (issue 7): the contact-space model against a
-// fresh state solve, the forward-sensitivity Jacobian against central differences (Ceres'
+// Identification of friction coefficients and E (docs/identification.md): the contact-space model
+// against a fresh state solve, the forward-sensitivity Jacobian against central differences (Ceres'
 // GradientChecker), exact recovery from noise-free data, recovery within the reported standard
 // deviations from noisy data, identifiability reports, and bad input.
 #include "frictopt/study/identification.hpp"
@@ -50,7 +50,8 @@ BodyDefinition block(const contact::FrictionLaw& law, Eigen::Vector2d shift = Ei
   return b;
 }
 
-// The thesis' 2D body (spec 05 §2.1) on a coarse mesh: clamped left side, oblique top load.
+// The thesis' 2D body (docs/theory/examples.md §1) on a coarse mesh: clamped left side, oblique top
+// load.
 BodyDefinition body_2d(const contact::FrictionLaw& law) {
   BodyDefinition b;
   b.shape = shape::BezierShape::curve(2.0, 15);
@@ -253,7 +254,7 @@ class PredictionCost final : public ceres::CostFunction {
 
 // Ceres' per-entry relative test has no absolute floor, and slips at sticking nodes are
 // round-off (1e-11 σ) whose differences are noise: per column, the largest of
-// |a − b| / (1e-5·max(|a|, |b|) + 1e-7·max|column|) (STYLE.md §7: relative plus absolute floor);
+// |a − b| / (1e-5·max(|a|, |b|) + 1e-7·max|column|) (relative plus absolute floor);
 // <= 1 passes. Prints the column-wise relative errors.
 double worst_jacobian_excess(const ceres::GradientChecker::ProbeResults& results, const std::vector<std::string>& names,
                              const std::string& label) {
@@ -808,7 +809,7 @@ upper = 1e12
 namespace frictopt::study {
 namespace {
 
-// Smoke test of cases3d/identify-anisotropic (STYLE.md §9): the committed synthetic
+// Smoke test of cases3d/identify-anisotropic: the committed synthetic
 // measurements (seed 7) recover the case's own law within 3 reported standard deviations.
 TEST(IdentifyAnisotropicCase, RecoversTheTrueLawWithinThreeStandardDeviations) {
   const io::CaseDescription c = io::load_case("cases3d/identify-anisotropic/case.toml");

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Load cases given as loading programs (issue 13 item 1; docs/theory/load-cases.md §6): each case
+// Load cases given as loading programs (docs/theory/load-cases.md §5): each case
 // a history of its own ([[load_case.step]]), combined by the worst case or a weighted sum. The
 // weighted ξ against central differences where every step of every case is strict; the worst
 // case at a strictly active case is that case's history oracle; a static case among programs is

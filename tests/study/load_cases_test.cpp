@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Load cases (issue 13, items 1 and 6; docs/theory/load-cases.md): one case as written is the
+// Load cases (docs/theory/load-cases.md): one case as written is the
 // plain oracle bit for bit; K cases share one factorization; the weighted cost's subgradient and
 // the worst case's at a strictly active case against central differences (a traction on a face
 // the design moves is scaled, so the load-change term of the adjoint is exercised); at a tie of

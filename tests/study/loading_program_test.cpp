@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Loading programs (issue 12, items 1, 5, 9; spec 07 §1): the one-step program is the static
+// Loading programs (docs/theory/loading-program.md): the one-step program is the static
 // solve bit for bit; a zero-gap body under proportional loading gives the one-step state scaled
 // by k/K at step k (friction is positively homogeneous); a curved body loaded normal-first is
 // path dependent; one factorization serves the program; Cattaneo–Mindlin's stick half-width
@@ -25,8 +25,8 @@ using contact::FrictionLaw;
 using validation::BlockSpec;
 
 // The residuals of a step's increment problem recomputed from the FE displacement: ∇ = (−(u_t −
-// u_t^{k−1}), u_ν + g) read off the body's nodes (spec 07 §1), against the solver's own ∇ and
-// the Coulomb conditions of the step's law.
+// u_t^{k−1}), u_ν + g) read off the body's nodes (docs/theory/loading-program.md §3), against the
+// solver's own ∇ and the Coulomb conditions of the step's law.
 void expect_valid_step(const ElasticBody& body, const LoadStepResult& r,
                        const Eigen::VectorXd& previous_tangential, const FrictionLaw& law) {
   ASSERT_EQ(r.state.summary.status, Status::kConverged) << r.state.summary.brief_report();
@@ -83,7 +83,7 @@ TEST(LoadingProgram, OneStepProgramIsTheStaticSolveBitForBit) {
 
 // Zero gap everywhere (a flat bottom on the foundation): the incremental problem of step k is
 // solved by (k/K)·(one-step state), because the increment u¹/K exposes the same faces of W as
-// u¹ (spec 07 §1's check; docs/theory/loading-program.md). Tolerance 1e-7 relative: the solver
+// u¹ (docs/theory/loading-program.md §4). Tolerance 1e-7 relative: the solver
 // stops at 1e-10 relative increments and each step starts from the last.
 TEST(LoadingProgram, ProportionalLoadingOfAZeroGapBodyScalesTheOneStepState) {
   BlockSpec s;
@@ -208,7 +208,7 @@ TEST(LoadingProgram, CattaneoMindlin2dStickHalfWidth) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Bad input (issue 12, item 9): each a clear InvalidInput naming the field.
+// Bad input: each a clear InvalidInput naming the field.
 
 std::string block_case(const std::string& extra) { return frictopt::testing::pushed_block_3d() + extra; }
 

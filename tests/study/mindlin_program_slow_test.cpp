@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-// Cattaneo–Mindlin in 3D through a loading program (issue 12, item 5; slow binary): a paraboloid
-// pressed without friction, then dragged in steps. Stick radius against c = a·(1 − Q/μP)^{1/3},
-// a = Hertz radius of the measured P. Two estimators of c: (i) the second moment of the stick
-// deficit d_i = μλ_i − |q_i| (Mindlin: μp − |τ| = (μp0/a)·√(c² − r²) inside the stick disc and 0
-// outside, a semi-elliptic distribution on radius c, so c² = (5/2)·Σd_i r_i²/Σd_i, the
+// Cattaneo–Mindlin in 3D through a loading program (docs/experiments.md §2; slow binary): a
+// paraboloid pressed without friction, then dragged in steps. Stick radius against c = a·(1 −
+// Q/μP)^{1/3}, a = Hertz radius of the measured P. Two estimators of c: (i) the second moment of
+// the stick deficit d_i = μλ_i − |q_i| (Mindlin: μp − |τ| = (μp0/a)·√(c² − r²) inside the stick
+// disc and 0 outside, a semi-elliptic distribution on radius c, so c² = (5/2)·Σd_i r_i²/Σd_i, the
 // estimator of the Hertz radius), (ii) √(A_stick/π) from the stick nodes' tributary areas (the
-// summary's stick_equivalent_radius). Tolerance 5% on the finest mesh (issue 12).
+// summary's stick_equivalent_radius). Tolerance 5% on the finest mesh.
 //   ./build/tests/study/study_program_slow_test | grep '^|'
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The friction law's orientation φ as a design variable (issue 13 item 3; docs/theory/
+// The friction law's orientation φ as a design variable (docs/theory/
 // friction-design.md): ∂Θ/∂s from the adjoint against central differences of Θ at strict index
 // sets for the anisotropic 3D laws; the full x = (α, s) gradient check; a fixed φ = φ⁰ gives
 // the plain oracle's numbers bit for bit and the oracle's cache follows φ; certify's generators

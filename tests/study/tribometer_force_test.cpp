@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The force-driven tribometer (issue 12 item 4, TribometerDrive::kForce): a floating block
-// pressed by P and pulled by a ramped tangential force Q e_θ on its top face has a static
-// equilibrium exactly while Q <= μ(θ)·P, μ(θ) the radial function of the friction set W in the
-// force direction. The test asks the floating-body solver to FIND the equilibria up to the
-// capacity (the a priori capacity report only rejects loads beyond it): the bisection's limit
+// The force-driven tribometer (TribometerDrive::kForce; docs/experiments.md, "Pulling with a
+// force"): a floating block pressed by P and pulled by a ramped tangential force Q e_θ on its top
+// face has a static equilibrium exactly while Q <= μ(θ)·P, μ(θ) the radial function of the friction
+// set W in the force direction. The test asks the floating-body solver to FIND the equilibria up to
+// the capacity (the a priori capacity report only rejects loads beyond it): the bisection's limit
 // equilibrium must lie within 1e-3 relative of μ(θ)·P for every law — the resolution the
 // augmented Lagrangian reaches where the dual is flat (measured 4e-8 to 6e-4, polygons best;
 // docs/experiments.md §4) — its friction force must point along θ and the stick zone must shrink

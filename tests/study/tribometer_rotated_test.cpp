@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The virtual tribometer with a friction law turned relative to the specimen (issue 12, item 4):
-// for every 3D law W turned by φ = 30°, the block dragged until it slides as a whole transmits
+// The virtual tribometer with a friction law turned relative to the specimen (docs/experiments.md
+// §4): for every 3D law W turned by φ = 30°, the block dragged until it slides as a whole transmits
 // |T|/P = μ(ψ − φ), the UNTURNED law's radial function at the force direction ψ minus φ, and the
-// slip exposes the force (normality). Tolerance 1e-6 relative (issue 12), as the unturned test.
+// slip exposes the force (normality). Tolerance 1e-6 relative, as the unturned test.
 #include <gtest/gtest.h>
 
 #include <cmath>

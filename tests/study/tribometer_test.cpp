@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The virtual tribometer (issue 12, items 4 and 5): for every friction law, a block pressed with
+// The virtual tribometer (docs/experiments.md §4): for every friction law, a block pressed with
 // P and dragged until it slides as a whole transmits the friction force the law prescribes:
 // |T|/P = μ(φ), the radial function of W at the force direction φ, and ⟨−T/P, ŝ⟩ = N_W(ŝ) for
-// the slip direction ŝ (normality). Tolerance 1e-6 relative (issue 12): the solver stops at
+// the slip direction ŝ (normality). Tolerance 1e-6 relative: the solver stops at
 // relative increments of 1e-10, and in steady sliding every node slips by the platen's step.
 #include "frictopt/study/tribometer.hpp"
 

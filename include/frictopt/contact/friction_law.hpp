@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Friction laws as friction sets W (spec 02, §0 and §10.2; DESIGN.md "Friction sets"): the
+// Friction laws as friction sets W (docs/theory/state-problem.md §1, §3 "Friction sets"): the
 // friction resistance q = −τ at a contact node lies in s·W (s = λ for Coulomb), and the
 // dissipation is the support function N_W(u_t) = max_{w ∈ W} ⟨w, u_t⟩.
 #pragma once
@@ -16,8 +16,8 @@ namespace frictopt::contact {
 enum class FrictionLawKind {
   kInterval,        ///< 2D: W = [−μ₋, μ₊] (direction-dependent when μ₋ ≠ μ₊)
   kDisc,            ///< 3D: W = μ·(unit disc), exact isotropic Coulomb
-  kRegularPolygon,  ///< 3D: W = μ·conv{v_j}, v_j at φ_j = π(2j−1)/n (spec 02, §10.2)
-  kPolygon,         ///< 3D: W = conv{μ_j v_j}, per-vertex coefficients (spec 03, §16)
+  kRegularPolygon,  ///< 3D: W = μ·conv{v_j}, φ_j = π(2j−1)/n (docs/theory/state-problem.md §3)
+  kPolygon,         ///< 3D: W = conv{μ_j v_j}, per-vertex coefficients (thesis Remark 6.2.1)
   kEllipse,         ///< 3D: W = {(x/μ_x)² + (y/μ_y)² ≤ 1}, exact orthotropic law
   kEllipsePolygon   ///< 3D: W = conv{(μ_x cos φ_j, μ_y sin φ_j)}, vertices on the ellipse
 };
@@ -41,7 +41,7 @@ FrictionFace parse_friction_face(std::string_view text);
 
 /// A face and, for kEdge / kVertex, its 0-based index (−1 otherwise).
 /// Index convention: our vertex j is the thesis' vertex j+1 (φ = π(2j+1)/n), our edge j joins
-/// vertices j and j+1 and is crossed by the thesis' ray ρ_{j+1} (spec 03, §14.1–§14.2).
+/// vertices j and j+1 and is crossed by the thesis' ray ρ_{j+1} (docs/theory/sensitivity.md §2–§3).
 struct FaceLocation {
   FrictionFace face = FrictionFace::kInterior;
   int index = -1;
@@ -66,8 +66,8 @@ struct FrictionClassification {
 /// Tangential vectors are passed as Eigen::Vector2d for both dimensions: in 2D (interval laws)
 /// only component 0 is read and results have component 1 = 0; scalar overloads exist for 2D.
 /// Polygons are stored counter-clockwise; edge j joins vertices j and j+1 (mod n), has unit
-/// outward normal e_j and height h_j = ⟨e_j, w_j⟩ > 0 computed from the actual edge (spec 02,
-/// §10.2 and spec 03, §16), so linear constraints read ⟨e_j, q⟩ <= s·h_j.
+/// outward normal e_j and height h_j = ⟨e_j, w_j⟩ > 0 computed from the actual edge
+/// (docs/theory/state-problem.md §3), so linear constraints read ⟨e_j, q⟩ <= s·h_j.
 /// All methods are const and thread-safe.
 class FrictionLaw {
  public:
@@ -77,7 +77,7 @@ class FrictionLaw {
   /// 3D isotropic disc of radius μ >= 0 (exact Coulomb law).
   static FrictionLaw disc(double mu);
   /// 3D thesis n-gon μ·conv{v_j}, v_j = (cos φ_j, sin φ_j), φ_j = π(2j−1)/n, j = 1..n
-  /// (spec 02, §10.2). Requires n >= 3, μ >= 0.
+  /// (docs/theory/state-problem.md §3). Requires n >= 3, μ >= 0.
   static FrictionLaw regular_polygon(double mu, int n);
   /// 3D anisotropic polygon conv{μ_j v_j} with the n = mu_vertices.size() directions v_j of
   /// regular_polygon (n = 4 is the thesis' Remark 6.2.1). Requires n >= 3, every μ_j finite and
@@ -90,12 +90,12 @@ class FrictionLaw {
   static FrictionLaw ellipse_polygon(double mu_x, double mu_y, int n);
 
   /// The same law turned by `angle` radians counter-clockwise in the tangent plane: W_φ = R(φ)·W
-  /// with R(φ) = [[cos φ, −sin φ], [sin φ, cos φ]], so μ_φ(θ) = μ(θ − φ) (issue 12 item 4). Polygon
-  /// vertices and edge normals turn (vertex/edge indices keep their meaning, heights h_j do not
-  /// change); a disc or ellipse keeps its semi-axes in the law's own frame and every method
-  /// turns its argument into that frame, acts, and turns the result back. Orientations add up.
-  /// Throws InvalidInput for a non-finite angle, and for a nonzero one on a 2D interval law (a
-  /// 1D tangent line has no rotation).
+  /// with R(φ) = [[cos φ, −sin φ], [sin φ, cos φ]], so μ_φ(θ) = μ(θ − φ)
+  /// (docs/theory/friction-frame.md §1). Polygon vertices and edge normals turn (vertex/edge
+  /// indices keep their meaning, heights h_j do not change); a disc or ellipse keeps its semi-axes
+  /// in the law's own frame and every method turns its argument into that frame, acts, and turns
+  /// the result back. Orientations add up. Throws InvalidInput for a non-finite angle, and for a
+  /// nonzero one on a 2D interval law (a 1D tangent line has no rotation).
   FrictionLaw rotated(double angle) const;
 
   FrictionLawKind kind() const { return kind_; }
@@ -141,12 +141,12 @@ class FrictionLaw {
   double boundary_offset(const Eigen::Vector2d& q, double s) const;
   /// Face of s·W on which q lies, within absolute distance `tolerance`.
   FaceLocation locate(const Eigen::Vector2d& q, double s, double tolerance) const;
-  /// The sector of a slip direction u ≠ 0 in the thesis' language (spec 03, §14.2): the face of
-  /// W exposed by u. kVertex j when u is in the open cone between e_{j−1} and e_j (sector S_j,
-  /// q = λ w_j); kEdge j when u is within sin-angle `angle_tolerance` of e_j (ray ρ_j);
-  /// kSmooth for disc and ellipse; kInterior for u = 0.
+  /// The sector of a slip direction u ≠ 0 in the thesis' language (docs/theory/sensitivity.md §2):
+  /// the face of W exposed by u. kVertex j when u is in the open cone between e_{j−1} and e_j
+  /// (sector S_j, q = λ w_j); kEdge j when u is within sin-angle `angle_tolerance` of e_j (ray
+  /// ρ_j); kSmooth for disc and ellipse; kInterior for u = 0.
   FaceLocation sector(const Eigen::Vector2d& u, double angle_tolerance) const;
-  /// Force face and slip face at a node (spec 03, §3.2 and §14.2).
+  /// Force face and slip face at a node (docs/theory/sensitivity.md §3).
   FrictionClassification classify(const Eigen::Vector2d& q, double s, const Eigen::Vector2d& u,
                                   const ClassificationTolerance& tolerance) const;
   /// One line, e.g. "polygon(n=4, mu=[0.3, 0.5, 0.3, 0.5])"; a turned law adds

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // One table per enum gives both directions (to_string and parse), so the spellings used by
-// case files, reports and the CLI cannot drift (STYLE.md §2).
+// case files, reports and the CLI cannot drift.
 #pragma once
 
 #include <array>

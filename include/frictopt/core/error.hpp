@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The error types and the assert macro every frictopt module may use (STYLE.md §5):
+// The error types and the assert macro every frictopt module may use:
 // bad input at an API boundary throws InvalidInput; a result a caller cannot do without
 // that a solver failed to produce throws NumericalFailure; broken invariants are FRICTOPT_ASSERT.
 #pragma once

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Solver outcome shared by all Summaries (STYLE.md §4): non-convergence is a Status, not an
+// Solver outcome shared by all Summaries: non-convergence is a Status, not an
 // exception. Spellings come from one table, so reports and parsers cannot drift.
 #pragma once
 

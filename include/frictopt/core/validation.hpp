@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The one way a frictopt module reports a bad value (STYLE.md §4, Options::validate and the
+// The one way a frictopt module reports a bad value (Options::validate and the
 // case parser): "<context>: <field> = <value>; expected <expectation>". Modules used to carry
 // local num/fail/require copies of these; new code uses this header.
 #pragma once

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The cost functionals a study can name (docs/theory/costs.md), with their one spelling table: case
-// files, summaries and the CLI read and print these names (STYLE.md §2).
+// files, summaries and the CLI read and print these names.
 #pragma once
 
 #include <string_view>

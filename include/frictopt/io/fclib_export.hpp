@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Export of a body's frictional contact problem in the FCLIB "local" format (HDF5), so that
 // other solvers (Siconos, …) can be run on exactly our problems. The mapping between our dual
-// variables (spec 02, §0, §7, §9.2) and FCLIB's is in docs/contact.md, "FCLIB export".
+// variables (docs/theory/state-problem.md §1, §5) and FCLIB's is in docs/contact.md, "FCLIB
+// export".
 #pragma once
 
 #include <Eigen/Core>
@@ -68,13 +69,13 @@ void require_fclib_exportable(const contact::FrictionLaw& law, std::string_view 
 /// factorization.
 ///
 /// `state` must be the result of the most recent `body.solve(…)`: W is assembled through the
-/// factorization `body` holds (spec 02, §9.2: M = G A⁻¹ Gᵀ), and the gradient stored in the
-/// state is checked against it. Throws InvalidInput when the body has no foundation, when the
-/// state is not the body's last solve, when the problem is too large (options.max_unknowns),
-/// and when the friction law is not isotropic: FCLIB stores isotropic Coulomb cones only, so
-/// 3D kinds polygon, ellipse and ellipse_exact and 2D polygon with μ₋ ≠ μ₊ are rejected. For
-/// 3D kind = isotropic (the regular n-gon) the disc of the same μ is exported and the
-/// description says so.
+/// factorization `body` holds (docs/theory/state-problem.md §5: M = G A⁻¹ Gᵀ), and the gradient
+/// stored in the state is checked against it. Throws InvalidInput when the body has no foundation,
+/// when the state is not the body's last solve, when the problem is too large
+/// (options.max_unknowns), and when the friction law is not isotropic: FCLIB stores isotropic
+/// Coulomb cones only, so 3D kinds polygon, ellipse and ellipse_exact and 2D polygon with μ₋ ≠ μ₊
+/// are rejected. For 3D kind = isotropic (the regular n-gon) the disc of the same μ is exported and
+/// the description says so.
 [[nodiscard]] FclibLocalProblem make_fclib_local(const study::ElasticBody& body,
                                                  const study::BodyState& state,
                                                  const FclibExportOptions& options = {});

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Measurement files of `frictopt identify` (issue 7; format in docs/identification.md) and the
+// Measurement files of `frictopt identify` (format in docs/identification.md) and the
 // mapping of a case's [identification] table onto study::Identification::Options.
 #pragma once
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// JSON of every solver's Summary (STYLE.md §4: numerics stay JSON-free, JSON output lives in
-// io). Each function writes every field under its own name, NaN as null (json.hpp), enums
+// JSON of every solver's Summary (the numerical modules stay JSON-free, JSON output lives
+// in io). Each function writes every field under its own name, NaN as null (json.hpp), enums
 // in their report spelling, so summary.json files and tests read the same names as the code.
 #pragma once
 

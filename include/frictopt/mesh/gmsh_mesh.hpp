@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// A body brought as a Gmsh file (issue 11): a .msh mesh (format 4.1 or 2.2) or a .geo geometry
-// meshed at load time, read through the Gmsh library into a mesh::Mesh whose boundary sets are
-// the file's physical groups by name. One producer of a Mesh, next to the structured grid.
+// A body brought as a Gmsh file (docs/meshes.md): a .msh mesh (format 4.1 or 2.2) or a .geo
+// geometry meshed at load time, read through the Gmsh library into a mesh::Mesh whose boundary sets
+// are the file's physical groups by name. One producer of a Mesh, next to the structured grid.
 #pragma once
 
 #include <cstdint>

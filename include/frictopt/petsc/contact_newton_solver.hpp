@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The PETSc engine's state solve (issue 14; docs/petsc-engine.md): Coulomb contact of one body
+// The PETSc engine's state solve (docs/petsc-engine.md): Coulomb contact of one body
 // against the rigid foundation by a semismooth Newton method on the Alart–Curnier function,
 // condensed onto the displacements, with distributed assembly (MATMPIAIJ, block size dim,
 // rigid-body near-null space) and Krylov steps (GMRES + GAMG by default; every KSP/PC of
@@ -25,13 +25,13 @@ namespace frictopt::petsc {
 /// Semismooth Newton solver of the discrete Coulomb problem in the primal displacements.
 ///
 /// With r(u) = K u − f (K the stiffness over all DOFs, f the traction load), the force the
-/// foundation exerts on contact node i is r_i = (−q_i, λ_i) (spec 02, §9.1 in the dual
-/// variables z_i = (q_i, λ_i) of contact::ContactBoundary: A u = l + Gᵀz). With ρ > 0 and the
-/// gap w_i = u_ν^i + g_i, the Alart–Curnier quantities λ̂_i = λ_i − ρ w_i and q̂_i = q_i + ρ u_t^i
-/// give the nonsmooth equations
+/// foundation exerts on contact node i is r_i = (−q_i, λ_i) (docs/theory/state-problem.md §3, in
+/// the dual variables z_i = (q_i, λ_i) of contact::ContactBoundary: A u = l + Gᵀz). With ρ > 0 and
+/// the gap w_i = u_ν^i + g_i, the Alart–Curnier quantities λ̂_i = λ_i − ρ w_i and
+/// q̂_i = q_i + ρ u_t^i give the nonsmooth equations
 ///   F_ν^i = r_ν^i − max(0, λ̂_i) = 0,   F_t^i = r_t^i + proj_{max(0,λ̂_i)·W}(q̂_i) = 0
-/// (λ ⟂ w >= 0 and q ∈ λ ∂N_W(u_t): spec 02, §9.1–§9.3, §10.2), F = r on the other free DOFs and
-/// u = u_d on Γ_u. Each Newton step solves one linear system with a generalized Jacobian
+/// (λ ⟂ w >= 0 and q ∈ λ ∂N_W(u_t): docs/theory/state-problem.md §3), F = r on the other free DOFs
+/// and u = u_d on Γ_u. Each Newton step solves one linear system with a generalized Jacobian
 /// (non-symmetric where nodes slip) by KSP; a backtracking line search on ‖F‖₂ globalizes.
 /// Lifetime: `fem` and `boundary` must outlive the solver; PETSc must be initialized
 /// (PetscSession::require()).
@@ -53,7 +53,7 @@ class ContactNewtonSolver {
     /// ρ / mean diag(K) over the contact normal DOFs: the Alart–Curnier parameter in units of
     /// the stiffness (any ρ > 0 gives the same solution; ≈ 1 keeps both parts of F balanced).
     double augmentation = 1.0;
-    /// ε_cl of the node classification (spec 03, §3.2), as contact::TrescaSolver's.
+    /// ε_cl of the node classification (docs/theory/sensitivity.md §3), as contact::TrescaSolver's.
     double classification_tolerance = 1e-8;
     /// Relative tolerance of the adjoint's transposed Krylov solve (subgradient(); default,
     /// -ksp_rtol overrides). Tighter than the Newton steps': ψ is read as exact. In (0, 1).
@@ -128,9 +128,9 @@ class ContactNewtonSolver {
   };
 
   /// ξ of the cost Θ(α) = J(α, u, z) for the piece of the Newton linearization at the last
-  /// solve() (docs/petsc-engine.md, "Subgradient"; spec 03 §9 for the structure): with J_N the
-  /// generalized Jacobian at the converged state and z = (q, λ) = (−r_t, r_ν) the contact
-  /// residual, one transposed Krylov solve
+  /// solve() (docs/petsc-engine.md, "Subgradient"; docs/theory/sensitivity.md §6 for the
+  /// structure): with J_N the generalized Jacobian at the converged state and z = (q, λ) = (−r_t,
+  /// r_ν) the contact residual, one transposed Krylov solve
   ///   J_Nᵀ ψ = −(∇_u J + K Pᵀ ∇_z J)   (P: the contact rows of r with the sign of z)
   /// gives ξ = ∇_α J + ∇_α[vᵀ(K(α)u − f(α))] + B̃ᵀ c, v = L_rᵀψ + Pᵀ∇_z J, where L_r and the
   /// node coefficients c are the r- and gap-derivatives of the contact rows of F. `X`, `u`:

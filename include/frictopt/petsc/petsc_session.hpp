@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The process's PETSc/MPI lifetime as an RAII guard (issue 14): the command line creates one
-// PetscSession in main(); PETSc (and MPI) are initialized only when an engine first needs them,
-// so a run with engine = "direct" never calls MPI_Init and needs no mpirun.
+// The process's PETSc/MPI lifetime as an RAII guard (docs/petsc-engine.md): the command line
+// creates one PetscSession in main(); PETSc (and MPI) are initialized only when an engine first
+// needs them, so a run with engine = "direct" never calls MPI_Init and needs no mpirun.
 #pragma once
 
 #include <string>

@@ -47,18 +47,19 @@ struct ContactDefinition {
   /// bounds the dense M at 1.15 GB. The contact DOFs are always ordered last in the
   /// factorization so that L comes with it.
   int dense_delassus_max_unknowns = 12000;
-  /// The foundation plane n·x = d and the friction law's frame in it (issue 11 item 4; default
-  /// n = e_dim, d = 0). A non-standard one turns the Schur factor's dense M per node
+  /// The foundation plane n·x = d and the friction law's frame in it (docs/theory/friction-frame.md
+  /// §3; default n = e_dim, d = 0). A non-standard one turns the Schur factor's dense M per node
   /// (contact::turn_delassus); above dense_delassus_max_unknowns it applies M through the
   /// factorization (the Schur operator assumes the standard ±unit rows of G).
   contact::Foundation foundation;
 };
 
-/// The cost functional of a study (spec 05 §2.4; cost module).
+/// The cost functional of a study (docs/theory/costs.md; cost module).
 struct CostDefinition {
   cost::CostKind kind = cost::CostKind::kCompliance;
   /// kTargetPressure: uniform target pressure p̄ [Pa], λ̄_i = p̄·a_i; NaN: the initial total
-  /// normal force spread as a uniform pressure (spec 05 §2.3's reading of the thesis' target).
+  /// normal force spread as a uniform pressure (the reading of the thesis' target,
+  /// docs/theory/costs.md).
   double target_pressure = std::numeric_limits<double>::quiet_NaN();
   double exponent = 4.0;    ///< kNormalForcePower (thesis: 4), kPressureNorm (case files: 8)
   double smoothing = 1e-6;  ///< kTotalSlip [m]
@@ -68,12 +69,12 @@ struct CostDefinition {
   /// kTractionUniformity: t̄ = the area-weighted mean traction at the initial design (fixed),
   /// so that J penalizes both an uneven traction and a smaller transmitted shear.
   bool target_traction_initial_mean = false;
-  /// [[load_case]] + [study] (issue 13): J on each of K load cases, combined into one Θ
-  /// (study/load_cases.hpp); absent: J on the case file's own loads.
+  /// [[load_case]] + [study] (docs/theory/load-cases.md): J on each of K load cases, combined into
+  /// one Θ (study/load_cases.hpp); absent: J on the case file's own loads.
   std::optional<LoadCasesDefinition> load_cases;
-  /// [[program.step]] + [cost] (issue 13 item 2): J reads the state after step `step` of this
-  /// loading program, or (kDissipation) the whole history (study/history.hpp); null: the static
-  /// problem. Shared and const: copies of the definition read one program.
+  /// [[program.step]] + [cost] (docs/theory/history-adjoint.md): J reads the state after step
+  /// `step` of this loading program, or (kDissipation) the whole history (study/history.hpp); null:
+  /// the static problem. Shared and const: copies of the definition read one program.
   std::shared_ptr<const LoadingProgramDefinition> program;
   /// [cost] step: the 1-based step whose state J reads; 0 = the last step.
   int step = 0;
@@ -92,7 +93,7 @@ struct EngineDefinition {
   int max_iterations = 60;
 };
 
-/// A body brought as a mesh file (issue 11) instead of the structured grid: the mesh as read
+/// A body brought as a mesh file (docs/meshes.md) instead of the structured grid: the mesh as read
 /// (mesh::GmshMesh, no design variables) and how the design moves it (build_mesh.hpp).
 struct ImportedMeshDefinition {
   std::filesystem::path file;                   ///< where the mesh came from (for messages)
@@ -111,12 +112,14 @@ struct BodyDefinition {
   std::string contact_surface = "bottom";
   std::vector<fem::FaceDirichlet> dirichlet;  ///< Γ_u
   std::vector<fem::FaceTraction> tractions;   ///< Γ_p
-  std::vector<fem::NodalForce> forces;        ///< point / node-set forces [N] (issue 12, item 3)
+  /// Point / node-set forces [N] (docs/experiments.md §3).
+  std::vector<fem::NodalForce> forces;
   std::vector<fem::NodalConstraint> constraints;  ///< point / node-set displacements (constant in programs)
   shape::AdmissibleSetParameters admissible;  ///< Υ
   Eigen::VectorXd initial_design;             ///< α⁰
-  /// [design] friction_orientation (issue 13 item 3): the orientation φ of the contact's law is
-  /// a design variable too, x = (α, s) (study/orientation_design.hpp); absent: x = α.
+  /// [design] friction_orientation (docs/theory/friction-design.md): the orientation φ of the
+  /// contact's law is a design variable too, x = (α, s) (study/orientation_design.hpp);
+  /// absent: x = α.
   std::optional<OrientationDesignDefinition> friction_orientation;
   std::optional<ContactDefinition> contact;   ///< absent: no foundation (pure elasticity)
   linalg::SpdSolver::Options linear_solver;   ///< the backend that factorizes the stiffness

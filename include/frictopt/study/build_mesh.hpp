@@ -50,7 +50,7 @@ std::uint64_t memory_limit();
 
 /// Throws InvalidInput naming `file` and the Dirichlet groups when the prescribed DOFs of
 /// `dirichlet` leave a rigid-body motion of `mesh` free (3D: 3 translations and 3 rotations;
-/// 2D: 2 and 1), i.e. the stiffness matrix would be singular (issue 11 item 9).
+/// 2D: 2 and 1), i.e. the stiffness matrix would be singular.
 void check_rigid_modes_removed(const mesh::Mesh& mesh, const std::vector<fem::FaceDirichlet>& dirichlet,
                                const std::string& file);
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The optimality certificate of a design (thesis §5.3; spec 06 §6, spec 03 §8, §11.1): index
+// The optimality certificate of a design (thesis §5.3; docs/theory/stationarity.md): index
 // sets, the pieces 𝕃 and their ξ_i, the Clarke stationarity distance, condition (MF1′) and the
 // extreme-point (Mordukhovich) check.
 #pragma once
@@ -17,27 +17,30 @@ namespace frictopt::study {
 
 struct CertifyOptions {
   // Largest |𝕃| enumerated in full; above it a seeded sample of `cap` pieces (default piece
-  // first) is used and the Mordukhovich check is skipped (spec 03 §8; the thesis met 59049). >= 1.
+  // first) is used and the Mordukhovich check is skipped (docs/theory/sensitivity.md §4; the thesis
+  // met 59049). >= 1.
   int cap = 4096;
-  // A row of Υ is active when its slack is <= active_tolerance·max(1, |rhs|) (spec 06 §6.2). >= 0.
+  // A row of Υ is active when its slack is <= active_tolerance·max(1, |rhs|)
+  // (docs/theory/stationarity.md §2). >= 0.
   double active_tolerance = 1e-8;
   // Numerical rank of the (MF1′) matrix: singular values > rank_tolerance·σ_max count, after
-  // scaling rows and columns to unit 2-norm (spec 03 §11.1 suggests 1e-10·σ_max). In (0, 1).
+  // scaling rows and columns to unit 2-norm (docs/theory/stationarity.md §3). In (0, 1).
   double rank_tolerance = 1e-10;
   // ξ_i is an extreme point of conv{ξ_j} when dist(ξ_i, conv{ξ_j : ξ_j ≠ ξ_i}) >
-  // extreme_tolerance·max_j‖ξ_j‖ (spec 06 §6.3, step 1, with a margin for the QP's accuracy). > 0.
+  // extreme_tolerance·max_j‖ξ_j‖ (docs/theory/stationarity.md §4, step 1, with a margin for the
+  // QP's accuracy). > 0.
   double extreme_tolerance = 1e-8;
   // The extreme-point test costs one QP over the other generators per distinct ξ_i; above this
   // many distinct ξ_i it is skipped (reported, not an error). >= 1.
   int max_extreme_point_tests = 1024;
   // Distances δ ≤ stationary_tolerance·max_i‖ξ_i‖ are reported as "stationary" (the thesis gives
-  // no tolerance; spec 05 §2.6 item 3 — read δ against its scale). > 0.
+  // no tolerance; docs/theory/examples.md §4 item 3 — read δ against its scale). > 0.
   double stationary_tolerance = 1e-3;
   // Compute the Clarke distance only, without (MF1′) and the extreme-point test: the final
-  // check of study::optimize, which needs the distance alone (issue 16: a study run that says
+  // check of study::optimize, which needs the distance alone (a study run that says
   // "converged" must pass this certificate).
   bool clarke_only = false;
-  // Load cases, combine = "worst" (issue 13): case k is active when w_k J_k >= Θ −
+  // Load cases, combine = "worst": case k is active when w_k J_k >= Θ −
   // case_active_tolerance·|Θ|; the generators are those of every active case (docs/theory/
   // load-cases.md: the ε-active reading, since an optimizer stops near, not at, a tie). >= 0.
   double case_active_tolerance = 1e-3;
@@ -72,7 +75,7 @@ struct SampledCertificate {
   std::string message;
 };
 
-/// Condition (MF1′) of spec 03 §11.1: full row rank of the tight system's Jacobian.
+/// Condition (MF1′) (docs/theory/stationarity.md §3): full row rank of the tight system's Jacobian.
 struct Mf1Report {
   bool computed = false;
   std::string not_computed_reason;  ///< why `computed` is false (empty when computed)
@@ -84,14 +87,15 @@ struct Mf1Report {
   double sigma_min = kNaN;      ///< smallest of its min(rows, cols) singular values
   double tolerance = kNaN;      ///< absolute threshold used: rank_tolerance·σ_max
   bool full_row_rank = false;   ///< rank == rows
-  /// The rows of spec 03 §11.1's table alone (which omits u_t = 0 for the contact-and-stick
-  /// alternative of I₀ nodes with u_t = 0, rule R2), same columns: row count, rank, verdict.
+  /// The rows of the row table of docs/theory/stationarity.md §3 alone (which omits u_t = 0 for the
+  /// contact-and-stick alternative of I₀ nodes with u_t = 0, rule R2), same columns: row count,
+  /// rank, verdict.
   Eigen::Index spec_rows = 0;
   int spec_rank = 0;
   bool spec_full_row_rank = false;
 };
 
-/// The extreme-point test of spec 06 §6.3 (needs the full 𝕃, not a sample).
+/// The extreme-point test of docs/theory/stationarity.md §4 (needs the full 𝕃, not a sample).
 struct MordukhovichReport {
   bool computed = false;
   std::string message;                 ///< why not computed, or what was concluded
@@ -105,8 +109,9 @@ struct MordukhovichReport {
   bool stationary = false;             ///< δ_M ≤ stationary_tolerance·scale and (MF1′) full row rank
 };
 
-/// One load case in a certificate (issue 13): its value, whether it is active, its index sets
-/// and 𝕃, the columns of Certificate::subgradients it contributes, its (MF1′) report.
+/// One load case in a certificate (docs/theory/load-cases.md §3): its value, whether it is active,
+/// its index sets and 𝕃, the columns of Certificate::subgradients it contributes, its (MF1′)
+/// report.
 struct LoadCaseCertificate {
   std::string name;
   double value = kNaN;           ///< J_k
@@ -132,7 +137,8 @@ struct Certificate {
   Eigen::MatrixXd subgradients;              ///< d × m: ξ_i, column 0 = the default piece when sampled
   int default_piece_column = 0;              ///< column of the default piece (what the optimizer saw)
   double scale = kNaN;                       ///< max_i ‖ξ_i‖
-  /// δ = dist(0, conv{ξ_i} + N_Υ(α)) with weights θ and the active constraints (spec 06 §6.2).
+  /// δ = dist(0, conv{ξ_i} + N_Υ(α)) with weights θ and the active constraints
+  /// (docs/theory/stationarity.md §2).
   optim::StationarityCertificate clarke;
   double relative_distance = kNaN;           ///< δ / scale
   /// Names of the active rows of Υ (bounds, slope rows by shape's names) and the equalities.
@@ -142,12 +148,12 @@ struct Certificate {
   bool clarke_stationary = false;                ///< δ ≤ stationary_tolerance·scale
   Mf1Report mf1;
   MordukhovichReport mordukhovich;
-  /// Load cases (issue 13; empty without): per case. `subgradients` then holds, for "worst", the
+  /// Load cases (empty without): per case. `subgradients` then holds, for "worst", the
   /// union over the active cases of w_k ξ_{k,i}; for "weighted", sums Σ_k w_k ξ_{k,i_k} (all
   /// combinations up to `cap`, else the default pieces varied one case at a time: sampled).
   std::vector<LoadCaseCertificate> load_cases;
   std::string combine;  ///< "worst" or "weighted" (empty without load cases)
-  /// A cost along a loading history (issue 13 item 2; empty without): per step, its index sets
+  /// A cost along a loading history (empty without): per step, its index sets
   /// and |𝕃_k|; `index_sets` is the step the cost reads (the last for the dissipation), and
   /// `subgradients` the default pieces varied one step at a time (docs/theory/history-adjoint.md §4).
   /// With load cases given as programs: the lines of each active case of more than one step,
@@ -160,9 +166,9 @@ struct Certificate {
   [[nodiscard]] std::string report() const;
 };
 
-/// Computes the certificate of α (spec 06 §6; thesis §5.3) with the oracle's body and cost:
-/// solves the state, classifies, enumerates 𝕃 (or samples it), computes every ξ_i by one adjoint
-/// each, the stationarity QP, the (MF1′) matrix by d + dim·p solves with the existing
+/// Computes the certificate of α (docs/theory/stationarity.md; thesis §5.3) with the oracle's body
+/// and cost: solves the state, classifies, enumerates 𝕃 (or samples it), computes every ξ_i by one
+/// adjoint each, the stationarity QP, the (MF1′) matrix by d + dim·p solves with the existing
 /// factorization, and the extreme-point test. Throws InvalidInput when α has the wrong size,
 /// violates Υ by more than the active tolerance, or inverts an element; a failed state solve is
 /// a Status in the result.

@@ -42,7 +42,8 @@ struct ContactResult {
   contact::ContactState state;       ///< z = (q, λ) per node, u_t and u_ν + g, node statuses
   Eigen::VectorXd gaps;              ///< initial gaps g = B̃α at the contact nodes [m]
   contact::CoulombSolver::Summary summary;
-  /// Total forces, areas, stick zone (issue 12, item 6), from `state` and the tributary areas.
+  /// Total forces, areas, stick zone (docs/experiments.md §1), from `state` and the tributary
+  /// areas.
   contact::ContactResultants resultants;
   bool dense_delassus = false;       ///< used: dense M (true) or the Schur-factor operator
   /// M = G A⁻¹ Gᵀ at this design (dense or from the Schur factor), reused by the sensitivity.
@@ -50,7 +51,7 @@ struct ContactResult {
   /// The dense M when dense_delassus (else null).
   std::shared_ptr<const Eigen::MatrixXd> delassus_matrix;
   /// A floating body (ElasticBody::num_floating_modes() > 0): the augmented-Lagrangian report
-  /// (spec 07 §2); `summary` is then its last inner Coulomb solve.
+  /// (docs/experiments.md §5); `summary` is then its last inner Coulomb solve.
   std::optional<contact::FloatingCoulombSolver::Summary> floating;
   /// β: the rigid motion R β added to A⁺(l + Gᵀz) (empty for a held body).
   Eigen::VectorXd rigid_motion;
@@ -78,7 +79,7 @@ struct BodyState {
 
 /// The loads of one step of a loading program (study/loading_program.hpp) in place of the
 /// definition's: the step's free-DOF load, its prescribed values, and the slip reference of
-/// incremental Coulomb friction (spec 07 §1; docs/theory/loading-program.md).
+/// incremental Coulomb friction (docs/theory/loading-program.md §2).
 struct StepLoads {
   /// The difference l^k − l(α) of the step's free-DOF load (tractions, nodal forces and the
   /// lifting −A_fd u_d^k of its prescribed displacements) from the definition's load.
@@ -122,7 +123,8 @@ class ElasticBody {
     return orientation_design_ ? &*orientation_design_ : nullptr;
   }
   /// The number r of rigid-body modes the Dirichlet conditions leave free (0: a held body). A
-  /// floating body (r > 0, only with contact) is solved with the kernel-aware dual of spec 07 §2.
+  /// floating body (r > 0, only with contact) is solved with the kernel-aware dual
+  /// (docs/experiments.md §5).
   int num_floating_modes() const { return static_cast<int>(fixing_dofs_.size()); }
   /// The DOFs held at 0 to factorize the floating body's stiffness (its generalized inverse).
   const std::vector<int>& fixing_dofs() const { return fixing_dofs_; }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Floating bodies (issue 12, item 2; spec 07 §2; docs/experiments.md §5): the rigid-body modes
+// Floating bodies (docs/experiments.md §5): the rigid-body modes
 // the Dirichlet conditions leave free, the DOFs that fix them for a generalized inverse A⁺ of
 // the stiffness (as in TFETI: a Cholesky factorization of A with r DOFs held, so that the
 // remaining block is nonsingular), and the friction-capacity report of a load that friction

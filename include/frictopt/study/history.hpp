@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Costs along a loading history (issue 13, item 2; docs/theory/history-adjoint.md): the steps of
+// Costs along a loading history (docs/theory/history-adjoint.md): the steps of
 // a loading program at one design on one factorization, a cost that reads the state after one
 // step (any cost kind but the compliance) or the whole history (the friction dissipation), and
 // one element ξ of its pseudodifferential by an adjoint run backward over the steps, each step

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Identification of friction coefficients (and optionally Young's modulus) from measured contact
-// quantities (issue 7): weighted nonlinear least squares with Ceres, Jacobians from our forward
-// sensitivities (sensitivity/parameter_sensitivity.hpp), parameter covariance and an
+// quantities (docs/identification.md): weighted nonlinear least squares with Ceres, Jacobians from
+// our forward sensitivities (sensitivity/parameter_sensitivity.hpp), parameter covariance and an
 // identifiability report. Ceres stays inside src/study; this header names none of its types.
 #pragma once
 
@@ -22,7 +22,8 @@ namespace frictopt::study {
 
 /// A measurable contact quantity. Node quantities read contact node i; totals sum over all
 /// contact nodes. Signs: forces and tractions are those the foundation exerts on the body
-/// (τ = −q, spec 02 §0); slips are the tangential displacements u_t of the node [m].
+/// (τ = −q, docs/theory/state-problem.md §1); slips are the tangential displacements u_t of the
+/// node [m].
 enum class MeasuredQuantity {
   kNormalForce,             ///< λ_i [N] (2D: N per metre of thickness)
   kPressure,                ///< λ_i / a_i [Pa], a_i the tributary area
@@ -94,7 +95,7 @@ std::string_view to_string(Identifiability identifiability);
 /// Weighted least squares  min_p ½ Σ_i ρ(((model_i(p) − value_i)/σ_i)²)  over lower <= p <= upper,
 /// where model_i reads the contact state of the case's body at its initial design with the
 /// friction law's parameters (and E) set to p. The state map is piecewise smooth; the Jacobian
-/// is that of the default piece (spec 03, §10/§14.6) by forward sensitivities
+/// is that of the default piece (docs/theory/sensitivity.md §4) by forward sensitivities
 /// (sensitivity::contact_state_derivative), so one Coulomb solve and one contact-sized LU per
 /// trial point. E enters through M(E) = (E₀/E) M₀ and the free response, which is exact for
 /// linear elasticity (A and the Dirichlet lifting scale with E).

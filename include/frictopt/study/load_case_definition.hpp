@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Load cases of a study (issue 13, items 1 and 6; docs/theory/load-cases.md): the same body at
+// Load cases of a study (docs/theory/load-cases.md): the same body at
 // the same design under K load sets, the cost J evaluated on each, combined into one objective
 // Θ(α) = max_k w_k J_k(α) ("worst") or Σ_k w_k J_k(α) ("weighted"). Plain definitions only (the
 // case file's [[load_case]] tables and [study] combine); study/load_cases.hpp solves them.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The load cases of a study at one design (issue 13, item 1; docs/theory/load-cases.md): the K
+// The load cases of a study at one design (docs/theory/load-cases.md): the K
 // cases' loads as StepLoads for ElasticBody::solve_step — so that one factorization of A(α) and one
 // Delassus operator serve every case (the stiffness does not depend on the load) — the part of a
 // case's sensitivity the body's own load does not give, and the combination Θ of the cases' costs.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Quasi-static loading programs (issue 12, item 1; spec 07 §1; docs/theory/loading-program.md):
+// Quasi-static loading programs (docs/theory/loading-program.md):
 // a sequence of load steps on one body at one design, each step scaling the case's tractions,
 // point forces and prescribed displacements; Coulomb friction acts on the slip increment since
 // the previous step and the contact state carries over. The stiffness is the same in every

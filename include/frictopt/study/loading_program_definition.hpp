@@ -1,9 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The definition of a quasi-static loading program (issue 12, item 1; docs/theory/loading-
-// program.md): its steps, each scaling the body's [[load]], [[dirichlet]] and [[force]] tables.
-// Plain data: the [[program.step]] tables of a case, or a load case's own [[load_case.step]]
-// tables (issue 13, item 1); study/loading_program.hpp runs one, study/history.hpp puts a cost
-// on its history.
+// The definition of a quasi-static loading program (docs/theory/loading-program.md): its
+// steps, each scaling the body's [[load]], [[dirichlet]] and [[force]] tables. Plain data: the [[program.step]] tables of a case, or a load case's own
+// [[load_case.step]] tables (docs/theory/load-cases.md §5); study/loading_program.hpp runs one,
+// study/history.hpp puts a cost on its history.
 #pragma once
 
 #include <cstddef>

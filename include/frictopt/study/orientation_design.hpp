@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The orientation φ of an anisotropic 3D friction law as a design variable alongside the shape
-// (issue 13 item 3; docs/theory/friction-design.md): the optimizer's variable x = (α, s) with
+// (docs/theory/friction-design.md): the optimizer's variable x = (α, s) with
 // s = k·φ, the law turned to φ, the bound on φ in Υ, and ∂Θ/∂s from the adjoint ψ_z.
 #pragma once
 

@@ -35,8 +35,8 @@ void require_admissible_design(const ElasticBody& body, const Eigen::Ref<const E
                                double tolerance, std::string_view who);
 
 /// Bundle trust options for shape studies: the objective is scaled by |Θ(α⁰)| so that ε is a
-/// relative stationarity tolerance whatever the cost's units (spec 04 §7 "robustness"), and the
-/// first step is at most the design range C0 (the optimizer's max_step_length).
+/// relative stationarity tolerance whatever the cost's units (docs/optim.md, "The stopping test"),
+/// and the first step is at most the design range C0 (the optimizer's max_step_length).
 optim::BundleTrust::Options default_study_options(const BodyDefinition& body);
 
 /// Runs (or, from a checkpoint, resumes) the optimization. The oracle must belong to `body`.

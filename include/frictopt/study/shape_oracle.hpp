@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The shape problem as an oracle: Θ(α) = J(α, S(α)) and one subgradient ξ (spec 03, §13/§15),
-// with the index sets and reports a user needs to trust them; results are cached per design.
+// The shape problem as an oracle: Θ(α) = J(α, S(α)) and one subgradient ξ
+// (docs/theory/sensitivity.md §6), with the index sets and reports a user needs to trust them;
+// results are cached per design.
 #pragma once
 
 #include <Eigen/Core>
@@ -41,15 +42,17 @@ struct Evaluation {
   contact::ContactResultants resultants;
   double state_seconds = 0.0;
   double subgradient_seconds = 0.0;
-  /// Load cases (issue 13): J_k of every case (unweighted, in the cases' order); empty without.
+  /// Load cases (docs/theory/load-cases.md): J_k of every case (unweighted, in the cases' order);
+  /// empty without.
   std::vector<double> case_values;
   /// Load cases: the case whose state `index_sets`, `state` and `contact` describe — for "worst"
   /// the first case attaining the max, whose subgradient ξ is (LoadCases::combine); −1 without.
   /// (Each case's state is the one its cost reads: the cost step of its loading program.)
   int selected_case = -1;
   int factorizations = 0;  ///< numeric factorizations of A for this evaluation (1 with K cases)
-  /// A cost along a loading history (issue 13 item 2): every step's index sets (`index_sets` is
-  /// the cost step's; with load cases, of the selected case's program); empty without a program.
+  /// A cost along a loading history (docs/theory/history-adjoint.md): every step's index sets
+  /// (`index_sets` is the cost step's; with load cases, of the selected case's program); empty
+  /// without a program.
   std::vector<sensitivity::IndexSets> step_index_sets;
   /// Load cases with combine = "worst" and case cuts on (ShapeOracle::set_case_cuts): the cut
   /// (w_k J_k, w_k ξ_k) of every other case k with w_k > 0 at its default pieces — the pieces of
@@ -58,10 +61,10 @@ struct Evaluation {
   std::vector<optim::PieceCut> case_cuts;
 };
 
-/// Θ(α) and ξ ∈ ∂Θ(α) (or of the pseudodifferential, spec 03 §8) for a body with contact and a
-/// cost. With [design] friction_orientation every "α" below is the optimizer's x = (α, s): the
-/// body turns its law to φ = s/k per solve, states and the cache are keyed by x, and ξ gets
-/// ∂Θ/∂s as its last entry (study/orientation_design.hpp; state_derivative takes α only).
+/// Θ(α) and ξ ∈ ∂Θ(α) (or of the pseudodifferential, docs/theory/sensitivity.md §7) for a body with
+/// contact and a cost. With [design] friction_orientation every "α" below is the optimizer's x =
+/// (α, s): the body turns its law to φ = s/k per solve, states and the cache are keyed by x, and ξ
+/// gets ∂Θ/∂s as its last entry (study/orientation_design.hpp; state_derivative takes α only).
 /// Lifetime: `body` must outlive the oracle; the oracle owns the cost. Not thread-safe.
 class ShapeOracle final : public optim::Oracle {
  public:
@@ -157,14 +160,14 @@ class ShapeOracle final : public optim::Oracle {
   std::deque<std::shared_ptr<BodyState>> recent_;  // newest first, state_ included
   std::map<std::vector<double>, Evaluation> cache_;
   int state_solves_ = 0;
-  // Load cases (issue 13): their definitions and combination, one history per case (each with
+  // Load cases: their definitions and combination, one history per case (each with
   // its cost, its states at state_alpha_ and its own warm starts; state_ is the selected case's).
   std::unique_ptr<LoadCases> cases_;
   std::vector<std::unique_ptr<ProgramHistory>> case_histories_;
   int selected_ = 0;
   int last_factorizations_ = 0;
   bool case_cuts_ = true;
-  std::unique_ptr<ProgramHistory> history_;  // a cost along a loading program (issue 13 item 2)
+  std::unique_ptr<ProgramHistory> history_;  // a cost along a loading program
 };
 
 }  // namespace frictopt::study

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// A virtual tribometer (issue 12, item 4; docs/experiments.md): a rigid platen glued to the
+// A virtual tribometer (docs/experiments.md §4): a rigid platen glued to the
 // specimen's top face presses it onto the foundation until the normal force is P, then drags it
 // sideways in direction θ, ramping the displacement until the specimen slides as a whole. Per θ
 // it records the tangential force at the onset of gross sliding, its direction, the slip
@@ -33,7 +33,7 @@ enum class TribometerDrive {
   /// The specimen floats (no Dirichlet condition): the top face carries the normal force P and a
   /// ramped tangential force Q as uniform tractions; contact and friction alone hold it. The
   /// onset of gross sliding is the largest Q with a static equilibrium, bracketed by the ramp
-  /// and refined by bisection (issue 12 item 4: "pulls it with a tangential force").
+  /// and refined by bisection (docs/experiments.md, "Pulling with a force").
   kForce
 };
 /// "displacement", "force".
