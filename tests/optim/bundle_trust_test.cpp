@@ -336,8 +336,8 @@ TEST(BundleTrust, StepBoundAdaptsToVariablesScaledByAThousand) {
 }
 
 TEST(BundleTrust, LargeSubgradientsNeitherStallTheQpNorCreep) {
-  // ‖g‖ ~ 1e7: the unscaled direction QP reported "unbounded" at the first iteration (issue
-  // 16). Weighted ℓ1 with weights 1e6..4e6: minimum 0 at c.
+  // ‖g‖ ~ 1e7: the unscaled direction QP reported "unbounded" at the first iteration (before
+  // the QP was scaled, docs/optim.md "The step bound"). Weighted ℓ1 with weights 1e6..4e6: minimum 0 at c.
   auto oracle = weighted_l1(Eigen::Vector3d(1e6, 4e6, 2e6), Eigen::Vector3d(1.0, -2.0, 3.0));
   const auto s = fo::BundleTrust({}).minimize(oracle, Eigen::Vector3d(50.0, 50.0, 50.0));
   ASSERT_TRUE(s.converged()) << s.brief_report();
