@@ -9,7 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libtomlplusplus-dev libfmt-dev nlohmann-json3-dev
   libfclib-dev libhdf5-dev
-  libgmsh-dev gmsh
+  libgmsh-dev gmsh python3-gmsh
   python3 python3-numpy python3-matplotlib python3-vtk9 xvfb xauth
   python3-siconos python3-h5py python3-scipy
   pybind11-dev python3-dev python3-pytest
