@@ -13,16 +13,16 @@ gmsh = pytest.importorskip("gmsh")
 
 def test_a_mesh_scripted_with_the_gmsh_api_is_a_body(tmp_path) -> None:
     msh = tmp_path / "box.msh"
-    gmsh.initialize(["gmsh", "-noenv"], readConfigFiles=False)
+    gmsh.initialize(readConfigFiles=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.add("box")
         gmsh.model.occ.addBox(0.0, 0.0, 0.0, 1.0, 1.0, 0.4)
         gmsh.model.occ.synchronize()
         # The box's faces: 1 x1 = 0, 2 x1 = 1, 3 x2 = 0, 4 x2 = 1, 5 x3 = 0, 6 x3 = 0.4.
-        gmsh.model.addPhysicalGroup(3, [1], name="Body")
-        gmsh.model.addPhysicalGroup(2, [5], name="Bottom")
-        gmsh.model.addPhysicalGroup(2, [6], name="Top")
+        gmsh.model.setPhysicalName(3, gmsh.model.addPhysicalGroup(3, [1]), "Body")
+        gmsh.model.setPhysicalName(2, gmsh.model.addPhysicalGroup(2, [5]), "Bottom")
+        gmsh.model.setPhysicalName(2, gmsh.model.addPhysicalGroup(2, [6]), "Top")
         gmsh.option.setNumber("Mesh.MeshSizeMax", 0.4)
         gmsh.model.mesh.generate(3)
         gmsh.write(str(msh))
