@@ -17,6 +17,8 @@ namespace frictopt::study {
 namespace {
 
 using detail::kDegree;
+// An automatic pull: at most this many times ramp_steps steps of the chosen length's step.
+constexpr int kAutomaticRampFactor = 20;
 // The press is solved to this relative accuracy in P; P(δ) is piecewise linear and increasing,
 // and exactly linear (one secant step) for a flat specimen in full contact.
 constexpr double kPressTolerance = 1e-10;
@@ -197,7 +199,10 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
   summary.automatic_pull = !experiment_.pull_displacement;
   const double final_pull = experiment_.pull_displacement.value_or(automatic_pull_displacement(body_, target));
   summary.pull_displacement = final_pull;
-  const int max_steps = summary.automatic_pull ? 4 * experiment_.ramp_steps : experiment_.ramp_steps;
+  const int max_steps = summary.automatic_pull ? kAutomaticRampFactor * experiment_.ramp_steps : experiment_.ramp_steps;
+  // An automatic pull ramps on until the sliding reading |T|/P changes by less than this
+  // relative amount from one step to the next.
+  constexpr double kSteadyReading = 1e-7;
   for (double angle_deg : experiment_.angles_degrees) {
     TribometerAngleResult r;
     r.angle_degrees = angle_deg;
@@ -223,8 +228,13 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
       }
       const bool steady = sliding && r.onset_step < k - 1;
       if (summary.automatic_pull && steady) {
+        // Sliding, but the friction force turns towards the pull over a few more steps: read
+        // the law once two consecutive readings agree to kSteadyReading (or at the last step).
+        const double previous_reading = r.measured_coefficient;
         detail::read_sliding_law(s, law, r);
-        break;
+        if (std::abs(r.measured_coefficient - previous_reading) <= kSteadyReading * r.measured_coefficient) break;
+        if (k < max_steps) r.steady_sliding = false;  // not yet steady: this reading is provisional
+        continue;
       }
       if (k == experiment_.ramp_steps && steady) detail::read_sliding_law(s, law, r);
     }

@@ -126,9 +126,10 @@ TEST(Tribometer, WithoutAPullLengthTheRunRampsToSteadySliding) {
     ASSERT_TRUE(a.steady_sliding);
     EXPECT_LE(a.coefficient_error, 1e-6);
     EXPECT_LE(a.normality_residual, 1e-6);
-    // It stops at the second sliding step: the ramp ends one step after the onset.
-    EXPECT_EQ(static_cast<int>(a.ramp.size()), a.onset_step + 2);
-    EXPECT_LE(static_cast<int>(a.ramp.size()), 4 * e.ramp_steps);
+    // It stops once two sliding readings agree to 1e-7, well before the cap of 20 ramps.
+    std::printf("θ = %.0f°: onset at step %d, stopped at step %zu, |T|/P = %.9f, μ(φ) = %.9f\n", a.angle_degrees,
+                a.onset_step + 1, a.ramp.size(), a.measured_coefficient, a.law_coefficient);
+    EXPECT_LT(static_cast<int>(a.ramp.size()), 20 * e.ramp_steps);
   }
 }
 

@@ -52,7 +52,8 @@ struct TribometerDefinition {
   double normal_force = 0.0;                ///< P [N] pressed by the platen (or the top traction); > 0
   /// kDisplacement: the ramp's final tangential platen displacement [m]; > 0. Absent: chosen
   /// from the law and the specimen (Tribometer::automatic_pull_displacement) and the ramp goes on
-  /// past it, step by step, until the specimen slides steadily (at most 4·ramp_steps steps).
+  /// past it, step by step, until the specimen slides steadily (the reading |T|/P changes by less than 1e-7 between
+  /// steps; at most 20·ramp_steps steps).
   std::optional<double> pull_displacement;
   /// kForce: the ramp's final tangential force as a multiple of P (Q_max = ratio·P); > 0. Set it
   /// above the law's largest coefficient to reach gross sliding in every direction.
