@@ -21,6 +21,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using frictopt::testing::read_text;
+using frictopt::testing::replace_key;
+using frictopt::testing::write_text;
 using frictopt::testing::RunResult;
 
 RunResult run(const std::string& arguments) { return frictopt::testing::run_frictopt(arguments); }
@@ -29,14 +31,6 @@ fs::path fresh(const std::string& name) {
   const fs::path dir = frictopt::testing::fresh_directory("run_files_" + name);
   fs::create_directories(dir);
   return dir;
-}
-
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
-
-std::string replace_key(const std::string& text, const std::string& key, const std::string& value) {
-  const std::regex line("^" + key + R"( *=[^\n]*)", std::regex::multiline);
-  EXPECT_TRUE(std::regex_search(text, line)) << "no '" << key << " =' line";
-  return std::regex_replace(text, line, key + " = " + value, std::regex_constants::format_first_only);
 }
 
 // The thesis' example 5.2.1 (2D, 450 nodes): a few iterations take well under a second.

@@ -21,16 +21,13 @@ namespace {
 namespace fs = std::filesystem;
 
 using frictopt::testing::read_text;
+using frictopt::testing::replace_key;
+using frictopt::testing::write_text;
 using frictopt::testing::RunResult;
 
 /// The log file is per test and process (common/cli_runner.hpp): the three tests here run in
 /// parallel under ctest -j, and one shared log once interleaved their outputs.
 RunResult run(const std::string& arguments) { return frictopt::testing::run_frictopt(arguments); }
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-}
 
 fs::path fresh_directory(const std::string& name) {
   const fs::path dir = frictopt::testing::fresh_directory("studies_" + name);
@@ -39,12 +36,6 @@ fs::path fresh_directory(const std::string& name) {
 }
 
 /// Replaces the first line starting with `key =` by `key = value` (the rest of the file kept).
-std::string replace_key(const std::string& text, const std::string& key, const std::string& value) {
-  const std::regex line("^" + key + R"( *=[^\n]*)", std::regex::multiline);
-  EXPECT_TRUE(std::regex_search(text, line)) << "no '" << key << " =' line";
-  return std::regex_replace(text, line, key + " = " + value, std::regex_constants::format_first_only);
-}
-
 int count_lines(const fs::path& path) {
   std::ifstream in(path);
   int n = 0;

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -17,6 +18,19 @@
 #include "common/temporary_directory.hpp"
 
 namespace frictopt::testing {
+
+/// Writes `text` to `path` byte for byte (a case variant, a damaged run file).
+inline void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+/// `text` with the first line "key = ..." replaced by "key = value" (a case file's setting);
+/// fails the test when there is no such line.
+inline std::string replace_key(const std::string& text, const std::string& key, const std::string& value) {
+  const std::regex line("^" + key + R"( *=[^\n]*)", std::regex::multiline);
+  EXPECT_TRUE(std::regex_search(text, line)) << "no '" << key << " =' line";
+  return std::regex_replace(text, line, key + " = " + value, std::regex_constants::format_first_only);
+}
 
 struct RunResult {
   int exit_code = -1;
