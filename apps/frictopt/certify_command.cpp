@@ -18,7 +18,6 @@
 #include "frictopt/study/certificate.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 #include "frictopt/study/elastic_body.hpp"
-#include "frictopt/study/load_change.hpp"
 
 namespace frictopt::app {
 
@@ -54,21 +53,8 @@ int run_certify(const std::filesystem::path& run_dir, int cap, double sample_rad
   }
   // The load the certified design carries against the initial design's (one more state solve,
   // after the certificate): a design can be stationary for a cost it lowered by carrying less.
-  const study::Evaluation& final = oracle.evaluate_design(alpha, false);
-  const contact::ContactResultants final_load = final.resultants;
-  const bool final_ok = final.ok;
-  const study::Evaluation& initial = oracle.evaluate_design(body.initial_design(), false);
-  io::JsonValue warnings = io::JsonValue::array();
-  if (final_ok && initial.ok) {
-    for (const std::string& w : study::load_change_warnings(initial.resultants, final_load)) {
-      fmt::print("warning: {}\n", w);
-      warnings.push_back(w);
-    }
-    json["initial_load"] = io::load_to_json(initial.resultants);
-    json["final_load"] = io::load_to_json(final_load);
-  }
-  json["warnings"] = warnings;
-  json["load_warning_fraction"] = study::kLoadChangeWarningFraction;
+  io::add_members(json, io::load_comparison(oracle, alpha, body.initial_design()));
+  for (const io::JsonValue& w : json.at("warnings").as_array()) fmt::print("warning: {}\n", w.as_string());
   json["command"] = "certify";
   io::add_members(json, io::run_environment());
   json["case"] = case_path.string();

@@ -260,6 +260,10 @@ cardinality_L and friction_gradient {name: ∂Θ/∂p}. ``ok`` is False when the
         json["design"] = design_name;
         json["cost"] = o->oracle->cost().name();
         io::add_members(json, io::to_json(c, options));
+        {
+          py::gil_scoped_release release;
+          io::add_members(json, io::load_comparison(*o->oracle, alpha, o->body->initial_design()));
+        }
         if (run) run->write_json_file(io::RunDirectory::kCertificate, json);
         py::object result = to_python(json);
         result.attr("__setitem__")("report", c.report());

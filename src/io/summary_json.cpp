@@ -8,6 +8,7 @@
 
 #include "frictopt/linalg/blas_threads.hpp"
 #include "frictopt/mesh/design_extension.hpp"
+#include "frictopt/study/load_change.hpp"
 
 namespace frictopt::io {
 namespace {
@@ -138,6 +139,24 @@ JsonValue load_to_json(const contact::ContactResultants& r) {
   j["num_stick"] = r.num_stick;
   j["num_slip"] = r.num_slip;
   j["num_separated"] = r.num_separated;
+  return j;
+}
+
+JsonValue load_comparison(study::ShapeOracle& oracle, const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                          const Eigen::Ref<const Eigen::VectorXd>& initial_design) {
+  JsonValue j = JsonValue::object();
+  const study::Evaluation& final = oracle.evaluate_design(alpha, false);
+  const contact::ContactResultants final_load = final.resultants;  // the cache may move on
+  const bool final_ok = final.ok;
+  const study::Evaluation& initial = oracle.evaluate_design(initial_design, false);
+  JsonValue warnings = JsonValue::array();
+  if (final_ok && initial.ok) {
+    for (const std::string& w : study::load_change_warnings(initial.resultants, final_load)) warnings.push_back(w);
+    j["initial_load"] = load_to_json(initial.resultants);
+    j["final_load"] = load_to_json(final_load);
+  }
+  j["warnings"] = std::move(warnings);
+  j["load_warning_fraction"] = study::kLoadChangeWarningFraction;
   return j;
 }
 

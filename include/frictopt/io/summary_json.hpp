@@ -15,6 +15,7 @@
 #include "frictopt/study/certificate.hpp"
 #include "frictopt/study/elastic_body.hpp"
 #include "frictopt/study/identification.hpp"
+#include "frictopt/study/shape_oracle.hpp"
 #include "frictopt/study/tribometer.hpp"
 
 namespace frictopt::io {
@@ -47,6 +48,11 @@ void add_members(JsonValue& into, const JsonValue& members);
 /// The load a design carries (a run's initial_load / final_load): total normal force, total
 /// tangential force and its norm, contact area, node counts.
 [[nodiscard]] JsonValue load_to_json(const contact::ContactResultants& resultants);
+/// certify's comparison of the load the design `alpha` carries with the initial design's
+/// (study::load_change_warnings; a state solve per design the oracle has not cached):
+/// "initial_load", "final_load" (when both solve), "warnings", "load_warning_fraction".
+[[nodiscard]] JsonValue load_comparison(study::ShapeOracle& oracle, const Eigen::Ref<const Eigen::VectorXd>& alpha,
+                                        const Eigen::Ref<const Eigen::VectorXd>& initial_design);
 [[nodiscard]] JsonValue to_json(const sensitivity::AdjointSensitivity::Summary& summary);
 /// Without the per-iteration history (history.csv holds it) and the last state (checkpoint.json).
 [[nodiscard]] JsonValue to_json(const optim::BundleTrust::Summary& summary);
