@@ -201,6 +201,8 @@ TEST(FoundationFrame, ThePetscEngineRefusesATiltedFoundationNamingIt) {
     ElasticBody body(def);
     ADD_FAILURE() << "the PETSc engine accepted a tilted foundation";
   } catch (const InvalidInput& e) {
+    // A build without PETSc (the sanitizer build) refuses the engine itself first.
+    if (std::string(e.what()).find("built without PETSc") != std::string::npos) GTEST_SKIP() << e.what();
     EXPECT_NE(std::string(e.what()).find("foundation: solver.engine = \"petsc\" supports the default foundation only"),
               std::string::npos)
         << e.what();
