@@ -131,14 +131,12 @@ JsonValue to_json(const contact::ContactResultants& r) {
 }
 
 JsonValue load_to_json(const contact::ContactResultants& r) {
+  // The members of to_json(r) that describe the load (the stick zone's geometry left out).
+  const JsonValue all = to_json(r);
   JsonValue j = JsonValue::object();
-  j["total_normal_force"] = r.normal_force;
-  j["total_tangential_force"] = Eigen::VectorXd(r.tangential_force.head(r.dim - 1));
-  j["total_tangential_force_norm"] = r.tangential_force_norm;
-  j["contact_area"] = r.contact_area;
-  j["num_stick"] = r.num_stick;
-  j["num_slip"] = r.num_slip;
-  j["num_separated"] = r.num_separated;
+  for (const char* key : {"total_normal_force", "total_tangential_force", "total_tangential_force_norm",
+                          "contact_area", "num_stick", "num_slip", "num_separated"})
+    j[key] = all.at(key);
   return j;
 }
 

@@ -197,7 +197,8 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
   // A pull the case gives is ramped in ramp_steps steps; an automatic one goes on in steps of
   // the same size until the specimen slides steadily (two sliding steps in a row).
   summary.automatic_pull = !experiment_.pull_displacement;
-  const double final_pull = experiment_.pull_displacement.value_or(automatic_pull_displacement(body_, target));
+  const double final_pull =
+      summary.automatic_pull ? automatic_pull_displacement(body_, target) : *experiment_.pull_displacement;
   summary.pull_displacement = final_pull;
   const int max_steps = summary.automatic_pull ? kAutomaticRampFactor * experiment_.ramp_steps : experiment_.ramp_steps;
   // An automatic pull ramps on until the sliding reading |T|/P changes by less than this
