@@ -35,6 +35,8 @@ int run_optimize(const std::filesystem::path& case_argument, const std::filesyst
 void mirror_run_for_resume(const std::filesystem::path& out_dir);
 #endif
 int run_certify(const std::filesystem::path& run_dir, int cap, double sample_radius = 0.0, int samples = 0);
+/// `export-shape`: the run's design as STEP, .msh and STL (io::export_shape).
+int run_export_shape(const std::filesystem::path& run_dir, const std::filesystem::path& design_path);
 int run_identify(const std::filesystem::path& case_path, const std::filesystem::path& out_dir, bool generate,
                  std::uint64_t seed, bool noise_free);
 

@@ -99,6 +99,12 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   certify->add_option("--samples", certify_samples, "designs sampled with --sample-radius (default 10(d + 1))")
       ->check(CLI::Range(1, 100000));
+  std::filesystem::path export_design;
+  CLI::App* export_shape = app.add_subcommand(
+      "export-shape", "A run's design out: the design patch as STEP, the body as Gmsh .msh and STL (docs/meshes.md)");
+  export_shape->add_option("run_dir", run_dir, "run directory written by `frictopt optimize`")->required();
+  export_shape->add_option("--design", export_design, "design JSON to export instead of the run's final_design.json")
+      ->check(CLI::ExistingFile);
   bool identify_generate = false, identify_noise_free = false;
   std::uint64_t identify_seed = 1;
   CLI::App* identify = app.add_subcommand(
@@ -121,7 +127,8 @@ int main(int argc, char** argv) {
   // (docs/meshes.md, "A .geo file runs no code"; docs/case-format.md, "Size limits").
   bool trust_geo = false;
   double max_memory_gb = 0.0;
-  for (CLI::App* command : {solve, export_fclib, check_gradient, optimize, certify, identify, experiment}) {
+  for (CLI::App* command :
+       {solve, export_fclib, check_gradient, optimize, certify, export_shape, identify, experiment}) {
     command->add_flag("--trust-geo", trust_geo,
                       "run the case's .geo file with every Gmsh command (System, file writes, ...); only for a "
                       "file you have read and trust");
@@ -176,6 +183,7 @@ int main(int argc, char** argv) {
     }
     if (*check_gradient) return run_check_gradient(case_path, design_path, relative_step);
     if (*certify) return run_certify(run_dir, certify_cap, certify_radius, certify_samples);
+    if (*export_shape) return run_export_shape(run_dir, export_design);
     if (*identify) return run_identify(case_path, out_dir, identify_generate, identify_seed, identify_noise_free);
     if (*experiment) return run_experiment(case_path, out_dir);
     if (*export_fclib) return run_export_fclib(case_path, fclib_out, fclib_units, !fclib_no_solution);

@@ -34,6 +34,7 @@ from ._frictopt import (
     certify,
     check_gradient,
     experiment,
+    export_shape,
     identify,
     load_case,
     optimize,
@@ -48,7 +49,7 @@ from ._toml import to_toml
 
 __all__ = [
     "Body", "Case", "Evaluation", "FrictionLaw", "Measurement", "Oracle", "State", "Summary",
-    "certify", "check_gradient", "experiment", "identify", "load_case", "optimize", "parse_case",
+    "certify", "check_gradient", "experiment", "export_shape", "identify", "load_case", "optimize", "parse_case",
     "read_measurements", "synthetic_measurements", "write_measurements", "to_toml",
     "STATUS_SEPARATED", "STATUS_STICK", "STATUS_SLIP",
 ]

@@ -84,5 +84,6 @@ void bind_oracle(py::module_& m);
 void bind_optimize(py::module_& m);
 void bind_identification(py::module_& m);
 void bind_experiment(py::module_& m);
+void bind_shape_export(py::module_& m);
 
 }  // namespace frictopt::python

@@ -33,4 +33,5 @@ PYBIND11_MODULE(_frictopt, m) {
   frictopt::python::bind_optimize(m);
   frictopt::python::bind_identification(m);
   frictopt::python::bind_experiment(m);
+  frictopt::python::bind_shape_export(m);
 }

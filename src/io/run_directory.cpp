@@ -52,6 +52,7 @@ bool is_output_name(std::string_view file, const std::vector<std::string>& names
   for (const std::string& n : names) {
     if (n.empty()) continue;
     if (file == n + ".pvd" || file == n + ".vtu" || file == n + "_contact.csv") return true;
+    if (file == n + "_design.step" || file == n + "_optimized.msh" || file == n + "_optimized.stl") return true;
     if (series_index(file, n)) return true;
   }
   return false;

@@ -18,6 +18,7 @@
 
 #include "frictopt/core/error.hpp"
 #include "frictopt/mesh/elements.hpp"
+#include "gmsh_session.hpp"
 #include "mesh_child_process.hpp"
 
 namespace frictopt::mesh {
@@ -58,43 +59,8 @@ std::string gmsh_type_name(int type) {
   return fmt::format("{} (Gmsh element type {})", name, type);
 }
 
-// Gmsh keeps one global model and is not thread-safe; it runs only in the child process of one
-// read (run_in_child), so the parent never holds Gmsh state and concurrent reads are separate
-// processes. The guard finalizes on every path.
-class GmshSession {
- public:
-  GmshSession() {
-    gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
-    // Never write to stdout (the child's stdout is /dev/null anyway); errors are collected
-    // from the logger into our messages.
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 1);
-  }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-  ~GmshSession() { gmsh::finalize(); }
-};
-
-// Runs a Gmsh call; a failure (Gmsh throws objects of unspecified type) becomes InvalidInput
-// with Gmsh's last error message.
-template <class F>
-void gmsh_call(const std::filesystem::path& file, std::string_view what, F&& f) {
-  try {
-    f();
-  } catch (const InvalidInput&) {
-    throw;
-  } catch (const std::bad_alloc&) {
-    throw;  // the child's memory limit: reported with the limit by run_in_child
-  } catch (...) {
-    std::string error;
-    try {
-      gmsh::logger::getLastError(error);
-    } catch (...) {
-    }
-    throw InvalidInput(fmt::format("{}: Gmsh could not {}: {}", file.string(), what,
-                                   error.empty() ? "no message from Gmsh" : error));
-  }
-}
+using detail::GmshSession;
+using detail::gmsh_call;
 
 struct ElementBlock {
   std::vector<int> types;

@@ -66,7 +66,8 @@ class RunDirectory {
 
   /// True for the names frictopt writes into a run directory: the fixed names above, fit.csv,
   /// ceres_report.txt, measurements.csv, and for each name N of `names` N.pvd, N.vtu,
-  /// N_contact.csv and N_iterK.vtu (K four or more digits), and our temporaries
+  /// N_contact.csv, N_iterK.vtu (K four or more digits) and the shape export's N_design.step,
+  /// N_optimized.msh and N_optimized.stl, and our temporaries
   /// ".<one of these>.XXXXXX.tmp". `pictures` (viz/render_run.py) counts when it holds only
   /// .png files. A symbolic link or special file is never ours.
   [[nodiscard]] static bool is_frictopt_output(const std::filesystem::path& entry,
