@@ -28,7 +28,8 @@ DesignSurface design_surface(const study::ElasticBody& body, const Eigen::Ref<co
   const mesh::Mesh& mesh = body.mesh();
   const int dim = shape.dim();
   if (x.size() < shape.num_controls())
-    throw InvalidInput(fmt::format("design of {} values; the shape has {} control points", x.size(), shape.num_controls()));
+    throw InvalidInput(
+        fmt::format("design of {} values; the shape has {} control points", x.size(), shape.num_controls()));
   const Eigen::VectorXd alpha = x.head(shape.num_controls());  // without the orientation's s
   // The chart: as summary.json's design_chart (io/summary_json.cpp) — the imported patch's frame
   // and bounding rectangle, or the box's own axes with the Bézier surface as its bottom.

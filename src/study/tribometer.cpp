@@ -107,116 +107,79 @@ Tribometer::Tribometer(BodyDefinition body, TribometerDefinition experiment)
         "friction law relative to the specimen use [contact.friction] orientation_deg");
 }
 
-Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
-  if (experiment_.drive == TribometerDrive::kForce) return run_force_ramp(on_angle);
-  const auto start = std::chrono::steady_clock::now();
-  Summary summary;
-  // The platen: every component of the top face prescribed (the same DOFs in every step).
-  const double young = body_.material.young;
-  const double top_area = body_.shape.base_measure();
-  double delta =
-      experiment_.normal_force * body_.height / (young * top_area);  // a column's indentation
-  const auto platen = [](double pull, double angle, double indent) {
-    fem::FaceDirichlet d;
-    d.boundary = "top";
-    d.components = {0, 1, 2};
-    d.displacement = Eigen::Vector3d(pull * std::cos(angle), pull * std::sin(angle), -indent);
-    return std::vector<fem::FaceDirichlet>{d};
-  };
-  BodyDefinition definition = body_;
-  definition.dirichlet = platen(0.0, 0.0, delta);
-  ElasticBody body(definition);
-  const Eigen::VectorXd alpha = definition.initial_design;
-  const StepLoadBuilder builder(body, body.mesh().positions(alpha));
-  const std::vector<double> load_scale(definition.tractions.size(), 1.0),
-      force_scale(definition.forces.size(), 1.0);
-  const Eigen::Index p = body.contact_boundary()->num_nodes();
-  const Eigen::VectorXd no_slip = Eigen::VectorXd::Zero(2 * p);
-  const contact::FrictionLaw& law = definition.contact->law;
+namespace {
 
-  const auto solve = [&](const std::vector<fem::FaceDirichlet>& dirichlet,
-                         const Eigen::VectorXd& previous, const std::string& label) {
-    BodyState s = body.solve_step(
-        alpha, builder.build(load_scale, force_scale, dirichlet, previous, true), label);
-    ++summary.contact_solves;
-    if (s.summary.factorization_seconds > 0.0) ++summary.factorizations;
-    return s;
-  };
-  const auto fail = [&](const BodyState& s, const std::string& what) {
-    summary.status = s.summary.status;
-    summary.message = fmt::format("{}: {}", what, s.summary.message);
-    summary.time_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return summary;
-  };
+// The displacement drive of Tribometer::run: the specimen with a rigid platen glued to its top
+// face, pressed to P by secant steps on the indentation δ and dragged by a ramped pull; counts
+// its solves into the run's summary.
+class PlatenDrive {
+ public:
+  PlatenDrive(const BodyDefinition& specimen, const TribometerDefinition& experiment, Tribometer::Summary& summary)
+      : experiment_(experiment),
+        summary_(summary),
+        target_(experiment.normal_force),
+        // a column's indentation under P: the first trial, and the first secant slope P/δ
+        delta_(target_ * specimen.height / (specimen.material.young * specimen.shape.base_measure())),
+        slope_(target_ / delta_),
+        body_(with_platen(specimen, delta_)),
+        alpha_(body_.definition().initial_design),
+        builder_(body_, body_.mesh().positions(alpha_)),
+        load_scale_(body_.definition().tractions.size(), 1.0),
+        force_scale_(body_.definition().forces.size(), 1.0) {}
 
-  // The platen is force-controlled normally: at each pull the indentation δ is found by secant
-  // steps on P(δ) (piecewise linear and increasing; linear for a flat specimen in full contact,
-  // so one or two steps), each trial from the same previous state.
-  const double target = experiment_.normal_force;
-  double slope = target / delta;  // the column estimate, replaced by the measured secant
-  const auto press = [&](double pull, double angle, const Eigen::VectorXd& previous,
-                         const std::optional<contact::ContactState> start_state,
-                         const std::string& label, BodyState& out) -> bool {
+  ElasticBody& body() { return body_; }
+  const StepLoadBuilder& builder() const { return builder_; }
+  double indentation() const { return delta_; }
+  void set_indentation(double delta) { delta_ = delta; }
+
+  /// Finds the indentation δ at which the platen, pulled by `pull` along `angle`, carries P: each
+  /// trial from `start_state` (P(δ) is piecewise linear and increasing; linear for a flat
+  /// specimen in full contact, so one or two steps). False when a solve fails or P is not met.
+  bool press(double pull, double angle, const Eigen::VectorXd& previous,
+             std::optional<contact::ContactState> start_state, const std::string& label, BodyState& out) {
     double last_delta = 0.0, last_force = 0.0;
     bool have_last = false;
     for (int it = 1;; ++it) {
-      body.set_warm_start(start_state);  // every trial continues from the same state
-      out = solve(platen(pull, angle, delta), previous, label);
+      body_.set_warm_start(start_state);  // every trial continues from the same state (a copy: the solve moves it)
+      out = solve(platen(pull, angle, delta_), previous, label);
       if (out.summary.status != Status::kConverged) return false;
       const double force = out.contact->resultants.normal_force;
-      summary.press_iterations = std::max(summary.press_iterations, it);
-      if (std::abs(force - target) <= kPressTolerance * target) return true;
+      summary_.press_iterations = std::max(summary_.press_iterations, it);
+      if (std::abs(force - target_) <= kPressTolerance * target_) return true;
       if (it == kMaxPressIterations) {
         out.summary.status = Status::kMaxIterations;
         out.summary.message = fmt::format(
-            "normal force {:.6e} N after {} secant steps on the indentation; expected "
-            "{:.6e} N",
-            force, it, target);
+            "normal force {:.6e} N after {} secant steps on the indentation; expected {:.6e} N", force, it, target_);
         return false;
       }
-      if (have_last && force != last_force && delta != last_delta) {
-        const double secant = (force - last_force) / (delta - last_delta);
-        if (secant > 0.0) slope = secant;
+      if (have_last && force != last_force && delta_ != last_delta) {
+        const double secant = (force - last_force) / (delta_ - last_delta);
+        if (secant > 0.0) slope_ = secant;
       }
-      last_delta = delta, last_force = force, have_last = true;
-      delta = force > 0.0 ? delta + (target - force) / slope
-                          : 2.0 * delta;  // no contact yet: press deeper
+      last_delta = delta_, last_force = force, have_last = true;
+      delta_ = force > 0.0 ? delta_ + (target_ - force) / slope_ : 2.0 * delta_;  // no contact yet: press deeper
     }
-  };
+  }
 
-  // 1. Press to P from the unloaded body.
-  BodyState pressed;
-  if (!press(0.0, 0.0, no_slip, std::nullopt, "press", pressed)) return fail(pressed, "press");
-  summary.press_displacement = delta;
-  const double pressed_delta = delta;
-  const std::optional<contact::ContactState> pressed_contact = body.warm_start();
-  const Eigen::VectorXd pressed_tangential = builder.tangential_displacement(pressed.displacement);
-
-  // 2. Per angle: ramp the pull from the pressed state; friction acts on each step's increment.
-  // A pull the case gives is ramped in ramp_steps steps; an automatic one goes on in steps of
-  // the same size until the specimen slides steadily (two sliding steps in a row).
-  summary.automatic_pull = !experiment_.pull_displacement;
-  const double final_pull =
-      summary.automatic_pull ? automatic_pull_displacement(body_, target) : *experiment_.pull_displacement;
-  summary.pull_displacement = final_pull;
-  const int max_steps = summary.automatic_pull ? kAutomaticRampFactor * experiment_.ramp_steps : experiment_.ramp_steps;
-  // An automatic pull ramps on until the sliding reading |T|/P changes by less than this
-  // relative amount from one step to the next.
-  constexpr double kSteadyReading = 1e-7;
-  for (double angle_deg : experiment_.angles_degrees) {
-    TribometerAngleResult r;
-    r.angle_degrees = angle_deg;
-    body.set_warm_start(pressed_contact);
-    delta = pressed_delta;
+  /// The ramp of one angle from the pressed state: friction acts on each step's increment. A
+  /// pull the case gives is ramped in ramp_steps steps; an automatic one goes on in steps of the
+  /// same size until the specimen slides steadily (two consecutive sliding readings |T|/P agree
+  /// to kSteadyReading). False (with the failed state and where) when a press fails.
+  bool ramp(double angle_deg, double final_pull, int max_steps, const Eigen::VectorXd& pressed_tangential,
+            TribometerAngleResult& r, BodyState& failed, std::string& where) {
+    constexpr double kSteadyReading = 1e-7;
+    const contact::FrictionLaw& law = body_.definition().contact->law;
     Eigen::VectorXd previous = pressed_tangential;
     for (int k = 1; k <= max_steps; ++k) {
       const double pull = final_pull * k / experiment_.ramp_steps;
       BodyState s;
-      if (!press(pull, angle_deg * kDegree, previous, body.warm_start(),
-                 fmt::format("pull {} deg step {}", angle_deg, k), s))
-        return fail(s, fmt::format("pull at {} degrees, step {}", angle_deg, k));
-      previous = builder.tangential_displacement(s.displacement);
+      if (!press(pull, angle_deg * kDegree, previous, body_.warm_start(),
+                 fmt::format("pull {} deg step {}", angle_deg, k), s)) {
+        failed = std::move(s);
+        where = fmt::format("pull at {} degrees, step {}", angle_deg, k);
+        return false;
+      }
+      previous = builder_.tangential_displacement(s.displacement);
       const contact::ContactResultants& c = s.contact->resultants;
       r.ramp.push_back(detail::ramp_point(pull, c));
       const bool sliding = c.num_stick == 0 && c.num_slip > 0;
@@ -228,7 +191,7 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
         r.onset_normal_force = c.normal_force;
       }
       const bool steady = sliding && r.onset_step < k - 1;
-      if (summary.automatic_pull && steady) {
+      if (summary_.automatic_pull && steady) {
         // Sliding, but the friction force turns towards the pull over a few more steps: read
         // the law once two consecutive readings agree to kSteadyReading (or at the last step).
         const double previous_reading = r.measured_coefficient;
@@ -239,17 +202,85 @@ Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
       }
       if (k == experiment_.ramp_steps && steady) detail::read_sliding_law(s, law, r);
     }
+    return true;
+  }
+
+ private:
+  // Every component of the top face prescribed (the same DOFs in every step).
+  static std::vector<fem::FaceDirichlet> platen(double pull, double angle, double indent) {
+    fem::FaceDirichlet d;
+    d.boundary = "top";
+    d.components = {0, 1, 2};
+    d.displacement = Eigen::Vector3d(pull * std::cos(angle), pull * std::sin(angle), -indent);
+    return {d};
+  }
+  static BodyDefinition with_platen(BodyDefinition specimen, double indent) {
+    specimen.dirichlet = platen(0.0, 0.0, indent);
+    return specimen;
+  }
+  BodyState solve(const std::vector<fem::FaceDirichlet>& dirichlet, const Eigen::VectorXd& previous,
+                  const std::string& label) {
+    BodyState s = body_.solve_step(alpha_, builder_.build(load_scale_, force_scale_, dirichlet, previous, true), label);
+    ++summary_.contact_solves;
+    if (s.summary.factorization_seconds > 0.0) ++summary_.factorizations;
+    return s;
+  }
+
+  const TribometerDefinition& experiment_;
+  Tribometer::Summary& summary_;
+  double target_, delta_, slope_;
+  ElasticBody body_;
+  Eigen::VectorXd alpha_;
+  StepLoadBuilder builder_;
+  std::vector<double> load_scale_, force_scale_;
+};
+
+}  // namespace
+
+Tribometer::Summary Tribometer::run(const AngleCallback& on_angle) {
+  if (experiment_.drive == TribometerDrive::kForce) return run_force_ramp(on_angle);
+  const auto start = std::chrono::steady_clock::now();
+  Summary summary;
+  const auto fail = [&](const BodyState& s, const std::string& what) {
+    summary.status = s.summary.status;
+    summary.message = fmt::format("{}: {}", what, s.summary.message);
+    summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return summary;
+  };
+  PlatenDrive drive(body_, experiment_, summary);
+
+  // 1. Press to P from the unloaded body.
+  BodyState pressed;
+  const Eigen::VectorXd no_slip = Eigen::VectorXd::Zero(2 * drive.body().contact_boundary()->num_nodes());
+  if (!drive.press(0.0, 0.0, no_slip, std::nullopt, "press", pressed)) return fail(pressed, "press");
+  summary.press_displacement = drive.indentation();
+  const double pressed_delta = drive.indentation();
+  const std::optional<contact::ContactState> pressed_contact = drive.body().warm_start();
+  const Eigen::VectorXd pressed_tangential = drive.builder().tangential_displacement(pressed.displacement);
+
+  // 2. Per angle: ramp the pull from the pressed state.
+  summary.automatic_pull = !experiment_.pull_displacement;
+  const double final_pull = summary.automatic_pull ? automatic_pull_displacement(body_, experiment_.normal_force)
+                                                   : *experiment_.pull_displacement;
+  summary.pull_displacement = final_pull;
+  const int max_steps = summary.automatic_pull ? kAutomaticRampFactor * experiment_.ramp_steps : experiment_.ramp_steps;
+  for (double angle_deg : experiment_.angles_degrees) {
+    TribometerAngleResult r;
+    r.angle_degrees = angle_deg;
+    drive.body().set_warm_start(pressed_contact);
+    drive.set_indentation(pressed_delta);
+    BodyState failed;
+    std::string where;
+    if (!drive.ramp(angle_deg, final_pull, max_steps, pressed_tangential, r, failed, where)) return fail(failed, where);
     if (on_angle) on_angle(r);
     summary.angles.push_back(std::move(r));
   }
   summary.status = Status::kConverged;
   int sliding = 0, steady = 0;
   for (const auto& a : summary.angles) sliding += a.gross_sliding, steady += a.steady_sliding;
-  summary.message = fmt::format(
-      "gross sliding reached at {} of {} angles, steady sliding at the end of the ramp at {}",
-      sliding, summary.angles.size(), steady);
-  summary.time_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.message = fmt::format("gross sliding reached at {} of {} angles, steady sliding at the end of the ramp at {}",
+                                sliding, summary.angles.size(), steady);
+  summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
 

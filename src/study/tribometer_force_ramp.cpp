@@ -38,20 +38,14 @@ using detail::ramp_point;
 
 }  // namespace
 
-Tribometer::Summary Tribometer::run_force_ramp(const AngleCallback& on_angle) {
-  const auto start = std::chrono::steady_clock::now();
-  Summary summary;
-  const double P = experiment_.normal_force;
-  const double top_area = body_.shape.base_measure();
-  const double q_max = experiment_.max_force_ratio * P;
-
-  // Tractions: the case's own, then the press (index n) and the pull split into its x1 and x2
-  // parts (indices n + 1, n + 2; scales Q cos θ / Q_max and Q sin θ / Q_max), so that every angle
-  // and every ramp step shares one body and one factorization: the stiffness does not depend on
-  // the loads.
-  BodyDefinition definition = body_;
+// The specimen of the force drive. Tractions: the case's own, then the press (index n) and the
+// pull split into its x1 and x2 parts (indices n + 1, n + 2; scales Q cos θ / Q_max and
+// Q sin θ / Q_max), so that every angle and every ramp step shares one body and one
+// factorization: the stiffness does not depend on the loads.
+namespace {
+BodyDefinition force_driven_specimen(BodyDefinition definition, double P, double q_max) {
+  const double top_area = definition.shape.base_measure();
   definition.dirichlet.clear();  // floating: contact and friction hold every rigid mode
-  const std::size_t press_index = definition.tractions.size();
   const auto top_traction = [&](const Eigen::Vector3d& t) {
     fem::FaceTraction traction;
     traction.boundary = "top";
@@ -61,7 +55,18 @@ Tribometer::Summary Tribometer::run_force_ramp(const AngleCallback& on_angle) {
   definition.tractions.push_back(top_traction(Eigen::Vector3d(0.0, 0.0, -P / top_area)));
   definition.tractions.push_back(top_traction(Eigen::Vector3d(q_max / top_area, 0.0, 0.0)));
   definition.tractions.push_back(top_traction(Eigen::Vector3d(0.0, q_max / top_area, 0.0)));
-  const std::size_t pull_x = press_index + 1, pull_y = press_index + 2;
+  return definition;
+}
+}  // namespace
+
+Tribometer::Summary Tribometer::run_force_ramp(const AngleCallback& on_angle) {
+  const auto start = std::chrono::steady_clock::now();
+  Summary summary;
+  const double P = experiment_.normal_force;
+  const double q_max = experiment_.max_force_ratio * P;
+
+  const BodyDefinition definition = force_driven_specimen(body_, P, q_max);
+  const std::size_t pull_x = body_.tractions.size() + 1, pull_y = body_.tractions.size() + 2;
 
   const Eigen::VectorXd alpha = definition.initial_design;
   const std::vector<double> force_scale(definition.forces.size(), 1.0);

@@ -116,7 +116,8 @@ TEST(CliExportShape, StructuredPunchGivesStepMshAndStl) {
   const fs::path dir = fresh_directory("cli_export_punch");
   fs::create_directories(dir);
   // The demo case (3D punch, anisotropic friction, 4 × 4 net), two iterations.
-  std::string text = frictopt::testing::replace_key(case_text("cases3d/punch-anisotropic/case.toml"), "max_iterations", "2");
+  const std::string text =
+      frictopt::testing::replace_key(case_text("cases3d/punch-anisotropic/case.toml"), "max_iterations", "2");
   write_text(dir / "case.toml", text);
   const RunResult opt = run("optimize " + (dir / "case.toml").string() + " -o " + (dir / "run").string());
   ASSERT_TRUE(opt.exit_code == 0 || opt.exit_code == 3 || opt.exit_code == 6) << opt.output;

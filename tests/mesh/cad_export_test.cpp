@@ -169,7 +169,8 @@ TEST(MeshFile, GmshFileReadsBackAsTheSameBody) {
     // A design-like motion so that positions differ from the reference.
     Eigen::MatrixXd X = mesh.reference_positions();
     X.col(dim - 1).array() += 1e-4 * X.col(0).array().sin();
-    const fs::path file = write_temp(dim == 3 ? "box3.msh" : "box2.msh", mesh_file(mesh, X, MeshFileFormat::kGmsh, "body"));
+    const fs::path file =
+        write_temp(dim == 3 ? "box3.msh" : "box2.msh", mesh_file(mesh, X, MeshFileFormat::kGmsh, "body"));
     const Mesh back = GmshMesh(file).mesh();
     ASSERT_EQ(back.num_nodes(), mesh.num_nodes());
     ASSERT_EQ(back.num_elements(), mesh.num_elements());
