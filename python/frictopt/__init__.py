@@ -27,6 +27,7 @@ from ._frictopt import (
     Body,
     Case,
     Evaluation,
+    Experiment,
     FrictionLaw,
     Measurement,
     Oracle,
@@ -39,6 +40,7 @@ from ._frictopt import (
     optimize,
     parse_case,
     read_measurements,
+    synthetic_experiments,
     synthetic_measurements,
     write_measurements,
 )
@@ -47,9 +49,9 @@ from ._toml import merge as _merge
 from ._toml import to_toml
 
 __all__ = [
-    "Body", "Case", "Evaluation", "FrictionLaw", "Measurement", "Oracle", "State", "Summary",
+    "Body", "Case", "Evaluation", "Experiment", "FrictionLaw", "Measurement", "Oracle", "State", "Summary",
     "certify", "check_gradient", "experiment", "identify", "load_case", "optimize", "parse_case",
-    "read_measurements", "synthetic_measurements", "write_measurements", "to_toml",
+    "read_measurements", "synthetic_experiments", "synthetic_measurements", "write_measurements", "to_toml",
     "STATUS_SEPARATED", "STATUS_STICK", "STATUS_SLIP",
 ]
 
