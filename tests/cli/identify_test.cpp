@@ -116,6 +116,7 @@ TEST(CliIdentify, TwoExperimentsInlineRecoverBothCoefficientsOneAloneCannot) {
 
 TEST(CliIdentify, NoMeasurementsAnywhereIsExit2NamingTheWays) {
   const fs::path dir = fresh_directory("cli_identify_no_measurements");
+  fs::create_directories(dir);
   std::string text = read_text(FRICTOPT_SOURCE_DIR "/cases3d/identify-anisotropic/case.toml");
   text.replace(text.find("measurements = \"measurements.csv\"\n"), std::string("measurements = \"measurements.csv\"\n").size(), "");
   std::ofstream(dir / "case.toml") << text;
