@@ -54,7 +54,7 @@ int run_identify(const std::filesystem::path& case_path, const std::filesystem::
       for (const auto& source : setup.experiments)
         if (source.measurements && std::filesystem::exists(path, ec) &&
             std::filesystem::equivalent(path, *source.measurements, ec))
-          throw InvalidInput(fmt::format("{}: is a measurement file of the case ([identification] measurements); "
+          throw InvalidInput(fmt::format("{}: is the case's own measurement file ([identification] measurements); "
                                          "--generate-synthetic would overwrite it: choose another output directory (-o)",
                                          path.string()));
       if (std::filesystem::exists(path, ec)) {

@@ -40,7 +40,7 @@ study::Measurement read_measurement(const TableReader& r, std::string_view origi
   if (const toml::node* location = r.node("location")) {
     if (const auto* text = location->as_string()) {
       try {
-        parse_location(m, text->get(), r.field("location"));
+        parse_location(m, text->get(), r.path());
       } catch (const InvalidInput& e) {
         r.fail("location", e.what());
       }
