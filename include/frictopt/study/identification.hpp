@@ -115,7 +115,8 @@ std::string_view to_string(Identifiability identifiability);
 
 /// Weighted least squares  min_p ½ Σ_i ρ(((model_i(p) − value_i)/σ_i)²)  over lower <= p <= upper,
 /// where model_i reads the contact state of the case's body at its initial design with the
-/// friction law's parameters (and E) set to p. The state map is piecewise smooth; the Jacobian
+/// friction law's parameters (and E) set to p — under the loads and turned law of measurement i's
+/// experiment (IdentificationExperiment; one experiment: the case's own loads). The state map is piecewise smooth; the Jacobian
 /// is that of the default piece (docs/theory/sensitivity.md §4) by forward sensitivities
 /// (sensitivity::contact_state_derivative), so one Coulomb solve and one contact-sized LU per
 /// trial point. E enters through M(E) = (E₀/E) M₀ and the free response, which is exact for
