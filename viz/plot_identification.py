@@ -3,7 +3,7 @@
 """Plot measured vs fitted quantities of a `frictopt identify` run.
 
 Reads DIR/fit.csv (columns quantity, node, x1, x2, measured, sigma, fitted,
-normalized_residual; written by `frictopt identify CASE -o DIR`) and DIR/summary.json, and
+normalized_residual, experiment; written by `frictopt identify CASE -o DIR`) and DIR/summary.json, and
 writes DIR/identification.png with, per measured quantity kind, one panel of measured values
 (error bars ±σ) and fitted values against the measurement index, plus a panel of the normalized
 residuals (fitted − measured)/σ with the ±1 and ±2 bands; the title lists the estimates ± their
@@ -74,7 +74,9 @@ def main():
                                 else f"{float(r['x1']):.2g}" for r in sel], rotation=90, fontsize=6)
         if kind == "totals":
             ax.set_xticks(idx)
-            ax.set_xticklabels([r["quantity"] for r in sel], fontsize=7)
+            # With several experiments (fit.csv's `experiment` column) each total names its own.
+            ax.set_xticklabels([r["quantity"] + (f"\n{r['experiment']}" if r.get("experiment", "case") != "case" else "")
+                                for r in sel], fontsize=7)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="best")
     ax = axes[-1, 0]

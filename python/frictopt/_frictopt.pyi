@@ -272,8 +272,30 @@ class Measurement:
     point: ArrayF | None
     label: str
 
+# A measurement given from Python: a Measurement, or the arguments of Measurement(...) as a dict or a tuple.
+MeasurementLike = Measurement | Mapping[str, Any] | tuple[Any, ...]
+Measurements = Sequence[MeasurementLike] | PathLike
+
+class Experiment:
+    """One experiment of an identification: the case's loads scaled, the law turned, its own measurements."""
+    def __init__(self, name: str, measurements: Measurements, orientation_deg: float = 0.0,
+                 load_scale: float | Sequence[float] | None = None,
+                 dirichlet_scale: float | Sequence[float] | None = None,
+                 force_scale: float | Sequence[float] | None = None) -> None: ...
+    name: str
+    measurements: list[Measurement]
+    orientation_deg: float
+    load_scale: list[float]
+    dirichlet_scale: list[float]
+    force_scale: list[float]
+
+ExperimentLike = Experiment | Mapping[str, Any]
+
 def read_measurements(path: PathLike) -> list[Measurement]: ...
 def write_measurements(path: PathLike, measurements: Sequence[Measurement], comment: str = "") -> None: ...
-def synthetic_measurements(case: Case, templates: Sequence[Measurement] | PathLike | None = None, seed: int = 1,
+def synthetic_measurements(case: Case, templates: Measurements | None = None, seed: int = 1,
                            noise: bool = True) -> list[Measurement]: ...
-def identify(case: Case, measurements: Sequence[Measurement] | PathLike | None = None) -> Summary: ...
+def synthetic_experiments(case: Case, experiments: Sequence[ExperimentLike] | None = None, seed: int = 1,
+                          noise: bool = True) -> list[Experiment]: ...
+def identify(case: Case, measurements: Measurements | None = None, *,
+             experiments: Sequence[ExperimentLike] | None = None) -> Summary: ...

@@ -102,10 +102,13 @@ All quantities are SI: lengths in m, Young's modulus in Pa, displacements in m.
       .def_property_readonly(
           "measurements_path",
           [](const Case& c) -> py::object {
-            if (!c.description.identification) return py::none();
-            return py::cast(c.description.identification->measurements);
+            // The file of the case's own loads; [[identification.experiment]] tables name one each.
+            if (!c.description.identification || c.description.identification->explicit_experiments) return py::none();
+            const auto& file = c.description.identification->experiments.front().measurements;
+            return file ? py::cast(*file) : py::none();
           },
-          "The measurement CSV of [identification] (resolved against the case's directory), or None.")
+          "The measurement CSV of [identification] (resolved against the case's directory), or None (no file, or\n"
+          "[[identification.experiment]] tables, each with its own measurements).")
       .def("__repr__", [](const Case& c) {
         const auto& b = c.description.body;
         return fmt::format("<frictopt.Case '{}' from {}: {}D, {} design variables, friction {}, cost {}>", b.name,

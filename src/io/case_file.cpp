@@ -29,6 +29,7 @@
 #include "case_load_case_section.hpp"
 #include "case_program_section.hpp"
 #include "case_foundation_section.hpp"
+#include "case_identification_section.hpp"
 #include "case_mesh_section.hpp"
 #include "text_input.hpp"
 #include "toml_reader.hpp"
@@ -83,7 +84,7 @@ std::string faces_for(int dim) {
 
 // The shape of the friction set as a case file spells it ([contact.friction].kind). It is the
 // syntax of the table, not a second friction-law type: read_friction turns it into a
-// contact::FrictionLaw at once, and read_identification needs it for the parameter names
+// contact::FrictionLaw at once, and read_identification_section needs it for the parameter names
 // (2D "isotropic" is the interval law, "none" names no coefficient).
 enum class FrictionKind { kNone, kIsotropic, kPolygon, kEllipse, kEllipseExact, kDiscExact };
 constexpr auto kFrictionKindNames = frictopt::detail::make_enum_table<FrictionKind>(
@@ -778,131 +779,6 @@ OutputSpec read_output(const TableReader& r, std::string default_name) {
 }
 
 
-// [identification] (docs/identification.md). Needs [contact]: the parameter names
-// depend on the friction kind, so a misspelt or foreign name is reported with the valid ones.
-// Each identified scalar becomes one study::ParameterSpec ("mu_vertices" one per vertex).
-IdentificationSetup read_identification(const TableReader& r, const CaseDescription& c,
-                                        const std::optional<Friction>& friction) {
-  IdentificationSetup spec;
-  study::Identification::Options& options = spec.options;
-  if (!friction)
-    r.fail("measurements", fmt::format("{}: [identification] needs a [contact] table (the measured quantities are "
-                                       "contact forces and slips)",
-                                       c.origin));
-  const std::string file = r.required_string("measurements", "the path of the measurement CSV");
-  if (file.empty()) r.fail_value("measurements", "a non-empty path");
-  spec.measurements = file;
-  const std::filesystem::path origin_path(c.origin);
-  if (spec.measurements.is_relative() && origin_path.has_parent_path())
-    spec.measurements = origin_path.parent_path() / spec.measurements;
-  if (const auto loss = r.optional_string("loss")) {
-    try {
-      options.loss = study::parse_robust_loss(*loss);
-    } catch (const InvalidInput&) {
-      r.fail_value("loss", "one of none, huber, cauchy");
-    }
-  }
-  if (const auto scale = r.optional_number("loss_scale")) {
-    if (!(*scale > 0)) r.fail_value("loss_scale", "loss_scale > 0 (in standard deviations)");
-    options.loss_scale = *scale;
-  }
-  if (const std::optional<int> n = r.optional_int("max_iterations")) {
-    if (*n < 1) r.fail_value("max_iterations", "max_iterations >= 1");
-    options.max_iterations = *n;
-  }
-
-  const Friction& f = *friction;
-  const int dim = c.dim();
-  std::vector<std::string_view> names;
-  switch (f.kind) {
-    case FrictionKind::kNone: break;
-    case FrictionKind::kIsotropic:
-      if (dim == 2) names = {"mu_minus", "mu_plus"};  // the 2D isotropic law is the interval [−μ, μ]
-      else names = {"mu"};
-      break;
-    case FrictionKind::kDiscExact: names = {"mu"}; break;
-    case FrictionKind::kPolygon:
-      if (dim == 2) names = {"mu_minus", "mu_plus"};
-      else names = {"mu_vertices"};
-      break;
-    case FrictionKind::kEllipse:
-    case FrictionKind::kEllipseExact: names = {"mu_x", "mu_y"}; break;
-  }
-  names.push_back("young");
-  std::string accepted;
-  for (std::string_view n : names) accepted += (accepted.empty() ? "" : ", ") + std::string(n);
-
-  const toml::table* parameters = r.optional_table("parameters");
-  if (parameters == nullptr || parameters->empty())
-    r.fail_missing("parameters", fmt::format("a table [identification.parameters.<name>] per parameter to identify, "
-                                             "<name> one of {} for contact.friction.kind = \"{}\"",
-                                             accepted, kFrictionKindNames.name(f.kind)));
-  for (auto&& [key, node] : *parameters) {
-    const std::string name(key.str());
-    const std::string field = r.field("parameters") + "." + name;
-    if (std::find(names.begin(), names.end(), name) == names.end())
-      throw InvalidInput(detail::located(
-          c.origin, &node,
-          fmt::format("{}: unknown parameter \"{}\" for contact.friction.kind = \"{}\" in {}D; expected one of {}",
-                      field, name, kFrictionKindNames.name(f.kind), dim, accepted)));
-    if (!node.is_table())
-      throw InvalidInput(detail::located(c.origin, &node,
-                                         fmt::format("{} = {}; expected a table with lower, upper and optionally initial",
-                                                     field, describe(node))));
-    const TableReader t(*node.as_table(), field, c.origin, {"initial", "lower", "upper"});
-    const bool per_vertex = name == "mu_vertices";
-    const std::size_t count = per_vertex ? f.num_vertices : 1;
-    const auto values = [&](std::string_view k, bool required) -> std::vector<double> {
-      const std::string what = count == 1 ? "a number" : fmt::format("a number or a list of {} numbers (one per vertex)", count);
-      const toml::node* v = t.node(k);
-      if (v == nullptr) {
-        if (required) t.fail_missing(k, what);
-        return {};
-      }
-      std::vector<double> out = v->is_array() && count > 1 ? t.number_list(k, what)
-                                                            : std::vector<double>{t.required_number(k, what)};
-      if (out.size() != 1 && out.size() != count) t.fail_value(k, what);
-      for (std::size_t j = 0; j < out.size(); ++j)
-        if (!std::isfinite(out[j])) {
-          if (out.size() == 1) t.fail_value(k, "a finite number");
-          t.fail_entry(k, j, "a finite number");
-        }
-      return out;
-    };
-    struct {
-      std::vector<double> lower, upper, initial;  // 1 entry (every vertex) or one per vertex
-    } p;
-    p.lower = values("lower", true);
-    p.upper = values("upper", true);
-    p.initial = values("initial", false);
-    const auto at = [](const std::vector<double>& v, std::size_t j) { return v.size() == 1 ? v[0] : v[j]; };
-    const auto entry = [&](std::string_view k, const std::vector<double>& v, std::size_t j) {
-      return v.size() == 1 ? std::string(k) : fmt::format("{}[{}]", k, j);
-    };
-    for (std::size_t j = 0; j < count; ++j) {
-      const double lo = at(p.lower, j), hi = at(p.upper, j);
-      if (name == "young" ? !(lo > 0) : !(lo >= 0))
-        t.fail("lower",
-               fmt::format("{}.{} = {}; expected {}", field, entry("lower", p.lower, j), lo, name == "young" ? "> 0" : ">= 0"));
-      if (!(lo <= hi))
-        t.fail("upper", fmt::format("{}: lower bound {} = {} > upper bound {} = {}; expected lower <= upper", field,
-                                    entry("lower", p.lower, j), lo, entry("upper", p.upper, j), hi));
-      if (!p.initial.empty() && !(at(p.initial, j) >= lo && at(p.initial, j) <= hi))
-        t.fail("initial", fmt::format("{}.{} = {}; expected within [{}, {}]", field, entry("initial", p.initial, j),
-                                      at(p.initial, j), lo, hi));
-    }
-    for (std::size_t j = 0; j < count; ++j) {
-      study::ParameterSpec scalar;
-      scalar.name = per_vertex ? fmt::format("mu_vertices[{}]", j) : name;
-      if (!p.initial.empty()) scalar.initial = at(p.initial, j);
-      scalar.lower = at(p.lower, j);
-      scalar.upper = at(p.upper, j);
-      options.parameters.push_back(scalar);
-    }
-  }
-  return spec;
-}
-
 // A traction component on a face that a [[dirichlet]] table fixes in that component does no
 // work (the reaction absorbs it): it is always a mistake in the case, so it is refused.
 void check_loads_on_fixed_faces(const CaseDescription& c, int dim,
@@ -1148,11 +1024,8 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                                    "point_units_spread"}),
                       c.optimization);
 
-  if (const toml::table* identification = top.optional_table("identification"))
-    c.identification = read_identification(
-        TableReader(*identification, "identification", origin,
-                    {"measurements", "parameters", "loss", "loss_scale", "max_iterations"}),
-        c, friction);
+  detail::read_identification_section(top, origin, c, friction ? kFrictionKindNames.name(friction->kind) : "",
+                                      friction ? friction->num_vertices : 0);
 
   // Default output name: the file stem, or the case directory's name for the
   // cases*/<name>/case.toml layout (every case file there is called case.toml).

@@ -57,6 +57,34 @@ constexpr std::string_view kHeader = "quantity,location,value,sigma";
 
 }  // namespace
 
+void parse_location(study::Measurement& m, std::string_view location, const std::string& where) {
+  if (study::is_total(m.quantity)) {
+    if (!location.empty() && location != "all")
+      throw InvalidInput(fmt::format("{}: location = \"{}\"; expected \"all\" or empty for the sum {}", where,
+                                     detail::printable_excerpt(location, 40), study::to_string(m.quantity)));
+  } else if (location.starts_with("x=")) {
+    const std::vector<std::string_view> coords = split(location.substr(2), ';');
+    Eigen::VectorXd x(static_cast<Eigen::Index>(coords.size()));
+    for (std::size_t k = 0; k < coords.size(); ++k) {
+      const auto v = to_double(coords[k]);
+      if (!v || !std::isfinite(*v))
+        throw InvalidInput(fmt::format("{}: location = \"{}\": coordinate {} = \"{}\"; expected a number [m]", where,
+                                       detail::printable_excerpt(location, 40), k + 1, detail::printable_excerpt(coords[k], 40)));
+      x(static_cast<Eigen::Index>(k)) = *v;
+    }
+    if (x.size() < 1 || x.size() > 2)
+      throw InvalidInput(fmt::format("{}: location = \"{}\"; expected x=x1 (2D) or x=x1;x2 (3D)", where, detail::printable_excerpt(location, 40)));
+    m.point = x;
+  } else {
+    const auto node = to_int(location);
+    if (!node || *node < 0)
+      throw InvalidInput(fmt::format("{}: location = \"{}\"; expected a contact-node index >= 0 or a point "
+                                     "x=x1;x2 on the contact surface",
+                                     where, detail::printable_excerpt(location, 40)));
+    m.node = *node;
+  }
+}
+
 std::vector<study::Measurement> read_measurements(const std::filesystem::path& path) {
   // A regular file only (a FIFO is refused without waiting), of at most 256 MiB (millions of
   // rows; more would not fit the identification's dense Jacobian anyway).
@@ -91,32 +119,7 @@ std::vector<study::Measurement> read_measurements(const std::filesystem::path& p
     } catch (const InvalidInput& e) {
       throw InvalidInput(fmt::format("{}: {}", where, e.what()));
     }
-    const std::string_view location = fields[1];
-    if (study::is_total(m.quantity)) {
-      if (!location.empty() && location != "all")
-        throw InvalidInput(fmt::format("{}: location = \"{}\"; expected \"all\" or empty for the sum {}", where,
-                                       location, fields[0]));
-    } else if (location.starts_with("x=")) {
-      const std::vector<std::string_view> coords = split(location.substr(2), ';');
-      Eigen::VectorXd x(static_cast<Eigen::Index>(coords.size()));
-      for (std::size_t k = 0; k < coords.size(); ++k) {
-        const auto v = to_double(coords[k]);
-        if (!v || !std::isfinite(*v))
-          throw InvalidInput(fmt::format("{}: location = \"{}\": coordinate {} = \"{}\"; expected a number [m]", where,
-                                         location, k + 1, coords[k]));
-        x(static_cast<Eigen::Index>(k)) = *v;
-      }
-      if (x.size() < 1 || x.size() > 2)
-        throw InvalidInput(fmt::format("{}: location = \"{}\"; expected x=x1 (2D) or x=x1;x2 (3D)", where, detail::printable_excerpt(location, 40)));
-      m.point = x;
-    } else {
-      const auto node = to_int(location);
-      if (!node || *node < 0)
-        throw InvalidInput(fmt::format("{}: location = \"{}\"; expected a contact-node index >= 0 or a point "
-                                       "x=x1;x2 on the contact surface",
-                                       where, detail::printable_excerpt(location, 40)));
-      m.node = *node;
-    }
+    parse_location(m, fields[1], where);
     const auto value = to_double(fields[2]);
     if (!value || !std::isfinite(*value))
       throw InvalidInput(fmt::format("{}: value = \"{}\"; expected a finite number", where, detail::printable_excerpt(fields[2], 40)));
@@ -133,6 +136,29 @@ std::vector<study::Measurement> read_measurements(const std::filesystem::path& p
   }
   if (!header_seen) throw InvalidInput(fmt::format("{}: empty measurement file; expected the header \"{}\"", path.string(), kHeader));
   if (out.empty()) throw InvalidInput(fmt::format("{}: no measurements after the header", path.string()));
+  return out;
+}
+
+std::vector<study::IdentificationExperiment> identification_experiments(const IdentificationSetup& setup,
+                                                                      std::string_view origin) {
+  std::vector<study::IdentificationExperiment> out;
+  for (const IdentificationExperimentSetup& x : setup.experiments) {
+    if (!x.has_measurements())
+      throw InvalidInput(fmt::format(
+          "{}: [identification] gives no measurements; expected measurements = \"file.csv\" (a CSV, "
+          "docs/identification.md) or [[identification.measurement]] tables in the case, or, from Python, "
+          "identify(case, measurements=[...]) or experiments=[...]",
+          origin));
+    study::IdentificationExperiment e;
+    e.name = x.name;
+    e.load_scale = x.load_scale;
+    e.dirichlet_scale = x.dirichlet_scale;
+    e.force_scale = x.force_scale;
+    e.orientation = x.orientation;
+    if (x.measurements) e.measurements = read_measurements(*x.measurements);
+    e.measurements.insert(e.measurements.end(), x.inline_measurements.begin(), x.inline_measurements.end());
+    out.push_back(std::move(e));
+  }
   return out;
 }
 

@@ -303,6 +303,19 @@ JsonValue to_json(const study::Identification::Summary& s) {
   j["covariance"] = rows_of(s.covariance);
   j["correlation"] = rows_of(s.correlation);
   j["singular_values"] = s.singular_values;
+  JsonValue experiments = JsonValue::array();
+  for (const auto& x : s.experiments) {
+    JsonValue item = JsonValue::object();
+    item["name"] = x.name;
+    item["first_measurement"] = static_cast<std::int64_t>(x.first_measurement);
+    item["measurements"] = static_cast<std::int64_t>(x.num_measurements);
+    item["chi_square"] = x.chi_square;
+    item["rms_residual"] = x.rms_residual;
+    item["slipping_nodes"] = x.num_slipping_nodes;
+    item["index_sets"] = x.index_sets;
+    experiments.push_back(item);
+  }
+  j["experiments"] = experiments;
   return j;
 }
 

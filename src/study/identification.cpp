@@ -162,36 +162,54 @@ std::string Identification::Summary::brief_report() const {
 // z solves the Coulomb problem with M(E) = (E₀/E) M₀ and c(E) = (E₀/E) c_traction + c_dirichlet
 // + (0, g): A(E) = (E/E₀) A₀ and the Dirichlet lifting −A_fd u_d scales with E, the tractions do not.
 
-struct Identification::Impl {
+// One experiment's model: its body (the case's at the initial design, with the experiment's
+// loads and turned law), its contact-space operators and its measurement rows.
+struct ExperimentModel {
+  std::string name;
+  double orientation = 0.0;
   BodyDefinition definition;
   std::unique_ptr<ElasticBody> body;
-  Options options;
-  std::vector<Measurement> measurements;
-  std::vector<std::string> names;
-  std::vector<int> friction_index;  // per identified parameter: index into the law's parameters, −1 = young
-  contact::FrictionLaw law0 = contact::FrictionLaw::disc(0.0);
-  Eigen::VectorXd friction_values0;
-  double young0 = 0.0;
-  Eigen::VectorXd initial, scale;
+  contact::FrictionLaw law0 = contact::FrictionLaw::disc(0.0);  // the case's law turned by `orientation`
   int dim = 3;
   Eigen::Index num_nodes = 0;
   std::shared_ptr<const Eigen::MatrixXd> M0;       // M at E₀, dense (shared with the state solve)
   std::unique_ptr<contact::DenseDelassus> M0_op;   // products with M0 (dsymv)
   Eigen::VectorXd c_traction, c_dirichlet, gap_vector;  // gap_vector = (0, g) per node
-  contact::CoulombSolver::Options coulomb;
   std::optional<contact::ContactState> warm_start;
-  Eigen::SparseMatrix<double> Lz, Lg;  // prediction = Lz z + Lg ∇
+  Eigen::SparseMatrix<double> Lz, Lg;  // its predictions = Lz z + Lg ∇
+  Eigen::Index first_row = 0, num_rows = 0;  // its rows among all measurements
+  // The last trial point's state and law (for the Jacobian and the lower-bound report).
+  bool solved = false;
+  int num_slipping_nodes = 0;
+  std::string index_sets;
+};
+
+struct Identification::Impl {
+  BodyDefinition definition;  // the case's own
+  Options options;
+  std::vector<Measurement> measurements;  // all experiments' rows, in order
+  std::vector<int> measurement_experiment;
+  std::vector<std::string> experiment_names;
+  std::vector<ExperimentModel> experiments;
+  std::vector<std::string> names;
+  std::vector<int> friction_index;  // per identified parameter: index into the law's parameters, −1 = young
+  contact::FrictionLaw law0 = contact::FrictionLaw::disc(0.0);  // the case's law (unturned)
+  Eigen::VectorXd friction_values0;
+  double young0 = 0.0;
+  Eigen::VectorXd initial, scale;
+  contact::CoulombSolver::Options coulomb;
   // Cache of the last trial point (Ceres evaluates every residual block at the same point).
   Eigen::VectorXd cached_parameters;
   std::optional<Prediction> cached;
   int state_solves = 0, jacobian_evaluations = 0;
 
   void setup_parameters();
-  void setup_contact();
-  void resolve_measurements();
+  void setup_contact(ExperimentModel& e);
+  void resolve_measurements(ExperimentModel& e);
   const Prediction& predict(const Eigen::VectorXd& p, bool with_jacobian);
-  void add_jacobian(const Eigen::VectorXd& p, Prediction& out);
-  contact::FrictionLaw law_for(const Eigen::VectorXd& p) const;
+  bool add_jacobian(ExperimentModel& e, const Eigen::VectorXd& p, Prediction& out);
+  contact::FrictionLaw law_for(const contact::FrictionLaw& base, const Eigen::VectorXd& p) const;
+  contact::FrictionLaw law_for(const Eigen::VectorXd& p) const { return law_for(law0, p); }
   double young_for(const Eigen::VectorXd& p) const;
 };
 
@@ -247,27 +265,28 @@ void Identification::Impl::setup_parameters() {
   }
 }
 
-void Identification::Impl::setup_contact() {
+void Identification::Impl::setup_contact(ExperimentModel& e) {
+  ElasticBody& body = *e.body;
   // The FE problem does not depend on the parameters except through E (a scalar factor):
   // assemble, factorize and build M once, from a state solve at the case's parameters.
-  const BodyState s = body->solve(definition.initial_design, "initial design");
+  const BodyState s = body.solve(e.definition.initial_design, "initial design");
   if (!s.contact)
     throw InvalidInput("identification: the elasticity problem at the initial design could not be factorized: " +
                        s.summary.message);
-  const contact::ContactBoundary& boundary = *body->contact_boundary();
-  const fem::LinearElasticity& fem = body->elasticity();
-  dim = boundary.dim();
-  num_nodes = boundary.num_nodes();
-  if (num_nodes == 0) {
+  const contact::ContactBoundary& boundary = *body.contact_boundary();
+  const fem::LinearElasticity& fem = body.elasticity();
+  e.dim = boundary.dim();
+  e.num_nodes = boundary.num_nodes();
+  if (e.num_nodes == 0) {
     // A node of Γ_c with a fixed component is a support, not a contact node (docs/theory/problem.md
     // §3): with every node fixed there is no contact force to measure and no friction to identify.
-    const mesh::BoundarySet& surface = body->mesh().boundary(definition.contact_surface);
+    const mesh::BoundarySet& surface = body.mesh().boundary(e.definition.contact_surface);
     throw InvalidInput(fmt::format(
         "identification: the contact surface \"{}\" has no contact node: each of its {} nodes has a component "
         "fixed by a [[dirichlet]] table or a [[constraint]] ({} fixes node {}), and a fixed node is a support, not a "
         "contact node; expected free nodes on the contact surface (remove that constraint or select fewer nodes)",
-        definition.contact_surface, surface.nodes.size(),
-        surface.nodes.empty() ? std::string("none") : what_fixes(definition, body->mesh(), surface.nodes.front()),
+        e.definition.contact_surface, surface.nodes.size(),
+        surface.nodes.empty() ? std::string("none") : what_fixes(e.definition, body.mesh(), surface.nodes.front()),
         surface.nodes.empty() ? -1 : surface.nodes.front()));
   }
   // The constructor refuses the engines that do not form the dense M (the PETSc engine's is a
@@ -275,23 +294,25 @@ void Identification::Impl::setup_contact() {
   if (!s.contact->delassus_matrix)
     throw NumericalFailure(fmt::format("identification: the {} engine's state has no dense Delassus matrix; the "
                                        "identification needs it",
-                                       body->engine().name()));
-  M0 = s.contact->delassus_matrix;
-  M0_op = std::make_unique<contact::DenseDelassus>(M0);
+                                       body.engine().name()));
+  e.M0 = s.contact->delassus_matrix;
+  e.M0_op = std::make_unique<contact::DenseDelassus>(e.M0);
   const Eigen::VectorXd l_traction = fem.dofs().restrict(fem.traction_load(s.positions));
   const Eigen::VectorXd l_lift = fem.load() - l_traction;
-  c_traction = boundary.times(fem.factorization().solve(l_traction));
-  c_dirichlet = boundary.times(fem.factorization().solve(l_lift));
-  gap_vector = Eigen::VectorXd::Zero(boundary.num_unknowns());
-  for (Eigen::Index i = 0; i < num_nodes; ++i) gap_vector(dim * i + dim - 1) = s.contact->gaps(i);
-  if (s.contact->summary.converged()) warm_start = s.contact->state;
+  e.c_traction = boundary.times(fem.factorization().solve(l_traction));
+  e.c_dirichlet = boundary.times(fem.factorization().solve(l_lift));
+  e.gap_vector = Eigen::VectorXd::Zero(boundary.num_unknowns());
+  for (Eigen::Index i = 0; i < e.num_nodes; ++i) e.gap_vector(e.dim * i + e.dim - 1) = s.contact->gaps(i);
+  if (s.contact->summary.converged()) e.warm_start = s.contact->state;
 }
 
-void Identification::Impl::resolve_measurements() {
-  const contact::ContactBoundary& boundary = *body->contact_boundary();
+void Identification::Impl::resolve_measurements(ExperimentModel& e) {
+  const ElasticBody& body = *e.body;
+  const contact::ContactBoundary& boundary = *body.contact_boundary();
   const Eigen::MatrixXd& plane = boundary.plane_coordinates();
   const Eigen::VectorXd& areas = boundary.tributary_areas();
-  const Eigen::Index p = num_nodes, m = dim * p;
+  const int dim = e.dim;
+  const Eigen::Index p = e.num_nodes, m = dim * p;
   // Node spacing: the largest nearest-neighbour distance (a point on Γ_c is within it of a node).
   double spacing = 0.0;
   for (Eigen::Index i = 0; i < p; ++i) {
@@ -300,27 +321,16 @@ void Identification::Impl::resolve_measurements() {
       if (j != i) nearest = std::min(nearest, (plane.row(i) - plane.row(j)).norm());
     if (std::isfinite(nearest)) spacing = std::max(spacing, nearest);
   }
-  if (measurements.empty()) throw InvalidInput("identification: no measurements; expected at least one");
-  if (measurements.size() > kMaxMeasurements)
-    throw InvalidInput(fmt::format("identification: {} measurements; expected at most {} (docs/case-format.md, "
-                                   "\"Size limits\")",
-                                   measurements.size(), kMaxMeasurements));
-  const auto totals = static_cast<std::size_t>(std::count_if(
-      measurements.begin(), measurements.end(), [](const Measurement& row) { return is_total(row.quantity); }));
-  if (totals > kMaxTotalMeasurements)
-    throw InvalidInput(fmt::format("identification: {} measurements of sums over the contact surface (total_*); "
-                                   "expected at most {} (docs/case-format.md, \"Size limits\")",
-                                   totals, kMaxTotalMeasurements));
   // The nodes of Γ_c that a [[dirichlet]] table or a [[constraint]] fixes are supports, not
   // contact nodes: their in-plane coordinates (in the foundation's frame, as plane_coordinates),
   // so that a location nearest to one of them is refused instead of moved to a contact neighbour.
   std::vector<int> fixed_nodes;
   Eigen::MatrixXd fixed_plane;
   {
-    const mesh::Mesh& mesh = body->mesh();
+    const mesh::Mesh& mesh = body.mesh();
     const std::vector<int>& contact_nodes = boundary.nodes();
     const std::set<int> free(contact_nodes.begin(), contact_nodes.end());
-    for (const int node : mesh.boundary(definition.contact_surface).nodes)
+    for (const int node : mesh.boundary(e.definition.contact_surface).nodes)
       if (free.count(node) == 0) fixed_nodes.push_back(node);
     fixed_plane.resize(static_cast<Eigen::Index>(fixed_nodes.size()), dim - 1);
     for (std::size_t k = 0; k < fixed_nodes.size(); ++k) {
@@ -331,9 +341,9 @@ void Identification::Impl::resolve_measurements() {
     }
   }
   std::vector<Eigen::Triplet<double>> tz, tg;
-  for (std::size_t r = 0; r < measurements.size(); ++r) {
-    Measurement& meas = measurements[r];
-    const std::string where = meas.label.empty() ? fmt::format("measurement {}", r) : meas.label;
+  for (Eigen::Index r = 0; r < e.num_rows; ++r) {
+    Measurement& meas = measurements[static_cast<std::size_t>(e.first_row + r)];
+    const std::string where = meas.label.empty() ? fmt::format("measurement {}", e.first_row + r) : meas.label;
     const int c = tangential_component(meas.quantity);
     if (dim == 2 && c == 1)
       throw InvalidInput(fmt::format("{}: quantity = {}; expected a 2D quantity (x1 components only) for this 2D case",
@@ -375,7 +385,7 @@ void Identification::Impl::resolve_measurements() {
               "no contact force or slip is computed there; expected a location nearest to a free contact node "
               "(the nearest is contact node {} at {}, {:.4g} m away)",
               where, format_point(*meas.point), node, format_point(fixed_plane.row(fixed).transpose()),
-              what_fixes(definition, body->mesh(), node), best, format_point(plane.row(best).transpose()), distance));
+              what_fixes(e.definition, body.mesh(), node), best, format_point(plane.row(best).transpose()), distance));
       }
       meas.node = static_cast<int>(best);
     } else if (meas.node < 0 || meas.node >= p) {
@@ -396,18 +406,17 @@ void Identification::Impl::resolve_measurements() {
       default: break;
     }
   }
-  const auto rows = static_cast<Eigen::Index>(measurements.size());
-  Lz.resize(rows, m);
-  Lz.setFromTriplets(tz.begin(), tz.end());
-  Lg.resize(rows, m);
-  Lg.setFromTriplets(tg.begin(), tg.end());
+  e.Lz.resize(e.num_rows, m);
+  e.Lz.setFromTriplets(tz.begin(), tz.end());
+  e.Lg.resize(e.num_rows, m);
+  e.Lg.setFromTriplets(tg.begin(), tg.end());
 }
 
-contact::FrictionLaw Identification::Impl::law_for(const Eigen::VectorXd& p) const {
+contact::FrictionLaw Identification::Impl::law_for(const contact::FrictionLaw& base, const Eigen::VectorXd& p) const {
   Eigen::VectorXd values = friction_values0;
   for (std::size_t k = 0; k < friction_index.size(); ++k)
     if (friction_index[k] >= 0) values(friction_index[k]) = p(static_cast<Eigen::Index>(k));
-  return sensitivity::with_friction_parameters(law0, values);
+  return sensitivity::with_friction_parameters(base, values);
 }
 
 double Identification::Impl::young_for(const Eigen::VectorXd& p) const {
@@ -418,65 +427,146 @@ double Identification::Impl::young_for(const Eigen::VectorXd& p) const {
 
 const Identification::Prediction& Identification::Impl::predict(const Eigen::VectorXd& p, bool with_jacobian) {
   if (cached && cached_parameters.size() == p.size() && cached_parameters == p) {
-    if (with_jacobian && cached->ok && cached->jacobian.size() == 0) add_jacobian(p, *cached);
+    if (with_jacobian && cached->ok && cached->jacobian.size() == 0) {
+      Prediction& out = *cached;
+      out.jacobian.setZero(static_cast<Eigen::Index>(measurements.size()), p.size());
+      for (ExperimentModel& e : experiments)
+        if (!add_jacobian(e, p, out)) {
+          out.jacobian.resize(0, 0);
+          break;
+        }
+    }
     return *cached;
   }
   cached_parameters = p;
   cached.emplace();
   Prediction& out = *cached;
-  contact::FrictionLaw law = law0;
-  try {
-    law = law_for(p);
-  } catch (const InvalidInput& e) {
-    out.message = e.what();  // e.g. a non-convex polygon: Ceres shrinks its step
-    return out;
-  }
   const double rho = young_for(p) / young0;
-  const linalg::ScaledOperator M(*M0_op, 1.0 / rho);  // M(E) = M(E₀) E₀/E, no copy
-  const Eigen::VectorXd c = c_traction / rho + c_dirichlet + gap_vector;
-  contact::ContactState state = warm_start ? *warm_start : contact::ContactState(dim, num_nodes);
-  const contact::CoulombSolver solver(M, law, coulomb);
-  out.contact = solver.solve(c, state);
-  ++state_solves;
-  if (!out.contact.converged()) {
-    out.message = "contact solve failed: " + out.contact.brief_report();
-    return out;
+  out.values.resize(static_cast<Eigen::Index>(measurements.size()));
+  for (std::size_t k = 0; k < experiments.size(); ++k) {
+    ExperimentModel& e = experiments[k];
+    e.solved = false;
+    contact::FrictionLaw law = e.law0;
+    try {
+      law = law_for(e.law0, p);
+    } catch (const InvalidInput& error) {
+      out.message = error.what();  // e.g. a non-convex polygon: Ceres shrinks its step
+      return out;
+    }
+    const linalg::ScaledOperator M(*e.M0_op, 1.0 / rho);  // M(E) = M(E₀) E₀/E, no copy
+    const Eigen::VectorXd c = e.c_traction / rho + e.c_dirichlet + e.gap_vector;
+    contact::ContactState state = e.warm_start ? *e.warm_start : contact::ContactState(e.dim, e.num_nodes);
+    const contact::CoulombSolver solver(M, law, coulomb);
+    const contact::CoulombSolver::Summary contact = solver.solve(c, state);
+    if (k == 0 || !contact.converged()) out.contact = contact;
+    ++state_solves;
+    if (!contact.converged()) {
+      out.message = (experiments.size() > 1 ? fmt::format("experiment \"{}\": ", e.name) : std::string()) +
+                    "contact solve failed: " + contact.brief_report();
+      return out;
+    }
+    e.warm_start = state;
+    e.solved = true;
+    out.values.segment(e.first_row, e.num_rows) = e.Lz * state.z + e.Lg * state.gradient;
+    e.index_sets = sensitivity::classify(state, law).summary();
+    e.num_slipping_nodes = 0;
+    for (Eigen::Index i = 0; i < e.num_nodes; ++i) e.num_slipping_nodes += state.is_slip(i) ? 1 : 0;
+    out.num_slipping_nodes += e.num_slipping_nodes;
+    if (experiments.size() == 1) out.index_sets = e.index_sets;
+    else out.index_sets += fmt::format("{}{}: {}", k ? "; " : "", e.name, e.index_sets);
   }
-  warm_start = state;
-  out.values = Lz * state.z + Lg * state.gradient;
-  out.index_sets = sensitivity::classify(state, law).summary();
-  for (Eigen::Index i = 0; i < num_nodes; ++i) out.num_slipping_nodes += state.is_slip(i) ? 1 : 0;
   out.ok = true;
-  if (with_jacobian) add_jacobian(p, out);
+  if (with_jacobian) {
+    out.jacobian.setZero(static_cast<Eigen::Index>(measurements.size()), p.size());
+    for (ExperimentModel& e : experiments)
+      if (!add_jacobian(e, p, out)) {
+        out.jacobian.resize(0, 0);
+        break;
+      }
+  }
   return out;
 }
 
-void Identification::Impl::add_jacobian(const Eigen::VectorXd& p, Prediction& out) {
-  const contact::FrictionLaw law = law_for(p);
+bool Identification::Impl::add_jacobian(ExperimentModel& e, const Eigen::VectorXd& p, Prediction& out) {
+  const contact::FrictionLaw law = law_for(e.law0, p);
   const double young = young_for(p);
   const double m_scale = young0 / young;  // M(E) = m_scale · M0
-  const contact::ContactState& state = *warm_start;  // the state of the cached prediction
+  const contact::ContactState& state = *e.warm_start;  // the state of the cached prediction
   const sensitivity::Piece piece = sensitivity::default_piece(sensitivity::classify(state, law));
   const sensitivity::PieceLinearization lin = sensitivity::linearize_piece(piece, law, state);
   const Eigen::MatrixXd rows = sensitivity::friction_parameter_rows(piece, law, state);
-  const Eigen::Index n = p.size(), m = M0->rows();
+  const Eigen::Index n = p.size(), m = e.M0->rows();
   Eigen::MatrixXd Rz = Eigen::MatrixXd::Zero(m, n), Q = Eigen::MatrixXd::Zero(m, n);
   for (Eigen::Index k = 0; k < n; ++k) {
     const int index = friction_index[static_cast<std::size_t>(k)];
     if (index >= 0) Rz.col(k) = rows.col(index);
-    else Q.col(k) = (state.gradient - gap_vector - c_dirichlet) / young;  // G A⁻¹ (A u − l_lift)/E
+    else Q.col(k) = (state.gradient - e.gap_vector - e.c_dirichlet) / young;  // G A⁻¹ (A u − l_lift)/E
   }
-  const sensitivity::ContactStateDerivative d = sensitivity::contact_state_derivative(lin, *M0, Rz, Q, m_scale);
+  const sensitivity::ContactStateDerivative d = sensitivity::contact_state_derivative(lin, *e.M0, Rz, Q, m_scale);
   ++jacobian_evaluations;
   if (d.status != Status::kConverged) {
     out.ok = false;
-    out.message = "forward sensitivity failed: " + d.message;
-    return;
+    out.message = (experiments.size() > 1 ? fmt::format("experiment \"{}\": ", e.name) : std::string()) +
+                  "forward sensitivity failed: " + d.message;
+    return false;
   }
-  out.jacobian = Lz * d.forces + Lg * d.gradient;
+  out.jacobian.middleRows(e.first_row, e.num_rows) = e.Lz * d.forces + e.Lg * d.gradient;
+  return true;
 }
 
+namespace {
+
+// The case's loads scaled by one experiment's factors (as a load case scales them,
+// study/load_case_definition.hpp) and its law turned by the experiment's angle.
+BodyDefinition experiment_body(const BodyDefinition& body, const IdentificationExperiment& x, std::size_t k) {
+  const std::string field = fmt::format("experiment[{}] (\"{}\")", k, x.name);
+  const auto check = [&](const std::vector<double>& scales, std::size_t count, std::string_view key,
+                         std::string_view table) {
+    if (scales.empty()) return;
+    if (scales.size() != count && !(scales.size() == 1 && count >= 1))
+      throw InvalidInput(fmt::format("{}.{}: {} scale(s); expected one for every [[{}]] table or one per table (the "
+                                     "case has {})",
+                                     field, key, scales.size(), table, count));
+    for (std::size_t j = 0; j < scales.size(); ++j)
+      if (!std::isfinite(scales[j]))
+        throw InvalidInput(fmt::format("{}.{}[{}] = {}; expected a finite number", field, key, j, scales[j]));
+  };
+  check(x.load_scale, body.tractions.size(), "load_scale", "load");
+  check(x.dirichlet_scale, body.dirichlet.size(), "dirichlet_scale", "dirichlet");
+  check(x.force_scale, body.forces.size(), "force_scale", "force");
+  if (!std::isfinite(x.orientation))
+    throw InvalidInput(fmt::format("{}.orientation = {}; expected a finite angle", field, x.orientation));
+  BodyDefinition out = body;
+  const auto at = [](const std::vector<double>& scales, std::size_t j) {
+    return scales.empty() ? 1.0 : scales[scales.size() == 1 ? 0 : j];
+  };
+  for (std::size_t j = 0; j < out.tractions.size(); ++j) out.tractions[j].traction *= at(x.load_scale, j);
+  for (std::size_t j = 0; j < out.dirichlet.size(); ++j)
+    if (out.dirichlet[j].displacement.size() > 0) out.dirichlet[j].displacement *= at(x.dirichlet_scale, j);
+  for (std::size_t j = 0; j < out.forces.size(); ++j) out.forces[j].force *= at(x.force_scale, j);
+  if (x.orientation != 0.0) {
+    if (out.contact->law.dim() == 2)
+      throw InvalidInput(fmt::format("{}.orientation = {} rad; expected 0 for a 2D case (a contact line has no "
+                                     "in-plane rotation)",
+                                     field, x.orientation));
+    out.contact->law = out.contact->law.rotated(x.orientation);
+  }
+  return out;
+}
+
+}  // namespace
+
 Identification::Identification(BodyDefinition definition, std::vector<Measurement> measurements, Options options)
+    : Identification(std::move(definition), std::vector<IdentificationExperiment>{[&] {
+                       IdentificationExperiment x;
+                       x.name = "case";
+                       x.measurements = std::move(measurements);
+                       return x;
+                     }()},
+                     std::move(options)) {}
+
+Identification::Identification(BodyDefinition definition, std::vector<IdentificationExperiment> experiments,
+                               Options options)
     : impl_(std::make_unique<Impl>()) {
   options.validate();
   Impl& s = *impl_;
@@ -486,27 +576,73 @@ Identification::Identification(BodyDefinition definition, std::vector<Measuremen
         "[solver] engine = \"petsc\": identification needs the direct engine (its trial points are contact "
         "solves on the dense Delassus matrix M = G A⁻¹ Gᵀ, and its Jacobians differentiate them); expected "
         "engine = \"direct\" (docs/identification.md)");
+  if (experiments.empty()) throw InvalidInput("identification: no experiment; expected at least one");
+  if (experiments.size() > kMaxIdentificationExperiments)
+    throw InvalidInput(fmt::format("identification: {} experiments; expected at most {} (docs/case-format.md, \"Size "
+                                   "limits\")",
+                                   experiments.size(), kMaxIdentificationExperiments));
+  std::size_t rows = 0, totals = 0;
+  for (std::size_t k = 0; k < experiments.size(); ++k) {
+    const IdentificationExperiment& x = experiments[k];
+    if (x.name.empty()) throw InvalidInput(fmt::format("experiment[{}].name = \"\"; expected a non-empty name", k));
+    for (std::size_t j = 0; j < k; ++j)
+      if (experiments[j].name == x.name)
+        throw InvalidInput(fmt::format("experiment[{}].name = \"{}\" is the name of experiment[{}]; expected unique names",
+                                       k, x.name, j));
+    if (x.measurements.empty())
+      throw InvalidInput(experiments.size() == 1
+                             ? std::string("identification: no measurements; expected at least one")
+                             : fmt::format("experiment[{}] (\"{}\"): no measurements; expected at least one", k, x.name));
+    rows += x.measurements.size();
+    totals += static_cast<std::size_t>(std::count_if(x.measurements.begin(), x.measurements.end(),
+                                                     [](const Measurement& row) { return is_total(row.quantity); }));
+  }
+  if (rows > kMaxMeasurements)
+    throw InvalidInput(fmt::format("identification: {} measurements; expected at most {} (docs/case-format.md, "
+                                   "\"Size limits\")",
+                                   rows, kMaxMeasurements));
+  if (totals > kMaxTotalMeasurements)
+    throw InvalidInput(fmt::format("identification: {} measurements of sums over the contact surface (total_*); "
+                                   "expected at most {} (docs/case-format.md, \"Size limits\")",
+                                   totals, kMaxTotalMeasurements));
   // The Jacobian is exact only for a state far more accurate than Ceres' steps.
   auto& co = definition.contact->coulomb;
   tighten_for_derivatives(co, options.state_tolerance);
   s.coulomb = co;
+  // The Jacobians need the dense M: let the state solve form it whatever the contact size.
+  definition.contact->dense_delassus_max_unknowns = std::numeric_limits<int>::max();
   s.definition = std::move(definition);
   s.options = std::move(options);
-  s.measurements = std::move(measurements);
   s.setup_parameters();
-  // The Jacobians need the dense M: let the state solve form it whatever the contact size.
-  s.definition.contact->dense_delassus_max_unknowns = std::numeric_limits<int>::max();
-  s.body = std::make_unique<ElasticBody>(s.definition);
-  if (s.body->contact_boundary()->num_unknowns() > kMaxIdentificationContactUnknowns)
-    throw InvalidInput(fmt::format(
-        "identification: the contact surface has {} contact unknowns (dim × {} nodes), whose dense Delassus matrix "
-        "needs {:.3g} GB; expected at most {} contact unknowns (a coarser mesh on the contact surface; "
-        "docs/case-format.md, \"Size limits\")",
-        s.body->contact_boundary()->num_unknowns(), s.body->contact_boundary()->num_nodes(),
-        8e-9 * std::pow(static_cast<double>(s.body->contact_boundary()->num_unknowns()), 2.0),
-        kMaxIdentificationContactUnknowns));
-  s.setup_contact();
-  s.resolve_measurements();
+  for (std::size_t k = 0; k < experiments.size(); ++k) {
+    IdentificationExperiment& x = experiments[k];
+    ExperimentModel e;
+    e.name = x.name;
+    e.orientation = x.orientation;
+    e.definition = experiment_body(s.definition, x, k);
+    e.law0 = e.definition.contact->law;
+    e.first_row = static_cast<Eigen::Index>(s.measurements.size());
+    e.num_rows = static_cast<Eigen::Index>(x.measurements.size());
+    for (Measurement& m : x.measurements) {
+      s.measurements.push_back(std::move(m));
+      s.measurement_experiment.push_back(static_cast<int>(k));
+    }
+    s.experiment_names.push_back(x.name);
+    s.experiments.push_back(std::move(e));
+  }
+  for (ExperimentModel& e : s.experiments) {
+    e.body = std::make_unique<ElasticBody>(e.definition);
+    if (e.body->contact_boundary()->num_unknowns() > kMaxIdentificationContactUnknowns)
+      throw InvalidInput(fmt::format(
+          "identification: the contact surface has {} contact unknowns (dim × {} nodes), whose dense Delassus matrix "
+          "needs {:.3g} GB; expected at most {} contact unknowns (a coarser mesh on the contact surface; "
+          "docs/case-format.md, \"Size limits\")",
+          e.body->contact_boundary()->num_unknowns(), e.body->contact_boundary()->num_nodes(),
+          8e-9 * std::pow(static_cast<double>(e.body->contact_boundary()->num_unknowns()), 2.0),
+          kMaxIdentificationContactUnknowns));
+    s.setup_contact(e);
+    s.resolve_measurements(e);
+  }
 }
 
 Identification::~Identification() = default;
@@ -522,9 +658,11 @@ Eigen::VectorXd Identification::case_parameters() const {
   return p;
 }
 const Eigen::MatrixXd& Identification::contact_coordinates() const {
-  return impl_->body->contact_boundary()->plane_coordinates();
+  return impl_->experiments.front().body->contact_boundary()->plane_coordinates();
 }
 const std::vector<Measurement>& Identification::measurements() const { return impl_->measurements; }
+const std::vector<std::string>& Identification::experiment_names() const { return impl_->experiment_names; }
+const std::vector<int>& Identification::measurement_experiment() const { return impl_->measurement_experiment; }
 
 Identification::Prediction Identification::predict(const Eigen::Ref<const Eigen::VectorXd>& parameters, bool with_jacobian) {
   if (parameters.size() != static_cast<Eigen::Index>(impl_->names.size()))
@@ -655,6 +793,16 @@ Identification::Summary Identification::run() {
   out.residuals = (out.predictions - value).cwiseQuotient(sigma);
   out.chi_square = out.residuals.squaredNorm();
   out.index_sets = final_prediction.index_sets;
+  for (const ExperimentModel& e : s.experiments) {
+    Summary::ExperimentResidual& r = out.experiments.emplace_back();
+    r.name = e.name;
+    r.first_measurement = e.first_row;
+    r.num_measurements = e.num_rows;
+    r.chi_square = out.residuals.segment(e.first_row, e.num_rows).squaredNorm();
+    r.rms_residual = std::sqrt(r.chi_square / static_cast<double>(e.num_rows));
+    r.num_slipping_nodes = e.num_slipping_nodes;
+    r.index_sets = e.index_sets;
+  }
 
   // Identifiability on the scaled Jacobian J_s = diag(1/σ) J diag(scale): column k is the change
   // of the normalized residuals for a 100% change of parameter k.
@@ -685,12 +833,15 @@ Identification::Summary Identification::run() {
       if (friction && final_prediction.num_slipping_nodes == 0) {
         // Every node sticks (or separates): any coefficient above the one that puts the most
         // loaded friction force on the boundary of λW gives the same state.
-        const contact::FrictionLaw law = s.law_for(p);
-        const contact::ContactState& state = *s.warm_start;  // the final prediction's state
+        // Over every experiment, each with its own (turned) law.
         double g = 0.0;
-        for (Eigen::Index i = 0; i < s.num_nodes; ++i) {
-          const double lambda = state.lambda(i);
-          if (lambda > 0) g = std::max(g, law.gauge(state.q(i) / lambda));
+        for (const ExperimentModel& model : s.experiments) {
+          const contact::FrictionLaw law = s.law_for(model.law0, p);
+          const contact::ContactState& state = *model.warm_start;  // the final prediction's state
+          for (Eigen::Index i = 0; i < model.num_nodes; ++i) {
+            const double lambda = state.lambda(i);
+            if (lambda > 0) g = std::max(g, law.gauge(state.q(i) / lambda));
+          }
         }
         e.note = s.friction_values0.size() == 1
                      ? fmt::format("only a lower bound: {} >= {:.6g} (every contact node sticks, so any larger "

@@ -61,7 +61,7 @@ def load_seeds(source):
                     with open(os.path.join(dirpath, name), encoding="utf-8") as f:
                         text = f.read()
                     if "[identification]" in text:  # its measurement path is relative to the seed
-                        text = re.sub(r"\[identification\][^\[]*(\[identification\.[^\n]*\n[^\[]*)*", "", text)
+                        text = re.sub(r"\[identification\][^\[]*(\[\[?identification\.[^\n]*\n[^\[]*)*", "", text)
                     seeds.append(coarsened(text))
     return seeds
 

@@ -768,7 +768,9 @@ upper = 1e12
 )";
   const io::CaseDescription c = io::parse_case(good, "cases/x/case.toml");
   ASSERT_TRUE(c.identification.has_value());
-  EXPECT_EQ(c.identification->measurements, std::filesystem::path("cases/x/data/m.csv"));
+  ASSERT_EQ(c.identification->experiments.size(), 1u);
+  EXPECT_FALSE(c.identification->explicit_experiments);
+  EXPECT_EQ(c.identification->experiments[0].measurements, std::filesystem::path("cases/x/data/m.csv"));
   const Identification::Options o = c.required_identification().options;
   ASSERT_EQ(o.parameters.size(), 5u);
   EXPECT_EQ(o.parameters[3].name, "mu_vertices[3]");
@@ -814,7 +816,7 @@ namespace {
 TEST(IdentifyAnisotropicCase, RecoversTheTrueLawWithinThreeStandardDeviations) {
   const io::CaseDescription c = io::load_case("cases3d/identify-anisotropic/case.toml");
   ASSERT_TRUE(c.identification.has_value());
-  Identification id(c.body, io::read_measurements(c.identification->measurements),
+  Identification id(c.body, io::identification_experiments(c.required_identification(), c.origin),
                     c.required_identification().options);
   const Eigen::VectorXd truth = id.case_parameters();
   const Identification::Summary s = id.run();

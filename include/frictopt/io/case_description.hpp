@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "frictopt/optim/bundle_trust.hpp"
 #include "frictopt/study/body_definition.hpp"
@@ -25,10 +26,30 @@ struct OutputSpec {
   std::string name;  ///< base name of output files; default the case file stem
 };
 
+/// The measurements and loads of one experiment of an identification (docs/identification.md,
+/// "Several experiments"): an [[identification.experiment]] table, or the [identification] table
+/// itself when it has none (the case's loads, no turn).
+struct IdentificationExperimentSetup {
+  std::string name = "case";
+  /// Scale factors of the case's [[load]], [[dirichlet]] and [[force]] tables: one per table, or a
+  /// single one for every table; empty: 1 (study::IdentificationExperiment).
+  std::vector<double> load_scale, dirichlet_scale, force_scale;
+  double orientation = 0.0;  ///< [rad]: the friction law turned by it in the contact plane
+  /// A measurement CSV, resolved against the case file's directory; absent: inline rows only.
+  std::optional<std::filesystem::path> measurements;
+  /// [[...measurement]] rows, in file order (labels "case.toml:LINE: identification.measurement[k]").
+  std::vector<study::Measurement> inline_measurements;
+  /// True when the table gives measurements (a file or inline rows).
+  [[nodiscard]] bool has_measurements() const { return measurements.has_value() || !inline_measurements.empty(); }
+};
+
 /// [identification]: identify friction coefficients (and E) from measurements (docs/identification.md).
 struct IdentificationSetup {
-  /// The measurement CSV; a relative path is resolved against the case file's directory.
-  std::filesystem::path measurements;
+  /// The experiments: the [[identification.experiment]] tables in order, or one implicit experiment
+  /// (the case's loads; `explicit_experiments` false) holding [identification]'s own `measurements`
+  /// file and [[identification.measurement]] rows — which may be none (Python passes a list).
+  std::vector<IdentificationExperimentSetup> experiments{1};
+  bool explicit_experiments = false;
   /// The parameters (one entry per identified scalar: "mu_vertices[j]" per vertex), bounds,
   /// robust loss and iteration limit; the other options keep study's defaults.
   study::Identification::Options options;

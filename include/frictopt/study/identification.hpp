@@ -53,6 +53,8 @@ bool is_total(MeasuredQuantity quantity);
 inline constexpr std::size_t kMaxMeasurements = 100'000;
 inline constexpr std::size_t kMaxTotalMeasurements = 1'000;
 inline constexpr std::int64_t kMaxIdentificationContactUnknowns = 20'000;
+/// Experiments of one identification: each holds its own factorization and dense Delassus matrix.
+inline constexpr std::size_t kMaxIdentificationExperiments = 100;
 
 /// One measured value with its standard deviation.
 struct Measurement {
@@ -64,6 +66,25 @@ struct Measurement {
   double value = 0.0;  ///< in the quantity's unit
   double sigma = 1.0;  ///< standard deviation, > 0, same unit
   std::string label;   ///< where it came from, for messages ("measurements.csv:7")
+};
+
+/// One experiment of an identification (docs/identification.md, "Several experiments"): the case's
+/// body at its initial design under its own loads — the case's [[load]], [[dirichlet]] and
+/// [[force]] tables scaled as a load case scales them (study/load_case_definition.hpp) — with the
+/// friction law turned by `orientation` in the contact plane (the specimen turned on the
+/// tribometer: FrictionLaw::rotated, docs/theory/friction-frame.md), and its own measurements.
+/// The identified parameters are the coefficients of the law in the specimen's own frame, shared
+/// by every experiment: one experiment may leave a coefficient undetermined (sliding along the
+/// lay reads only μ along the lay) that another determines.
+struct IdentificationExperiment {
+  std::string name = "experiment";      ///< for reports; unique among the experiments
+  /// Scale factors: one per BodyDefinition::tractions / dirichlet (its displacement) / forces, or a
+  /// single one for every table of its kind; empty: every scale 1.
+  std::vector<double> load_scale;
+  std::vector<double> dirichlet_scale;
+  std::vector<double> force_scale;
+  double orientation = 0.0;             ///< [rad], added to the law's own orientation (3D laws)
+  std::vector<Measurement> measurements;  ///< non-empty
 };
 
 /// Robust loss on each normalized residual r = (model − value)/σ (Ceres' HuberLoss, CauchyLoss).
@@ -94,7 +115,8 @@ std::string_view to_string(Identifiability identifiability);
 
 /// Weighted least squares  min_p ½ Σ_i ρ(((model_i(p) − value_i)/σ_i)²)  over lower <= p <= upper,
 /// where model_i reads the contact state of the case's body at its initial design with the
-/// friction law's parameters (and E) set to p. The state map is piecewise smooth; the Jacobian
+/// friction law's parameters (and E) set to p — under the loads and turned law of measurement i's
+/// experiment (IdentificationExperiment; one experiment: the case's own loads). The state map is piecewise smooth; the Jacobian
 /// is that of the default piece (docs/theory/sensitivity.md §4) by forward sensitivities
 /// (sensitivity::contact_state_derivative), so one Coulomb solve and one contact-sized LU per
 /// trial point. E enters through M(E) = (E₀/E) M₀ and the free response, which is exact for
@@ -155,20 +177,31 @@ class Identification {
     Eigen::VectorXd singular_values;  ///< of the scaled Jacobian at the estimate
     Eigen::VectorXd predictions;      ///< model values at the estimate, one per measurement
     Eigen::VectorXd residuals;        ///< (model − value)/σ at the estimate
-    std::string index_sets;           ///< contact index sets at the estimate
+    std::string index_sets;           ///< contact index sets at the estimate ("name: ..." per experiment)
+    /// One per experiment, in order: its share of the fit at the estimate.
+    struct ExperimentResidual {
+      std::string name;
+      Eigen::Index first_measurement = 0;  ///< its rows in predictions / residuals
+      Eigen::Index num_measurements = 0;
+      double chi_square = kNaN;            ///< Σ r_i² over its rows
+      double rms_residual = kNaN;          ///< sqrt(chi_square / num_measurements)
+      int num_slipping_nodes = 0;          ///< at the estimate
+      std::string index_sets;              ///< at the estimate
+    };
+    std::vector<ExperimentResidual> experiments;
     double time_seconds = 0.0;
     std::string brief_report() const;
   };
 
-  /// Model values and their Jacobian at a parameter vector.
+  /// Model values and their Jacobian at a parameter vector (the experiments' rows stacked in order).
   struct Prediction {
     bool ok = false;
     std::string message;
     Eigen::VectorXd values;    ///< one per measurement
     Eigen::MatrixXd jacobian;  ///< ∂values/∂p (measurements × parameters); empty unless requested
-    contact::CoulombSolver::Summary contact;
-    std::string index_sets;
-    int num_slipping_nodes = 0;
+    contact::CoulombSolver::Summary contact;  ///< of the first experiment (the one failing, if any)
+    std::string index_sets;                   ///< one experiment: its sets; several: "name: sets; ..."
+    int num_slipping_nodes = 0;               ///< over all experiments
   };
 
   /// Validates the options and measurements against the body: parameter names for its law,
@@ -177,6 +210,13 @@ class Identification {
   /// node index in [0, 81)"). Solves the elasticity at the initial design once (factorization
   /// and Delassus matrix); throws InvalidInput when the body has no contact or cannot be factorized.
   Identification(BodyDefinition definition, std::vector<Measurement> measurements, Options options);
+  /// Several experiments on the same body (IdentificationExperiment): each has its own state
+  /// operators (its loads and turned law; one factorization each) and its own residual blocks,
+  /// and the least-squares problem sums them all. As above, plus InvalidInput for no experiment,
+  /// an empty or duplicate name, a scale list of the wrong length or a non-finite scale, a
+  /// non-finite orientation or a nonzero one on a 2D law, an experiment without measurements
+  /// (messages name "experiment[k] (\"name\")").
+  Identification(BodyDefinition definition, std::vector<IdentificationExperiment> experiments, Options options);
   ~Identification();
   Identification(const Identification&) = delete;
   Identification& operator=(const Identification&) = delete;
@@ -189,8 +229,12 @@ class Identification {
   Eigen::VectorXd case_parameters() const;
   /// In-plane coordinates x' of the contact nodes (p × dim−1), for reports and plots.
   const Eigen::MatrixXd& contact_coordinates() const;
-  /// The measurements with their locations resolved to contact nodes (node >= 0 or totals).
+  /// The measurements with their locations resolved to contact nodes (node >= 0 or totals), the
+  /// experiments' rows in order.
   const std::vector<Measurement>& measurements() const;
+  /// The experiments' names, and for each measurement the index of its experiment.
+  const std::vector<std::string>& experiment_names() const;
+  const std::vector<int>& measurement_experiment() const;
 
   /// The model at `parameters` (one per parameter name); the Jacobian by forward sensitivities.
   /// A failed state solve or an invalid law (e.g. non-convex polygon) gives ok = false.
