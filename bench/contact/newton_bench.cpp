@@ -3,12 +3,15 @@
 // automatic choice (docs/contact.md, "Semismooth Newton"): state time over factorization time,
 // CPU seconds, iterations, the load average, and the agreement of the solutions.
 //
-//   newton_bench [NX NY NZ [SHIFT [PRESS [LAW [METHODS [GRADING [BOTTOM]]]]]]]
+//   newton_bench [NX NY NZ [SHIFT [PRESS [LAW [METHODS [GRADING [BOTTOM [POISSON [BUDGET]]]]]]]]]
 //
 // defaults 32 32 8, SHIFT 4e-4 m, PRESS 2e-4 m, LAW disc (disc | polygon4 | ellipse), METHODS
 // fixed_point,semismooth_newton,automatic, GRADING 1 (the vertical power-law grading toward the
 // contact surface, [mesh] grading), BOTTOM flat (flat | dish: the dish-shaped 3 × 3 Bézier
-// bottom of the sensitivity tests, heights 0.4–1.7 mm, so the pressure varies). The body: a 1 m × 1 m × 0.25 m aluminium block with a
+// bottom of the sensitivity tests, heights 0.4–1.7 mm, so the pressure varies), POISSON 0.33
+// (a rubber-like pad: 0.45–0.49, which couples normal and tangential response strongly; LAW
+// disc:MU for another μ), BUDGET 1/3 (the automatic handover's products with M per contact
+// unknown, NewtonOptions::automatic_applications_per_unknown). The body: a 1 m × 1 m × 0.25 m aluminium block with a
 // flat bottom (every bottom node touches), its top moved PRESS down and SHIFT sideways, μ = 0.3
 // (polygon4: the anisotropic 4-gon 0.4/0.2; ellipse: 0.3/0.2): most contact nodes slip.
 #include <fmt/format.h>
@@ -42,18 +45,20 @@ std::string load_average() {
 }
 
 contact::FrictionLaw law_named(const std::string& name) {
+  if (name.rfind("disc:", 0) == 0) return contact::FrictionLaw::disc(std::atof(name.c_str() + 5));
   if (name == "polygon4") return contact::FrictionLaw::polygon({0.4, 0.2, 0.4, 0.2});
   if (name == "ellipse") return contact::FrictionLaw::ellipse(0.3, 0.2);
   return contact::FrictionLaw::disc(0.3);
 }
 
-study::BodyDefinition slip_box(int nx, int ny, int nz, double grading, bool dish, double shift, double press,
-                               const contact::FrictionLaw& law, contact::CoulombMethod method) {
+study::BodyDefinition slip_box(int nx, int ny, int nz, double grading, bool dish, double poisson, double shift,
+                               double press, const contact::FrictionLaw& law, contact::CoulombMethod method,
+                               double budget) {
   study::BodyDefinition b;
   b.shape = shape::BezierShape::surface(1.0, 1.0, 3, 3);
   b.height = 0.25;
   b.resolution = {{nx, ny, nz}, grading};
-  b.material = {7e10, 0.33, fem::PlaneModel::kPlaneStrain};
+  b.material = {7e10, poisson, fem::PlaneModel::kPlaneStrain};
   b.dirichlet = {{"top", {}, Eigen::Vector3d(shift, 0.0, -press)}};
   b.admissible.upper_bound = 5e-3;
   b.admissible.height = 0.25;
@@ -62,6 +67,7 @@ study::BodyDefinition slip_box(int nx, int ny, int nz, double grading, bool dish
   study::ContactDefinition c;
   c.law = law;
   c.coulomb.method = method;
+  c.coulomb.newton.automatic_applications_per_unknown = budget;
   b.contact = c;
   return b;
 }
@@ -81,6 +87,8 @@ int main(int argc, char** argv) {
   }
   const double grading = argc > 8 ? std::atof(argv[8]) : 1.0;
   const bool dish = argc > 9 && std::string(argv[9]) == "dish";
+  const double poisson = argc > 10 ? std::atof(argv[10]) : 0.33;
+  const double budget = argc > 11 ? std::atof(argv[11]) : 1.0 / 3.0;
   const contact::FrictionLaw law = law_named(law_name);
   fmt::print("| grid | law | method | used | contact unknowns | stick / slip / sep. | factorization [s] | contact solve [s] | "
              "state [s] | state / factorization | state CPU [s] | iterations (FP / Newton / linear / LU) | max |Δz|/|z| | "
@@ -88,7 +96,7 @@ int main(int argc, char** argv) {
   Eigen::VectorXd first;
   for (const std::string& name : methods) {
     const contact::CoulombMethod method = contact::parse_coulomb_method(name);
-    study::ElasticBody body(slip_box(nx, ny, nz, grading, dish, shift, press, law, method));
+    study::ElasticBody body(slip_box(nx, ny, nz, grading, dish, poisson, shift, press, law, method, budget));
     const std::string load_before = load_average();
     const double cpu0 = cpu_seconds();
     const study::BodyState state = body.solve(body.definition().initial_design, "bench");
@@ -104,9 +112,10 @@ int main(int argc, char** argv) {
     const auto& res = state.contact->resultants;
     const double fact = state.summary.factorization_seconds;
     const double total = fact + state.summary.solve_seconds;
+    const std::string label = name == "automatic" && budget != 1.0 / 3.0 ? fmt::format("automatic (m·{:g})", budget) : name;
     fmt::print("| {}×{}×{}{} | {} | {} | {} | {} | {} / {} / {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {} / {} / {} / {} | "
                "{:.1e} | {}–{} |\n",
-               nx, ny, nz, (grading != 1.0 ? fmt::format(" graded {:g}", grading) : std::string()) + (dish ? " dish" : ""), law_name, name, contact::to_string(r.method_used), z.size(), res.num_stick, res.num_slip,
+               nx, ny, nz, (grading != 1.0 ? fmt::format(" graded {:g}", grading) : std::string()) + (dish ? " dish" : "") + (poisson != 0.33 ? fmt::format(" ν {:g}", poisson) : std::string()), law_name, label, contact::to_string(r.method_used), z.size(), res.num_stick, res.num_slip,
                res.num_separated, fact, r.time_seconds, total, total / fact, cpu, r.iterations, r.newton_iterations,
                r.linear_iterations, r.factorizations, diff, load_before, load_average());
     fmt::print(stderr, "{}: {}\n  {}\n", name, r.brief_report(), r.message);
