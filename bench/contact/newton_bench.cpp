@@ -10,7 +10,7 @@
 // contact surface, [mesh] grading), BOTTOM flat (flat | dish: the dish-shaped 3 × 3 Bézier
 // bottom of the sensitivity tests, heights 0.4–1.7 mm, so the pressure varies), POISSON 0.33
 // (a rubber-like pad: 0.45–0.49, which couples normal and tangential response strongly; LAW
-// disc:MU for another μ), BUDGET 1/3 (the automatic handover's products with M per contact
+// disc:MU for another μ), BUDGET 0.1 (the automatic handover's products with M per contact
 // unknown, NewtonOptions::automatic_applications_per_unknown). The body: a 1 m × 1 m × 0.25 m aluminium block with a
 // flat bottom (every bottom node touches), its top moved PRESS down and SHIFT sideways, μ = 0.3
 // (polygon4: the anisotropic 4-gon 0.4/0.2; ellipse: 0.3/0.2): most contact nodes slip.
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
   const double grading = argc > 8 ? std::atof(argv[8]) : 1.0;
   const bool dish = argc > 9 && std::string(argv[9]) == "dish";
   const double poisson = argc > 10 ? std::atof(argv[10]) : 0.33;
-  const double budget = argc > 11 ? std::atof(argv[11]) : 1.0 / 3.0;
+  const double budget = argc > 11 ? std::atof(argv[11]) : 0.1;
   const contact::FrictionLaw law = law_named(law_name);
   fmt::print("| grid | law | method | used | contact unknowns | stick / slip / sep. | factorization [s] | contact solve [s] | "
              "state [s] | state / factorization | state CPU [s] | iterations (FP / Newton / linear / LU) | max |Δz|/|z| | "
@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
     const auto& res = state.contact->resultants;
     const double fact = state.summary.factorization_seconds;
     const double total = fact + state.summary.solve_seconds;
-    const std::string label = name == "automatic" && budget != 1.0 / 3.0 ? fmt::format("automatic (m·{:g})", budget) : name;
+    const std::string label = name == "automatic" && budget != 0.1 ? fmt::format("automatic (m·{:g})", budget) : name;
     fmt::print("| {}×{}×{}{} | {} | {} | {} | {} | {} / {} / {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {} / {} / {} / {} | "
                "{:.1e} | {}–{} |\n",
                nx, ny, nz, (grading != 1.0 ? fmt::format(" graded {:g}", grading) : std::string()) + (dish ? " dish" : "") + (poisson != 0.33 ? fmt::format(" ν {:g}", poisson) : std::string()), law_name, label, contact::to_string(r.method_used), z.size(), res.num_stick, res.num_slip,

@@ -75,7 +75,7 @@ double estimated_contact_flops(std::int64_t contact_unknowns) {
 std::string contact_cost_note(int dim, std::int64_t contact_nodes) {
   const std::int64_t m = dim * contact_nodes;
   const double bytes = estimated_contact_bytes(m), flops = estimated_contact_flops(m);
-  if (bytes < 1e9 && flops < 1e11) return {};
+  if (bytes < 1e9 && flops < 5e10) return {};
   return fmt::format("{} contact nodes ({} contact unknowns): the dense contact algebra needs about {:.3g} GB and "
                      "{:.2g} flops (about {:.0f} s at 10 Gflop/s) beyond the factorization (docs/scaling.md, "
                      "\"Contact nodes\"; a coarser contact surface reduces it quadratically in memory and cubically "

@@ -18,7 +18,7 @@ namespace {
 // graded toward the contact surface, flat bottom (all 1,089 bottom nodes touch), top moved
 // 1.2e-3 m down and 2e-4 m sideways, the anisotropic 4-gon (μ 0.4 and 0.2 along the diagonals,
 // thesis remark 6.2.1): 1,039 of the 1,089 contact nodes slip, and the fixed point needs about
-// 1,280 products with M, more than the m/3 = 1,089 of the automatic handover; Newton finishes and
+// 1,280 products with M, more than the m/10 = 327 of the automatic handover; Newton finishes and
 // agrees with the fixed point.
 TEST(SemismoothNewtonSlow, SlipHeavyBoxHandsOverToNewtonAndAgrees) {
   study::BodyDefinition b;

@@ -81,8 +81,10 @@ class CoulombSolver {
       /// point's products cost microseconds). >= 0.
       Eigen::Index automatic_min_unknowns = 3000;
       /// kAutomatic hands over once the fixed point has used this many products with M per
-      /// contact unknown without converging (about the cost of one dense LU). > 0.
-      double automatic_applications_per_unknown = 1.0 / 3.0;
+      /// contact unknown without converging: m/10 products take about as long as the whole
+      /// Newton solve (one or two LUs and ≈ 150 products, docs/contact.md "Semismooth Newton":
+      /// measured break-even; m/3 cost 2× more on the slip-heavy states there). > 0.
+      double automatic_applications_per_unknown = 0.1;
       /// When Newton does not converge, solve by the fixed point instead (reported in the
       /// summary's message and `fallback`); otherwise its status is returned.
       bool fallback_to_fixed_point = true;
