@@ -14,6 +14,7 @@
 #include "frictopt/io/summary_json.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 #include "frictopt/io/state_output.hpp"
+#include "frictopt/study/build_mesh.hpp"
 #include "frictopt/study/elastic_body.hpp"
 
 namespace frictopt::app {
@@ -27,6 +28,11 @@ int run_solve(const std::filesystem::path& case_path, const std::filesystem::pat
   fmt::print("{}: {}D body, {} nodes, {} elements, {} unknowns, {} design variables\n", case_path.string(),
              mesh.dim(), mesh.num_nodes(), mesh.num_elements(), body.elasticity().dofs().num_free(),
              body.definition().shape.num_controls());
+  // The dense contact algebra grows like m² in memory and m³ in time (m contact unknowns): said
+  // before the solve starts (docs/scaling.md, "Contact nodes").
+  if (const contact::ContactBoundary* boundary = body.contact_boundary())
+    if (const std::string note = study::contact_cost_note(mesh.dim(), boundary->num_nodes()); !note.empty())
+      fmt::print("warning: {}\n", note);
   // x⁰: α⁰, with friction_orientation (α⁰, k φ⁰) — Υ is over x.
   const std::string violation = body.admissible_set().describe_violation(body.initial_design(), 1e-9);
   if (!violation.empty()) fmt::print("warning: the initial design is outside the admissible set: {}\n", violation);

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "frictopt/contact/coulomb_solver.hpp"
+#include "frictopt/contact/semismooth_newton_coulomb.hpp"
 
 #include <algorithm>
 #include <array>
@@ -16,10 +17,11 @@
 namespace frictopt::contact {
 namespace {
 
-constexpr frictopt::detail::EnumTable<CoulombMethod, 3> kMethodNames{{{
+constexpr frictopt::detail::EnumTable<CoulombMethod, 4> kMethodNames{{{
     {CoulombMethod::kFixedPoint, "fixed_point"},
     {CoulombMethod::kSplit, "split"},
     {CoulombMethod::kSemismoothNewton, "semismooth_newton"},
+    {CoulombMethod::kAutomatic, "automatic"},
 }}};
 
 // Loosest inner tolerance: early fixed-point iterates are far from the solution, so solving
@@ -48,9 +50,16 @@ void CoulombSolver::Options::validate() const {
     fail("relaxation", format_number(relaxation), "a value in (0, 1]");
   if (divergence_window < 2)
     fail("divergence_window", std::to_string(divergence_window), ">= 2");
-  if (method == CoulombMethod::kSemismoothNewton)
-    fail("method", "semismooth_newton",
-         "fixed_point or split (the semismooth Newton method is the PETSc engine's: solver.engine = \"petsc\")");
+  if (newton.max_iterations < 1) fail("newton.max_iterations", std::to_string(newton.max_iterations), ">= 1");
+  if (newton.direct_max_unknowns < 0)
+    fail("newton.direct_max_unknowns", std::to_string(newton.direct_max_unknowns), ">= 0");
+  if (newton.gmres_max_iterations < 1)
+    fail("newton.gmres_max_iterations", std::to_string(newton.gmres_max_iterations), ">= 1");
+  if (newton.automatic_min_unknowns < 0)
+    fail("newton.automatic_min_unknowns", std::to_string(newton.automatic_min_unknowns), ">= 0");
+  if (!(newton.automatic_applications_per_unknown > 0.0) || !std::isfinite(newton.automatic_applications_per_unknown))
+    fail("newton.automatic_applications_per_unknown", format_number(newton.automatic_applications_per_unknown),
+         "a finite value > 0");
   tresca.validate();
 }
 
@@ -62,6 +71,9 @@ std::string CoulombSolver::Summary::brief_report() const {
       << " applies, last increment " << last_relative_increment << ", KKT " << kkt_residual
       << ", gap " << complementarity_gap;
   if (inner_not_converged > 0) out << ", " << inner_not_converged << " inner solves capped";
+  if (newton_iterations > 0)
+    out << ", " << newton_iterations << " Newton it, " << linear_iterations << " linear it, " << factorizations
+        << " LU" << (fallback ? ", Newton failed: fixed point" : "");
   out << ", " << time_seconds << " s";
   return out.str();
 }
@@ -91,18 +103,46 @@ CoulombSolver::Summary CoulombSolver::solve(const Eigen::Ref<const Eigen::Vector
                        "; expected " + std::to_string(n));
   if (!c.allFinite()) throw InvalidInput("CoulombSolver::solve: c has non-finite entries");
   const Eigen::VectorXd cc = c;
-  Summary summary = options_.method == CoulombMethod::kSplit ? solve_split(cc, state)
-                                                             : solve_fixed_point(cc, state);
+  Summary summary;
+  switch (options_.method) {
+    case CoulombMethod::kSplit: summary = solve_split(cc, state); break;
+    case CoulombMethod::kFixedPoint: summary = solve_fixed_point(cc, state); break;
+    case CoulombMethod::kAutomatic: summary = solve_automatic(cc, state); break;
+    case CoulombMethod::kSemismoothNewton:
+      // Finished by the Newton solver (residuals, classification, message, fallback).
+      summary = SemismoothNewtonCoulombSolver(tresca_.delassus(), tresca_.laws(), options_).solve(cc, state);
+      summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return summary;
+  }
+  if (summary.method_used != CoulombMethod::kSemismoothNewton && !summary.fallback) finish(cc, state, summary);
+  summary.time_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+void CoulombSolver::finish(const Eigen::VectorXd& c, ContactState& state, Summary& summary) const {
   // Coulomb conditions: the Tresca conditions with s = λ, from the final state's fresh
   // gradient (independent of the fixed-point increment).
   const Eigen::VectorXd lambda = state.normal_forces();
-  const double c_scale = cc.size() ? cc.cwiseAbs().maxCoeff() : 0.0;
+  const double c_scale = c.size() ? c.cwiseAbs().maxCoeff() : 0.0;
   const ContactResiduals res =
       contact_residuals(tresca_.laws(), lambda, state.z, state.gradient, tresca_.dim(), c_scale);
   summary.kkt_residual = res.kkt_residual;
   summary.complementarity_gap = res.complementarity_gap;
+  const double c_norm = c.norm();
+  summary.relative_projected_gradient =
+      coulomb_projected_gradient_norm(tresca_.laws(), state.z, state.gradient, tresca_.dim(), tresca_.step_length()) /
+      (c_norm > 0.0 ? c_norm : 1.0);
   state.slip_bound = lambda;
   classify_nodes(state, tresca_.laws(), options_.tresca.classification_tolerance, c_scale);
+  if (summary.method_used == CoulombMethod::kSemismoothNewton) {
+    summary.message = summary.status == Status::kConverged
+                          ? "semismooth Newton: projected gradient " + format_number(summary.relative_projected_gradient) +
+                                " <= " + format_number(options_.tresca.relative_tolerance) + " after " +
+                                std::to_string(summary.newton_iterations) + " Newton steps"
+                          : summary.message;
+    return;
+  }
   switch (summary.status) {
     case Status::kConverged:
       summary.message = "relative increment " + format_number(summary.last_relative_increment) + " <= " +
@@ -125,8 +165,34 @@ CoulombSolver::Summary CoulombSolver::solve(const Eigen::Ref<const Eigen::Vector
     default:
       summary.message = "the inner QP failed: the Delassus operator is not SPD or data are not finite";
   }
-  summary.time_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+CoulombSolver::Summary CoulombSolver::solve_automatic(const Eigen::VectorXd& c, ContactState& state) const {
+  const Eigen::Index m = c.size();
+  if (m < options_.newton.automatic_min_unknowns) {
+    Summary summary = solve_fixed_point(c, state);
+    summary.method_given = CoulombMethod::kAutomatic;
+    return summary;
+  }
+  // The fixed point first: on problems with few slipping nodes it converges within the budget,
+  // and its iterate is a good start for Newton otherwise (docs/contact.md, "Semismooth Newton").
+  const long budget = static_cast<long>(
+      std::ceil(options_.newton.automatic_applications_per_unknown * static_cast<double>(m)));
+  Summary first = solve_fixed_point(c, state, budget);
+  first.method_given = CoulombMethod::kAutomatic;
+  if (first.status != Status::kMaxIterations || first.iterations >= options_.max_iterations ||
+      first.operator_applications < budget)
+    return first;
+  Options newton = options_;
+  newton.method = CoulombMethod::kSemismoothNewton;
+  Summary summary = SemismoothNewtonCoulombSolver(tresca_.delassus(), tresca_.laws(), newton).solve(c, state);
+  summary.method_given = CoulombMethod::kAutomatic;
+  summary.iterations += first.iterations;
+  summary.qp_iterations += first.qp_iterations;
+  summary.operator_applications += first.operator_applications;
+  summary.inner_not_converged += first.inner_not_converged;
+  summary.message += " (handed over from the fixed point after " + std::to_string(first.iterations) +
+                     " iterations, " + std::to_string(first.operator_applications) + " products with M)";
   return summary;
 }
 
@@ -194,8 +260,8 @@ class FixedPointMonitor {
 
 }  // namespace
 
-CoulombSolver::Summary CoulombSolver::solve_fixed_point(const Eigen::VectorXd& c,
-                                                        ContactState& state) const {
+CoulombSolver::Summary CoulombSolver::solve_fixed_point(const Eigen::VectorXd& c, ContactState& state,
+                                                        long application_budget) const {
   Summary summary;
   summary.method_given = summary.method_used = CoulombMethod::kFixedPoint;
   const Eigen::Index p = tresca_.num_nodes();
@@ -220,6 +286,10 @@ CoulombSolver::Summary CoulombSolver::solve_fixed_point(const Eigen::VectorXd& c
     const bool stop = monitor.record(k, increment, reference, qp.status, qp_iterations, tol <= floor);
     last_rel = summary.last_relative_increment;
     if (summary.status == Status::kConverged || stop) break;
+    if (application_budget > 0 && summary.operator_applications >= application_budget) {
+      summary.status = Status::kMaxIterations;  // the handover of kAutomatic (solve_automatic)
+      break;
+    }
     s = s_next;
   }
   return summary;

@@ -106,6 +106,9 @@ FloatingCoulombSolver::Summary FloatingCoulombSolver::solve(
   double last = std::numeric_limits<double>::infinity();
   int stalled = 0;  // consecutive outer iterations without progress
   CoulombSolver::Options coulomb = options_.coulomb;  // inner tolerances, tightened on a stall
+  // The inner operator M + ρEᵀE is applied, not formed: the semismooth Newton method would form
+  // it by m products per outer iteration, so the automatic choice stays with the fixed point.
+  if (coulomb.method == CoulombMethod::kAutomatic) coulomb.method = CoulombMethod::kFixedPoint;
   std::vector<Eigen::VectorXd> g_history, f_history;  // Anderson acceleration of μ
   double history_rho = rho;
   beta = mu;

@@ -51,7 +51,9 @@ WorkingSetCoulombSolver::Summary WorkingSetCoulombSolver::solve(const Eigen::Ref
 
   Summary out;
   CoulombSolver::Summary& total = out.coulomb;
-  total.method_given = total.method_used = options_.method;
+  total.method_given = options_.method;
+  total.method_used = options_.method == CoulombMethod::kSemismoothNewton ? CoulombMethod::kSemismoothNewton
+                                                                         : CoulombMethod::kFixedPoint;
   Eigen::VectorXd z = Eigen::VectorXd::Zero(m), g = c;
   const double c_norm = c.norm();
   const double tolerance = 0.5 * options_.tresca.relative_tolerance * c_norm;
@@ -81,13 +83,24 @@ WorkingSetCoulombSolver::Summary WorkingSetCoulombSolver::solve(const Eigen::Ref
         if (!warm && round > 1 && sub.z.isZero(0.0)) sub = ContactState();
       }
       for (Eigen::Index k = 0; k < w; ++k) c_w(k) = c(unknowns[static_cast<std::size_t>(k)]);
-      const CoulombSolver coulomb(block, law_, options_);
+      // kAutomatic decides on the size of the whole problem (its contact unknowns), the budget
+      // of products on the block's (docs/contact.md, "Semismooth Newton").
+      CoulombSolver::Options block_options = options_;
+      if (m >= options_.newton.automatic_min_unknowns) block_options.newton.automatic_min_unknowns = 0;
+      const CoulombSolver coulomb(block, law_, block_options);
       const CoulombSolver::Summary s = coulomb.solve(c_w, sub);
       total.iterations += s.iterations;
       total.qp_iterations += s.qp_iterations;
       total.operator_applications += s.operator_applications;
       total.inner_not_converged += s.inner_not_converged;
       total.last_relative_increment = s.last_relative_increment;
+      total.method_used = s.method_used;
+      // Outside W, z = 0 with non-negative gaps adds nothing to it once the rounds end.
+      total.relative_projected_gradient = s.relative_projected_gradient;
+      total.newton_iterations += s.newton_iterations;
+      total.linear_iterations += s.linear_iterations;
+      total.factorizations += s.factorizations;
+      total.fallback = total.fallback || s.fallback;
       total.status = s.status;
       total.message = s.message;
       z.setZero();

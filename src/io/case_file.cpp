@@ -597,7 +597,7 @@ contact::CoulombSolver::Options read_solver(const TableReader& r, std::string_vi
     return t ? std::optional<TableReader>(std::in_place, *t, r.field(key), origin, keys)
              : std::nullopt;
   };
-  if (auto coulomb = sub("coulomb", {"max_iterations", "relative_tolerance"}))
+  if (auto coulomb = sub("coulomb", {"max_iterations", "relative_tolerance", "method"}))
     read_iterative_solver(*coulomb, 10'000, s);
   if (auto qp = sub("qp", {"max_iterations", "relative_tolerance"})) read_iterative_solver(*qp, 1'000'000, s.tresca);
   // [solver.fem] is reserved: it may appear, but has no keys yet (the direct solver has no
@@ -975,6 +975,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
   if (const toml::table* solver = top.optional_table("solver")) {
     coulomb = read_solver(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem", "engine", "petsc_options", "newton"}), origin);
     detail::read_solver_engine(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem", "engine", "petsc_options", "newton"}), origin, body.engine);
+    detail::read_coulomb_method(TableReader(*solver, "solver", origin, {"coulomb", "qp", "fem", "engine", "petsc_options", "newton"}), origin, body.engine, coulomb);
   }
   if (friction) {
     study::ContactDefinition contact_definition;

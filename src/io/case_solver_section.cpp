@@ -36,4 +36,28 @@ void read_solver_engine(const TableReader& solver, std::string_view origin, stud
   }
 }
 
+void read_coulomb_method(const TableReader& solver, std::string_view origin, const study::EngineDefinition& engine,
+                         contact::CoulombSolver::Options& coulomb) {
+  const toml::table* table = solver.optional_table("coulomb");
+  if (!table) return;
+  const TableReader r(*table, solver.field("coulomb"), origin, {"max_iterations", "relative_tolerance", "method"});
+  const std::optional<std::string> method = r.optional_string("method");
+  if (!method) return;
+  if (*method == "automatic")
+    coulomb.method = contact::CoulombMethod::kAutomatic;
+  else if (*method == "fixed_point")
+    coulomb.method = contact::CoulombMethod::kFixedPoint;
+  else if (*method == "split")
+    coulomb.method = contact::CoulombMethod::kSplit;
+  else if (*method == "semismooth_newton")
+    coulomb.method = contact::CoulombMethod::kSemismoothNewton;
+  else
+    r.fail_value("method", "one of automatic, fixed_point, split, semismooth_newton");
+  const bool newton = coulomb.method == contact::CoulombMethod::kAutomatic ||
+                      coulomb.method == contact::CoulombMethod::kSemismoothNewton;
+  if (engine.kind == study::StateEngine::kPetsc && !newton)
+    r.fail_value("method", "automatic or semismooth_newton with engine = \"petsc\" (the PETSc engine solves by "
+                           "semismooth Newton on the displacements; the fixed point is the direct engine's)");
+}
+
 }  // namespace frictopt::io::detail

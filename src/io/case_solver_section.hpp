@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The engine keys of a case's [solver] table (docs/case-format.md, "[solver]"):
-// engine = "direct" | "petsc", petsc_options, and [solver.newton] for the PETSc engine's
-// Newton method. Private to io; called by case_file.cpp.
+// engine = "direct" | "petsc", petsc_options, [solver.newton] for the PETSc engine's
+// Newton method, and [solver.coulomb] method. Private to io; called by case_file.cpp.
 #pragma once
 
+#include "frictopt/contact/coulomb_solver.hpp"
 #include "frictopt/study/body_definition.hpp"
 #include "toml_reader.hpp"
 
@@ -13,5 +14,13 @@ namespace frictopt::io::detail {
 /// `solver` into `out`. Throws InvalidInput naming the field, its value and the expectation
 /// (petsc_options or [solver.newton] with engine = "direct" are errors: they would be ignored).
 void read_solver_engine(const TableReader& solver, std::string_view origin, study::EngineDefinition& out);
+
+/// Reads [solver.coulomb] method = "automatic" | "fixed_point" | "split" | "semismooth_newton"
+/// (docs/case-format.md, "[solver]"; docs/contact.md, "Semismooth Newton") into `coulomb.method`;
+/// absent: "automatic". With engine = "petsc" only "automatic" and "semismooth_newton" (the
+/// PETSc engine's Newton on the displacements) are accepted. Throws InvalidInput naming the
+/// field, its value and the expectation.
+void read_coulomb_method(const TableReader& solver, std::string_view origin, const study::EngineDefinition& engine,
+                         contact::CoulombSolver::Options& coulomb);
 
 }  // namespace frictopt::io::detail

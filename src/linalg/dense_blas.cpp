@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "frictopt/core/error.hpp"
@@ -26,6 +27,9 @@ void dgesdd_(const char* jobz, const int* m, const int* n, double* a, const int*
 void dgetrf_(const int* m, const int* n, double* a, const int* lda, int* ipiv, int* info);
 void dgetrs_(const char* trans, const int* n, const int* nrhs, const double* a, const int* lda, const int* ipiv,
              double* b, const int* ldb, int* info);
+void sgetrf_(const int* m, const int* n, float* a, const int* lda, int* ipiv, int* info);
+void sgetrs_(const char* trans, const int* n, const int* nrhs, const float* a, const int* lda, const int* ipiv,
+             float* b, const int* ldb, int* info);
 void dgecon_(const char* norm, const int* n, const double* a, const int* lda, const double* anorm, double* rcond,
              double* work, int* iwork, int* info);
 }
@@ -131,6 +135,29 @@ bool lu_solve(Eigen::MatrixXd K, const Eigen::VectorXd& r, Eigen::VectorXd& x, d
   const int one = 1;
   dgetrs_("N", &n, &one, K.data(), &n, ipiv.data(), x.data(), &n, &info);
   return true;
+}
+
+bool SinglePrecisionLu::factorize(Eigen::MatrixXf A) {
+  FRICTOPT_ASSERT(A.rows() == A.cols(), "SinglePrecisionLu: A must be square");
+  lu_ = std::move(A);
+  const int n = static_cast<int>(lu_.rows());
+  pivots_.assign(static_cast<std::size_t>(n), 0);
+  if (n == 0) return true;
+  int info = 0;
+  const BlasThreadsForCall threads(1.0 / 3.0 * n * n * static_cast<double>(n));
+  sgetrf_(&n, &n, lu_.data(), &n, pivots_.data(), &info);
+  return info == 0;
+}
+
+void SinglePrecisionLu::solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const {
+  const int n = static_cast<int>(lu_.rows());
+  FRICTOPT_ASSERT(x.size() == n, "SinglePrecisionLu::solve_in_place: size mismatch");
+  if (n == 0) return;
+  work_ = x.cast<float>();
+  const int one = 1;
+  int info = 0;
+  sgetrs_("N", &n, &one, lu_.data(), &n, pivots_.data(), work_.data(), &n, &info);
+  x = work_.cast<double>();
 }
 
 }  // namespace frictopt::linalg::blas

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <string>
 
 #include <Eigen/Geometry>
 #include <Eigen/QR>
@@ -52,9 +53,44 @@ std::int64_t max_unknowns_within_memory() {
   return lo;
 }
 
-void check_mesh_size(const mesh::Mesh& mesh, const std::string& source) {
+namespace {
+// The dense Delassus bound (ContactDefinition::dense_delassus_max_unknowns) and the size from
+// which kAutomatic may hand over to the semismooth Newton method
+// (CoulombSolver::Options::NewtonOptions::automatic_min_unknowns).
+constexpr std::int64_t kDenseContactUnknowns = 12'000;
+constexpr std::int64_t kNewtonContactUnknowns = 3'000;
+}  // namespace
+
+double estimated_contact_bytes(std::int64_t contact_unknowns) {
+  const double m = static_cast<double>(std::min(contact_unknowns, kDenseContactUnknowns));
+  return 8.0 * m * m + (contact_unknowns >= kNewtonContactUnknowns ? 4.0 * m * m : 0.0);
+}
+
+double estimated_contact_flops(std::int64_t contact_unknowns) {
+  const double m = static_cast<double>(std::min(contact_unknowns, kDenseContactUnknowns));
+  const double lu = 2.0 / 3.0 * m * m * m;
+  return lu + (contact_unknowns >= kNewtonContactUnknowns ? 3.0 * lu : 0.0);
+}
+
+std::string contact_cost_note(int dim, std::int64_t contact_nodes) {
+  const std::int64_t m = dim * contact_nodes;
+  const double bytes = estimated_contact_bytes(m), flops = estimated_contact_flops(m);
+  if (bytes < 1e9 && flops < 5e10) return {};
+  return fmt::format("{} contact nodes ({} contact unknowns): the dense contact algebra needs about {:.3g} GB and "
+                     "{:.2g} flops (about {:.0f} s at 10 Gflop/s) beyond the factorization (docs/scaling.md, "
+                     "\"Contact nodes\"; a coarser contact surface reduces it quadratically in memory and cubically "
+                     "in time)",
+                     contact_nodes, m, bytes / 1e9, flops, flops / 1e10);
+}
+
+void check_mesh_size(const mesh::Mesh& mesh, const std::string& source, std::int64_t contact_nodes) {
   const std::int64_t unknowns = static_cast<std::int64_t>(mesh.num_nodes()) * mesh.dim();
-  const double estimate = estimated_peak_bytes(unknowns);
+  const double contact_bytes = estimated_contact_bytes(mesh.dim() * contact_nodes);
+  const double estimate = estimated_peak_bytes(unknowns) + contact_bytes;
+  const std::string contact =
+      contact_nodes > 0 ? fmt::format(" and {} contact nodes ({:.3g} GB of it the dense contact algebra)",
+                                      contact_nodes, contact_bytes / 1e9)
+                        : std::string();
   if (unknowns > kMaxUnknowns)
     throw InvalidInput(fmt::format("{}: the body has {} nodes, {} unknowns; expected at most {} unknowns (about {:.3g} GB "
                                    "of memory; docs/case-format.md, \"Size limits\")",
@@ -62,23 +98,33 @@ void check_mesh_size(const mesh::Mesh& mesh, const std::string& source) {
   const std::uint64_t set = memory_limit();
   const std::uint64_t limit = set > 0 ? set : mesh::available_memory_bytes();
   if (limit > 0 && estimate > static_cast<double>(limit))
-    throw InvalidInput(fmt::format("{}: the body has {} unknowns, whose solve needs about {:.3g} GB of memory; expected "
+    throw InvalidInput(fmt::format("{}: the body has {} unknowns{}, whose solve needs about {:.3g} GB of memory; expected "
                                    "at most {:.3g} GB ({}; docs/case-format.md, \"Size limits\": a coarser mesh, or "
                                    "--max-memory GB to allow more)",
-                                   source, unknowns, estimate / 1e9, static_cast<double>(limit) / 1e9,
+                                   source, unknowns, contact, estimate / 1e9, static_cast<double>(limit) / 1e9,
                                    set > 0 ? "the --max-memory limit" : "the memory available on this machine"));
 }
+
+namespace {
+// The nodes of the contact surface (an upper bound of the contact nodes: nodes with a prescribed
+// component are not contact nodes); 0 without contact or when the set is missing (refused later
+// with its own message).
+std::int64_t contact_node_count(const mesh::Mesh& mesh, const BodyDefinition& definition) {
+  if (!definition.contact || !mesh.has_boundary(definition.contact_surface)) return 0;
+  return static_cast<std::int64_t>(mesh.boundary(definition.contact_surface).nodes.size());
+}
+}  // namespace
 
 mesh::Mesh build_mesh(const BodyDefinition& definition) {
   if (!definition.imported_mesh) {
     mesh::Mesh grid = mesh::StructuredMesh(definition.shape, definition.height, definition.resolution).take_mesh();
-    check_mesh_size(grid, "mesh.cells");
+    check_mesh_size(grid, "mesh.cells", contact_node_count(grid, definition));
     return grid;
   }
   const ImportedMeshDefinition& imported = *definition.imported_mesh;
   if (!imported.reference) throw InvalidInput("imported mesh: no mesh was read");
   const mesh::Mesh& reference = *imported.reference;
-  check_mesh_size(reference, imported.file.string());
+  check_mesh_size(reference, imported.file.string(), contact_node_count(reference, definition));
   const std::string& patch = imported.motion.patch;
   // Γ_d ⊂ Γ_c (docs/meshes.md, "The design on a patch"): the gap of a contact node moves with the
   // patch only.

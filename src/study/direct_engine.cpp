@@ -109,8 +109,11 @@ std::optional<double> DirectEngine::solve_state(BodyState& state, const StateReq
       (elasticity_.stiffness() * u_free - rhs).norm() / (load_norm > 0 ? load_norm : 1.0);
   if (state.summary.status == Status::kNotRun) {
     state.summary.status = Status::kConverged;
-    state.summary.message = boundary_ ? "contact with Coulomb friction solved (dual QP fixed point)"
-                                      : "linear elasticity solved by sparse Cholesky";
+    state.summary.message =
+        !state.contact ? "linear elasticity solved by sparse Cholesky"
+        : state.contact->summary.method_used == contact::CoulombMethod::kSemismoothNewton
+            ? "contact with Coulomb friction solved (semismooth Newton on the dual problem)"
+            : "contact with Coulomb friction solved (dual QP fixed point)";
   }
   return nodal_forces_.size() ? nodal_forces_.dot(u_free) : 0.0;
 }

@@ -19,15 +19,21 @@
 
 namespace frictopt::contact {
 
-/// How the Coulomb problem is solved (docs/theory/state-problem.md §6).
+/// How the Coulomb problem is solved (docs/theory/state-problem.md §6; docs/contact.md,
+/// "Semismooth Newton").
 enum class CoulombMethod {
   kFixedPoint,  ///< s_{k+1} = λ(s_k): a full Tresca QP per step (thesis §5.1, §6.1.3)
   kSplit,       ///< thesis §5.1: per step one tangential solve (I) and one normal solve (II)
-  /// The PETSc engine's semismooth Newton method on the displacements (docs/petsc-engine.md):
-  /// reported in its summaries; CoulombSolver refuses it (Options::validate).
-  kSemismoothNewton
+  /// Semismooth Newton on the Alart–Curnier function: of the condensed dual problem in
+  /// CoulombSolver (SemismoothNewtonCoulombSolver), of the displacements in the PETSc engine
+  /// (docs/petsc-engine.md).
+  kSemismoothNewton,
+  /// The fixed point, handed over to the semismooth Newton method when the problem is large
+  /// (NewtonOptions::automatic_min_unknowns) and the fixed point has used
+  /// NewtonOptions::automatic_applications_per_unknown · m products with M without converging.
+  kAutomatic
 };
-/// "fixed_point", "split", "semismooth_newton".
+/// "fixed_point", "split", "semismooth_newton", "automatic".
 std::string_view to_string(CoulombMethod method);
 /// Inverse of to_string; throws InvalidInput listing the accepted spellings.
 CoulombMethod parse_coulomb_method(std::string_view text);
@@ -56,7 +62,34 @@ class CoulombSolver {
     int max_iterations = 50;
     /// ω ∈ (0, 1]: s_{k+1} = (1 − ω) s_k + ω λ(s_k). ω = 1 is plain successive approximation.
     double relaxation = 1.0;
-    CoulombMethod method = CoulombMethod::kFixedPoint;
+    CoulombMethod method = CoulombMethod::kAutomatic;
+    /// The semismooth Newton method (kSemismoothNewton, kAutomatic; docs/contact.md,
+    /// "Semismooth Newton").
+    struct NewtonOptions {
+      /// Cap on Newton steps before the fallback to the fixed point. >= 1.
+      int max_iterations = 60;
+      /// Up to this many contact unknowns each Newton step is solved by a dense LU in double
+      /// precision; above, by GMRES preconditioned with a single-precision LU of a recent
+      /// Jacobian. >= 0.
+      Eigen::Index direct_max_unknowns = 600;
+      /// GMRES iterations after which the preconditioner is refactorized at the current
+      /// Jacobian (the Jacobian of the last factorization then differs too much). An LU costs
+      /// about m/6 GMRES iterations (2m³/3 against ≈ 4m² flops), so an old preconditioner is
+      /// kept for long. >= 1.
+      int gmres_max_iterations = 100;
+      /// kAutomatic hands over to Newton only from this many contact unknowns (below, the fixed
+      /// point's products cost microseconds). >= 0.
+      Eigen::Index automatic_min_unknowns = 3000;
+      /// kAutomatic hands over once the fixed point has used this many products with M per
+      /// contact unknown without converging: m/10 products take about as long as the whole
+      /// Newton solve (one or two LUs and ≈ 150 products, docs/contact.md "Semismooth Newton":
+      /// measured break-even; m/3 cost 2× more on the slip-heavy states there). > 0.
+      double automatic_applications_per_unknown = 0.1;
+      /// When Newton does not converge, solve by the fixed point instead (reported in the
+      /// summary's message and `fallback`); otherwise its status is returned.
+      bool fallback_to_fixed_point = true;
+    };
+    NewtonOptions newton;
     /// kDiverged when the increment grows in this many consecutive iterations. >= 2.
     int divergence_window = 5;
     /// Inner QP solver. Its relative_tolerance is the floor of the adaptive inner tolerance:
@@ -81,7 +114,17 @@ class CoulombSolver {
     double complementarity_gap = kNaN;  ///< idem
     double time_seconds = 0.0;
     CoulombMethod method_given = CoulombMethod::kFixedPoint;
+    /// What produced the solution: kSemismoothNewton when Newton converged (after the fixed
+    /// point's first iterations with kAutomatic), the fixed point otherwise (also after a
+    /// fallback).
     CoulombMethod method_used = CoulombMethod::kFixedPoint;
+    int newton_iterations = 0;          ///< semismooth Newton steps (0 without Newton)
+    int linear_iterations = 0;          ///< GMRES iterations (or direct solves) of the Newton steps
+    int factorizations = 0;             ///< LU factorizations of Newton Jacobians
+    bool fallback = false;              ///< Newton failed and the fixed point solved instead
+    /// ‖g̃_ᾱ(z)‖/‖c‖ of the Tresca QP with s = λ at exit: the fixed point's inner stopping
+    /// quantity (TrescaSolver::Options::relative_tolerance), Newton's stopping quantity.
+    double relative_projected_gradient = kNaN;
     bool converged() const { return status == Status::kConverged; }
     std::string brief_report() const;
   };
@@ -99,11 +142,20 @@ class CoulombSolver {
   /// classification.
   [[nodiscard]] Summary solve(const Eigen::Ref<const Eigen::VectorXd>& c, ContactState& state) const;
 
+  /// What every method's result gets (state.z and state.gradient = Mz + c set): slip_bound = λ,
+  /// the Coulomb residuals, the projected gradient at s = λ, the node classification and the
+  /// message of summary.status.
+  void finish(const Eigen::VectorXd& c, ContactState& state, Summary& summary) const;
+
   const TrescaSolver& tresca() const { return tresca_; }
   const Options& options() const { return options_; }
 
  private:
-  Summary solve_fixed_point(const Eigen::VectorXd& c, ContactState& state) const;
+  /// `application_budget` > 0: stop (status kMaxIterations) once that many products with M
+  /// are used without converging (the handover of kAutomatic).
+  Summary solve_fixed_point(const Eigen::VectorXd& c, ContactState& state, long application_budget = 0) const;
+  Summary solve_automatic(const Eigen::VectorXd& c, ContactState& state) const;
+
   Summary solve_split(const Eigen::VectorXd& c, ContactState& state) const;
   double inner_tolerance(double last_increment) const;
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace frictopt::linalg::blas {
 
@@ -27,5 +28,23 @@ Eigen::VectorXd singular_values(const Eigen::MatrixXd& A);
 /// x = K⁻¹ r by LU with partial pivoting (dgetrf/dgetrs); returns false if K is exactly
 /// singular. `reciprocal_condition` gets LAPACK's 1-norm estimate (dgecon).
 bool lu_solve(Eigen::MatrixXd K, const Eigen::VectorXd& r, Eigen::VectorXd& x, double& reciprocal_condition);
+
+/// LU factors with partial pivoting in single precision (sgetrf/sgetrs): half the memory and
+/// about half the time of dgetrf, accurate enough for a preconditioner (the semismooth Newton
+/// method's GMRES, docs/contact.md "Semismooth Newton"), where the Krylov iteration in double
+/// precision recovers the digits.
+class SinglePrecisionLu {
+ public:
+  /// Factorizes A (square, taken over); returns false if a pivot is exactly zero.
+  bool factorize(Eigen::MatrixXf A);
+  /// x ← (LU)⁻¹ x, the solve in float.
+  void solve_in_place(Eigen::Ref<Eigen::VectorXd> x) const;
+  Eigen::Index size() const { return lu_.rows(); }
+
+ private:
+  Eigen::MatrixXf lu_;
+  std::vector<int> pivots_;
+  mutable Eigen::VectorXf work_;
+};
 
 }  // namespace frictopt::linalg::blas

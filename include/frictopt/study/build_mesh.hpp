@@ -27,7 +27,27 @@ mesh::Mesh build_mesh(const BodyDefinition& definition);
 /// estimate (estimated_peak_bytes) within the memory limit (set_memory_limit; by default the
 /// memory available, mesh::available_memory_bytes). build_mesh calls it; throws InvalidInput
 /// naming `source`, the counts, the estimate and the limit.
-void check_mesh_size(const mesh::Mesh& mesh, const std::string& source);
+/// `contact_nodes` (the nodes of the contact surface, 0 without contact) adds the contact
+/// algebra's memory (estimated_contact_bytes) to the estimate and is named in the message.
+void check_mesh_size(const mesh::Mesh& mesh, const std::string& source, std::int64_t contact_nodes = 0);
+
+/// The memory [bytes] of the direct engine's contact algebra for m = dim × contact nodes contact
+/// unknowns (docs/scaling.md, "Contact nodes"): the dense Delassus matrix, 8·m² for m up to
+/// 12,000 (above: its working-set block, counted as 12,000), and from m = 3,000 on the
+/// single-precision LU of the semismooth Newton Jacobian, 4·m² (docs/contact.md, "Semismooth
+/// Newton").
+double estimated_contact_bytes(std::int64_t contact_unknowns);
+
+/// The dense contact algebra's flops for m contact unknowns: forming M from the Schur factor
+/// (dpotri, 2m³/3) and, from m = 3,000 on, a few single-precision LU factorizations of Newton
+/// Jacobians (2m³/3 each, counted three times: the measured 2–4 per state). What a state costs
+/// beyond the sparse factorization when the contact surface is large.
+double estimated_contact_flops(std::int64_t contact_unknowns);
+
+/// A note for the console when the contact algebra of `contact_nodes` nodes in dimension `dim`
+/// is large (above 1 GB or 5·10¹⁰ flops, about 5 s: from about 3,000 contact unknowns on): its
+/// memory and flops and what to do; empty otherwise.
+std::string contact_cost_note(int dim, std::int64_t contact_nodes);
 
 /// The largest number of unknowns (nodes × dim) of a body.
 inline constexpr std::int64_t kMaxUnknowns = 2'000'000;
