@@ -250,6 +250,11 @@ void Identification::Impl::setup_parameters() {
 void Identification::Impl::setup_contact() {
   // The FE problem does not depend on the parameters except through E (a scalar factor):
   // assemble, factorize and build M once, from a state solve at the case's parameters.
+  // Its contact problem without the floating body's equilibrium rows (docs/theory/loading-plate.md §3).
+  if (body->num_floating_modes() > 0)
+    throw InvalidInput(fmt::format("identification: the body floats ({} rigid-body modes held by contact only); "
+                                   "expected Dirichlet conditions that hold it",
+                                   body->num_floating_modes()));
   const BodyState s = body->solve(definition.initial_design, "initial design");
   if (!s.contact)
     throw InvalidInput("identification: the elasticity problem at the initial design could not be factorized: " +
@@ -278,7 +283,7 @@ void Identification::Impl::setup_contact() {
                                        body->engine().name()));
   M0 = s.contact->delassus_matrix;
   M0_op = std::make_unique<contact::DenseDelassus>(M0);
-  const Eigen::VectorXd l_traction = fem.dofs().restrict(fem.traction_load(s.positions));
+  const Eigen::VectorXd l_traction = fem.dofs().restrict_forces(fem.traction_load(s.positions));
   const Eigen::VectorXd l_lift = fem.load() - l_traction;
   c_traction = boundary.times(fem.factorization().solve(l_traction));
   c_dirichlet = boundary.times(fem.factorization().solve(l_lift));
