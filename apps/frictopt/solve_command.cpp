@@ -44,6 +44,7 @@ int run_solve(const std::filesystem::path& case_path, const std::filesystem::pat
     if (state.contact->floating) fmt::print("{}\n", state.contact->floating->brief_report());
     fmt::print("{}\n", state.contact->resultants.brief_report());
   }
+  if (!state.plates.empty()) fmt::print("{}\n", io::plates_report(state.plates));
   fmt::print("{}\n", state.summary.brief_report());
   const io::JsonValue summary = io::solve_summary(case_path.string(), body, state);
   if (state.summary.status != Status::kConverged) {

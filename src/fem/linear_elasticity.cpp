@@ -13,10 +13,10 @@ namespace frictopt::fem {
 
 LinearElasticity::LinearElasticity(const mesh::Mesh& mesh, const IsotropicMaterial& material,
                                    const PrescribedDofs& dirichlet, std::vector<FaceTraction> tractions,
-                                   linalg::SpdSolver::Options solver)
+                                   linalg::SpdSolver::Options solver, const std::vector<std::vector<int>>& ties)
     : mesh_(mesh),
       material_(material),
-      dofs_(mesh.num_dofs(), dirichlet),
+      dofs_(mesh.num_dofs(), dirichlet, ties),
       tractions_(std::move(tractions)),
       solver_options_(solver),
       solver_(linalg::SpdSolver::create(solver)) {
@@ -46,13 +46,23 @@ void LinearElasticity::build_pattern() {
   const int n = dofs_.num_free();
   std::vector<int> outer(n + 1, 0);
   std::vector<int> inner;
+  std::vector<int> column;
   for (int col = 0; col < n; ++col) {
-    const int dof = dofs_.free_dofs()[col];
-    for (int neighbour : adjacency[dof / dim])
-      for (int c = 0; c < dim; ++c) {
-        const int row = dofs_.free_index(neighbour * dim + c);
-        if (row >= 0) inner.push_back(row);
-      }
+    // The column of an unknown is the union over the DOFs it stands for (a tied group: every
+    // plate node's neighbours, PᵀAP); rows sorted for the CSC pattern.
+    const int tie = dofs_.tie_of(col);
+    const std::vector<int> single{dofs_.free_dofs()[col]};
+    const std::vector<int>& members = tie >= 0 ? dofs_.ties()[static_cast<std::size_t>(tie)] : single;
+    column.clear();
+    for (int dof : members)
+      for (int neighbour : adjacency[dof / dim])
+        for (int c = 0; c < dim; ++c) {
+          const int row = dofs_.free_index(neighbour * dim + c);
+          if (row >= 0) column.push_back(row);
+        }
+    std::sort(column.begin(), column.end());
+    column.erase(std::unique(column.begin(), column.end()), column.end());
+    inner.insert(inner.end(), column.begin(), column.end());
     outer[col + 1] = static_cast<int>(inner.size());
   }
   A_ = Eigen::SparseMatrix<double>(n, n);
@@ -108,7 +118,7 @@ void LinearElasticity::assemble_impl(const Eigen::Ref<const Eigen::MatrixXd>& X)
   std::fill(A_.valuePtr(), A_.valuePtr() + A_.nonZeros(), 0.0);
   const Eigen::VectorXd& ud = dofs_.prescribed_values();
   const Eigen::VectorXd traction = traction_load_impl<Element>(X);
-  l_ = dofs_.restrict(traction);
+  l_ = dofs_.restrict_forces(traction);
   double* values = A_.valuePtr();
   for (Eigen::Index e = 0; e < elements.rows(); ++e) {
     const typename Kernel::Matrix K = kernel.stiffness(element_coordinates<Element>(elements, e, X));

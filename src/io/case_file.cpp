@@ -27,6 +27,7 @@
 #include "frictopt/study/shape_optimization.hpp"
 #include "case_solver_section.hpp"
 #include "case_load_case_section.hpp"
+#include "case_plate_section.hpp"
 #include "case_program_section.hpp"
 #include "case_foundation_section.hpp"
 #include "case_identification_section.hpp"
@@ -884,7 +885,9 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
                          // friction experiments (case_program_section.hpp)
                          "force", "constraint", "program", "experiment", "foundation",
                          // load cases (case_load_case_section.hpp)
-                         "load_case", "study"});
+                         "load_case", "study",
+                         // loading plates (case_plate_section.hpp)
+                         "plate"});
   const auto table = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
     const toml::table* t = top.optional_table(key);
     if (t == nullptr) top.fail_missing(key, fmt::format("a table [{}]", key));
@@ -963,6 +966,7 @@ CaseDescription parse_case(std::string_view toml_text, std::string_view origin_n
 
   check_loads_on_fixed_faces(c, dim, fixed_by);
   detail::read_program_sections(top, origin, dim, c);
+  detail::read_plate_sections(top, origin, dim, imported_mesh, c);
 
   read_design(table("design", {"control_points", "initial", "upper_bound", "slope_bound", "volume", "slope_scaling",
                                "friction_orientation", "orientation_lower_deg", "orientation_upper_deg"}),

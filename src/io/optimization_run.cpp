@@ -114,6 +114,7 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   const std::int64_t solves_offset = checkpoint ? checkpoint->state_solves : 0;
   double initial_value = kNaN;
   contact::ContactResultants initial_load = RunCheckpoint::unknown_load();
+  std::vector<fem::PlateReading> initial_plates;  // not in a checkpoint: absent after a resume
   if (checkpoint) {
     initial_value = checkpoint->initial_cost;
     initial_load = checkpoint->initial_load;
@@ -131,6 +132,8 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
     const study::Evaluation& initial = oracle.evaluate_design(body.initial_design(), true);
     initial_value = initial.value;
     if (initial.ok) initial_load = initial.resultants;
+    if (initial.ok) initial_plates = initial.plates;
+    if (!initial_plates.empty()) report("initial design: " + plates_report(initial_plates));
     write_design_vtu(0, body.initial_design());
   }
 
@@ -218,6 +221,11 @@ OptimizationRunResult run_optimization(const OptimizationRunRequest& request) {
   json["load_warning_fraction"] = study::kLoadChangeWarningFraction;
   if (std::isfinite(initial_load.normal_force)) json["initial_load"] = load_to_json(initial_load);
   if (final.ok) json["final_load"] = load_to_json(final.resultants);
+  if (!initial_plates.empty()) json["initial_plates"] = plates_to_json(initial_plates);
+  if (final.ok && !final.plates.empty()) {
+    json["final_plates"] = plates_to_json(final.plates);
+    report("final design: " + plates_report(final.plates));
+  }
   json["message"] = summary.message;
   json["stopped_by"] = to_json(summary).at("stopped_by");
   json["initial_cost"] = initial_value;

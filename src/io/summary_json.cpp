@@ -140,11 +140,43 @@ JsonValue load_to_json(const contact::ContactResultants& r) {
   return j;
 }
 
+JsonValue plates_to_json(const std::vector<fem::PlateReading>& plates) {
+  JsonValue list = JsonValue::array();
+  for (const fem::PlateReading& p : plates) {
+    JsonValue j = JsonValue::object();
+    j["part"] = p.boundary;
+    JsonValue tied = JsonValue::array(), held = JsonValue::array();
+    for (int c : p.tied) tied.push_back(fem::direction_name(c));
+    for (int c : p.held) held.push_back(fem::direction_name(c));
+    j["tied"] = tied;
+    j["held"] = held;
+    j["displacement"] = p.displacement;
+    j["force"] = p.force;
+    j["prescribed_force"] = p.prescribed;
+    list.push_back(j);
+  }
+  return list;
+}
+
+std::string plates_report(const std::vector<fem::PlateReading>& plates) {
+  std::string out;
+  const auto vec = [](const Eigen::VectorXd& v) {
+    std::string s = "[";
+    for (Eigen::Index i = 0; i < v.size(); ++i) s += fmt::format("{}{:.6g}", i ? ", " : "", v(i));
+    return s + "]";
+  };
+  for (const fem::PlateReading& p : plates)
+    out += fmt::format("{}plate \"{}\": displacement {} m, force {} N (prescribed {} N)", out.empty() ? "" : "\n",
+                       p.boundary, vec(p.displacement), vec(p.force), vec(p.prescribed));
+  return out;
+}
+
 JsonValue load_comparison(study::ShapeOracle& oracle, const Eigen::Ref<const Eigen::VectorXd>& alpha,
                           const Eigen::Ref<const Eigen::VectorXd>& initial_design) {
   JsonValue j = JsonValue::object();
   const study::Evaluation& final = oracle.evaluate_design(alpha, false);
   const contact::ContactResultants final_load = final.resultants;  // the cache may move on
+  const std::vector<fem::PlateReading> final_plates = final.plates;
   const bool final_ok = final.ok;
   const study::Evaluation& initial = oracle.evaluate_design(initial_design, false);
   JsonValue warnings = JsonValue::array();
@@ -152,6 +184,10 @@ JsonValue load_comparison(study::ShapeOracle& oracle, const Eigen::Ref<const Eig
     for (const std::string& w : study::load_change_warnings(initial.resultants, final_load)) warnings.push_back(w);
     j["initial_load"] = load_to_json(initial.resultants);
     j["final_load"] = load_to_json(final_load);
+    if (!final_plates.empty()) {
+      j["initial_plates"] = plates_to_json(initial.plates);
+      j["final_plates"] = plates_to_json(final_plates);
+    }
   }
   j["warnings"] = std::move(warnings);
   j["load_warning_fraction"] = study::kLoadChangeWarningFraction;
@@ -495,6 +531,7 @@ JsonValue solve_summary(const std::string& case_name, const study::ElasticBody& 
     }
     summary["contact"] = contact;
   }
+  if (!state.plates.empty()) summary["plates"] = plates_to_json(state.plates);
   if (state.summary.status != Status::kConverged) return summary;  // no energies of a failed state
   summary["strain_energy"] = state.strain_energy;
   summary["external_work"] = state.external_work;

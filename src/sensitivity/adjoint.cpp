@@ -188,6 +188,42 @@ Eigen::SparseMatrix<double> sparse_block(const Eigen::SparseMatrix<double>& A, c
   return out;
 }
 
+// A floating body's free modes R (full DOF vectors) and W = G R (m × r); throws for free
+// rotations, whose R changes with the design (docs/theory/loading-plate.md §3).
+struct FloatingModes {
+  const Eigen::MatrixXd* R = nullptr;
+  Eigen::MatrixXd W;
+  Eigen::Index size() const { return R ? R->cols() : 0; }
+};
+
+FloatingModes floating_modes(const fem::LinearElasticity& fem, const contact::ContactBoundary& boundary,
+                             const char* what) {
+  FloatingModes out;
+  const Eigen::MatrixXd& R = fem.free_modes();
+  if (R.cols() == 0) return out;
+  if (!fem.free_modes_are_translations())
+    throw InvalidInput(fmt::format(
+        "{}: the body floats with {} free rigid-body mode{} that include a rotation (held only by contact and "
+        "friction); sensitivities of such a body are not available (the rotation's modes change with the design); "
+        "expected Dirichlet conditions or loading plates that leave at most translations free "
+        "(docs/theory/loading-plate.md §3)",
+        what, R.cols(), R.cols() == 1 ? "" : "s"));
+  out.R = &R;
+  out.W.resize(boundary.num_unknowns(), R.cols());
+  for (Eigen::Index j = 0; j < R.cols(); ++j) out.W.col(j) = boundary.times(fem.dofs().restrict(R.col(j)));
+  return out;
+}
+
+// The scale σ of the border: the largest |entry| of the piece's M block (displacement per force),
+// so that the border W (of order 1/√p) enters the columns of stick and gap rows at the size of
+// their M entries; with σ = 1 those columns are dominated by the border and the LU sees them as
+// nearly dependent (measured: rcond 1e-18 for a body floating in x, y, z with 12 stick nodes).
+// 1 when the piece has no M block.
+double border_scale(const Eigen::MatrixXd& MS) {
+  const double k = MS.size() ? MS.cwiseAbs().maxCoeff() : 0.0;
+  return k > 0.0 ? k : 1.0;
+}
+
 }  // namespace
 
 AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, const contact::DelassusMatrix& delassus,
@@ -204,7 +240,7 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
 
   const PieceLinearization lin = linearize_piece(piece, law_, state);
   const Reduction red = reduce(lin);
-  const Eigen::VectorXd gu = dofs.restrict(partials.d_displacement);
+  const Eigen::VectorXd gu = dofs.restrict_forces(partials.d_displacement);
   const Eigen::VectorXd gz = partials.d_contact.size() ? partials.d_contact : Eigen::VectorXd::Zero(m);
 
   // Contact-sized system (M Sᵀ + C_zᵀ) ψ_z = −g_z − G A⁻¹ g_u, reduced to rows R, columns A.
@@ -212,9 +248,36 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   const Eigen::VectorXd rhs = -gz - boundary_.times(Ainv_gu);
   const Eigen::SparseMatrix<double> St = sparse_block(lin.S, red.active_rows, red.touched_z).transpose();  // T × A
   Eigen::MatrixXd K = Eigen::MatrixXd(sparse_block(lin.Cz, red.active_rows, red.free_z).transpose());   // R × A
-  if (!red.touched_z.empty()) K += delassus.block(red.free_z, red.touched_z) * St;
+  Eigen::MatrixXd MS;  // the M part of K (its scale sets the floating border's)
+  if (!red.touched_z.empty()) {
+    MS = delassus.block(red.free_z, red.touched_z) * St;
+    K += MS;
+  }
   Eigen::VectorXd r(static_cast<Eigen::Index>(red.free_z.size()));
   for (std::size_t i = 0; i < red.free_z.size(); ++i) r(static_cast<Eigen::Index>(i)) = rhs(red.free_z[i]);
+  const FloatingModes floating = floating_modes(fem_, boundary_, "subgradient");
+  const Eigen::Index nr = floating.size();
+  double border_sigma = 1.0;
+  if (nr > 0) {
+    // Bordered by the equilibrium rows (class comment): columns W[R, :], rows (S_AT W_T)ᵀ, both
+    // scaled by σ (the scale of K) so that the LU's condition estimate compares like with like;
+    // ψ_β = σ × the solved border unknowns.
+    const Eigen::Index na = K.rows();
+    const double sigma = border_scale(MS);
+    Eigen::MatrixXd Kb = Eigen::MatrixXd::Zero(na + nr, na + nr);
+    Kb.topLeftCorner(na, na) = K;
+    for (std::size_t i = 0; i < red.free_z.size(); ++i)
+      Kb.block(static_cast<Eigen::Index>(i), na, 1, nr) = sigma * floating.W.row(red.free_z[i]);
+    const Eigen::MatrixXd SW = lin.S * floating.W;  // m × r
+    for (std::size_t a = 0; a < red.active_rows.size(); ++a)
+      Kb.block(na, static_cast<Eigen::Index>(a), nr, 1) = sigma * SW.row(red.active_rows[a]).transpose();
+    Eigen::VectorXd rb(na + nr);
+    rb.head(na) = r;
+    rb.tail(nr) = -sigma * (floating.R->transpose() * partials.d_displacement);
+    border_sigma = sigma;
+    K = std::move(Kb);
+    r = std::move(rb);
+  }
   Eigen::VectorXd psi_active;
   // An exactly singular K (lu_solve false) has rcond 0 and fails the kSingular test below.
   if (!linalg::blas::lu_solve(K, r, psi_active, result.summary.reciprocal_condition))
@@ -226,13 +289,15 @@ AdjointSensitivity::Result AdjointSensitivity::subgradient(const Piece& piece, c
   result.psi_z = Eigen::VectorXd::Zero(m);
   for (std::size_t i = 0; i < red.active_rows.size(); ++i) result.psi_z(red.active_rows[i]) = psi_active(static_cast<Eigen::Index>(i));
 
-  // ψ_u = −A⁻¹(g_u + Gᵀ Sᵀ ψ_z).
+  // ψ_u = −A⁻¹(g_u + Gᵀ Sᵀ ψ_z) (floating: A_F⁺, and − R ψ_β).
   Eigen::VectorXd w = gu;
   boundary_.add_transpose_times(lin.S.transpose() * result.psi_z, w);
-  result.psi_u = -cholesky.solve(w);
+  result.psi_full = dofs.expand_homogeneous(-cholesky.solve(w));
+  if (nr > 0) result.psi_full -= *floating.R * (border_sigma * psi_active.tail(nr));
+  result.psi_u = dofs.restrict(result.psi_full);
 
   // ξ = ∇_α J + ∇_α[ψ_uᵀ(A u − l)] + Σ_gap ψ_z,r B̃_node.
-  const Eigen::VectorXd psi_full = dofs.expand_homogeneous(result.psi_u);
+  const Eigen::VectorXd& psi_full = result.psi_full;
   result.subgradient = fem_.shape_derivative(X, u, psi_full);
   if (partials.d_alpha.size()) result.subgradient += partials.d_alpha;
   const int dim = boundary_.dim();
@@ -263,7 +328,8 @@ AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
   const Reduction red = reduce(lin);
   const Eigen::VectorXd Vh = fem_.mesh().design_jacobian() * h;
   const Eigen::MatrixXd dX = Eigen::Map<const Eigen::MatrixXd>(Vh.data(), dim, fem_.mesh().num_nodes()).transpose();
-  const Eigen::VectorXd ra = dofs.restrict(fem_.residual_derivative(X, u, dX));
+  const Eigen::VectorXd ra_full = fem_.residual_derivative(X, u, dX);
+  const Eigen::VectorXd ra = dofs.restrict_forces(ra_full);
   Eigen::VectorXd rg = Eigen::VectorXd::Zero(boundary_.num_unknowns());
   const Eigen::VectorXd Bh = gap_matrix_ * h;
   for (Eigen::Index r : lin.gap_rows) rg(r) = Bh(r / dim);
@@ -273,21 +339,49 @@ AdjointSensitivity::StateDerivative AdjointSensitivity::state_derivative(
   const Eigen::VectorXd rhs = -rg + lin.S * boundary_.times(Ainv_ra);
   const Eigen::SparseMatrix<double> S_at = sparse_block(lin.S, red.active_rows, red.touched_z);
   Eigen::MatrixXd K = Eigen::MatrixXd(sparse_block(lin.Cz, red.active_rows, red.free_z));
-  if (!red.touched_z.empty()) K += S_at * delassus.block(red.touched_z, red.free_z);
+  Eigen::MatrixXd SM;  // the M part of K (its scale sets the floating border's)
+  if (!red.touched_z.empty()) {
+    SM = S_at * delassus.block(red.touched_z, red.free_z);
+    K += SM;
+  }
   Eigen::VectorXd r(static_cast<Eigen::Index>(red.active_rows.size()));
   for (std::size_t i = 0; i < red.active_rows.size(); ++i) r(static_cast<Eigen::Index>(i)) = rhs(red.active_rows[i]);
+  const FloatingModes floating = floating_modes(fem_, boundary_, "state derivative");
+  const Eigen::Index nr = floating.size();
+  double border_sigma = 1.0;
+  if (nr > 0) {
+    // Bordered (class comment): [(S M + C_z)_{A,R}  (S W)_A; W_Rᵀ  0] (δz_R, δβ) = (r_A, Rᵀ r_α h).
+    // The border scaled by σ as in subgradient(): δβ = σ × the solved border unknowns.
+    const Eigen::Index na = K.rows();
+    border_sigma = border_scale(SM);
+    Eigen::MatrixXd Kb = Eigen::MatrixXd::Zero(na + nr, na + nr);
+    Kb.topLeftCorner(na, na) = K;
+    const Eigen::MatrixXd SW = lin.S * floating.W;
+    for (std::size_t a = 0; a < red.active_rows.size(); ++a)
+      Kb.block(static_cast<Eigen::Index>(a), na, 1, nr) = border_sigma * SW.row(red.active_rows[a]);
+    for (std::size_t i = 0; i < red.free_z.size(); ++i)
+      Kb.block(na, static_cast<Eigen::Index>(i), nr, 1) = border_sigma * floating.W.row(red.free_z[i]).transpose();
+    Eigen::VectorXd rb(na + nr);
+    rb.head(na) = r;
+    rb.tail(nr) = border_sigma * (floating.R->transpose() * ra_full);
+    K = std::move(Kb);
+    r = std::move(rb);
+  }
   StateDerivative out;
   out.contact = Eigen::VectorXd::Zero(boundary_.num_unknowns());
+  Eigen::VectorXd beta;
   if (K.size()) {
     Eigen::VectorXd dz;
     if (!linalg::blas::lu_solve(K, r, dz, out.reciprocal_condition)) out.reciprocal_condition = 0.0;
     for (std::size_t i = 0; i < red.free_z.size(); ++i) out.contact(red.free_z[i]) = dz(static_cast<Eigen::Index>(i));
+    if (nr > 0) beta = border_sigma * dz.tail(nr);
   }
   out.status = out.reciprocal_condition > options_.singular_reciprocal_condition ? Status::kConverged : Status::kNumericalFailure;
   Eigen::VectorXd w = -ra;
   boundary_.add_transpose_times(out.contact, w);
   const Eigen::VectorXd du = cholesky.solve(w);
   out.displacement = dofs.expand_homogeneous(du);
+  if (beta.size()) out.displacement += *floating.R * beta;  // δu = A_F⁺(Gᵀδz − r_α h) + R δβ
   return out;
 }
 

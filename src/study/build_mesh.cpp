@@ -141,6 +141,9 @@ mesh::Mesh build_mesh(const BodyDefinition& definition) {
   // case puts them, and a contact node off the patch keeps its gap.
   mesh::DesignMotion motion = imported.motion;
   for (const fem::FaceDirichlet& d : definition.dirichlet) motion.fixed.push_back(d.boundary);
+  // A loading plate's part stays where the case puts it too (docs/theory/loading-plate.md).
+  for (const fem::LoadingPlate& p : definition.plates)
+    if (reference.has_boundary(p.boundary)) motion.fixed.push_back(p.boundary);
   if (definition.contact && definition.contact_surface != patch) motion.fixed.push_back(definition.contact_surface);
   mesh::Mesh mesh = mesh::with_design_motion(reference, definition.shape, motion);
   // With contact, rigid motions the Dirichlet parts leave free are held by contact and friction

@@ -144,7 +144,9 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
   const Eigen::Index m = boundary.num_unknowns();
   const Eigen::Index d = state.alpha.size();
   Mf1Report out;
-  if (m > kMaxMf1ContactUnknowns) return out;
+  // A floating body's rows carry its equilibrium too (docs/theory/loading-plate.md §3): not
+  // reported.
+  if (m > kMaxMf1ContactUnknowns || fem.free_modes().cols() > 0) return out;
 
   const auto rows = tight_rows(sets, law, cs);
   Eigen::Index n_rows = 0;
@@ -162,7 +164,7 @@ Mf1Report mf1_report(ShapeOracle& oracle, const sensitivity::IndexSets& sets, co
     const Eigen::VectorXd Vh = fem.mesh().design_jacobian().col(k);
     const Eigen::MatrixXd dX =
         Eigen::Map<const Eigen::MatrixXd>(Vh.data(), dim, fem.mesh().num_nodes()).transpose();
-    R_alpha.col(k) = fem.dofs().restrict(fem.residual_derivative(state.positions, state.displacement, dX));
+    R_alpha.col(k) = fem.dofs().restrict_forces(fem.residual_derivative(state.positions, state.displacement, dX));
   }
   const Eigen::MatrixXd Ainv_R = stiffness.solve_many(R_alpha);  // one blocked solve for all d
   Eigen::MatrixXd N(m, d);

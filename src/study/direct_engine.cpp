@@ -101,7 +101,7 @@ std::optional<double> DirectEngine::solve_state(BodyState& state, const StateReq
   if (step) state.displacement += step->prescribed_change;
   if (state.contact && state.contact->rigid_motion.size()) {
     // u = A⁺(l + Gᵀz) + Rβ; the rigid motion does not change A u.
-    state.displacement += free_rigid_modes(state.positions, user_prescribed_dofs_) * state.contact->rigid_motion;
+    state.displacement += free_rigid_modes(state.positions, user_prescribed_dofs_, elasticity_.dofs().ties()) * state.contact->rigid_motion;
   }
   state.summary.solve_seconds = seconds_since(start);
   const double load_norm = rhs.norm();
@@ -179,7 +179,7 @@ void DirectEngine::solve_floating(ContactResult& result, const Eigen::VectorXd& 
   const int dim = mesh_.dim();
   const StepLoads* step = request.step;
   const contact::FrictionLaw& law = *request.law;
-  const Eigen::MatrixXd modes = free_rigid_modes(state.positions, user_prescribed_dofs_);
+  const Eigen::MatrixXd modes = free_rigid_modes(state.positions, user_prescribed_dofs_, elasticity_.dofs().ties());
   if (modes.cols() != static_cast<Eigen::Index>(fixing_dofs_.size()))
     throw InvalidInput(fmt::format("{}: the body has {} free rigid-body modes at this design but {} at the "
                                    "reference; expected the same",

@@ -27,24 +27,34 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
   traction_kernels_.resize(definition_.tractions.size());  // each built on first use
   fem::PrescribedDofs prescribed = fem::expand_dirichlet(*mesh_, definition_.dirichlet);
   fem::add_nodal_constraints(*mesh_, definition_.constraints, prescribed);
+  // Loading plates (docs/theory/loading-plate.md): held directions are prescribed zeros, each
+  // force-driven direction ties the plate's nodes to one unknown.
+  fem::validate_plates(*mesh_, definition_.plates, prescribed,
+                       definition_.contact ? definition_.contact_surface : std::string());
+  fem::add_plate_held_dofs(*mesh_, definition_.plates, prescribed);
+  const std::vector<std::vector<int>> ties = fem::plate_ties(*mesh_, definition_.plates);
   const std::vector<int> prescribed_by_user = prescribed.dofs;
-  const fem::DofMap user_dofs(mesh_->num_dofs(), prescribed);
+  const fem::DofMap user_dofs(mesh_->num_dofs(), prescribed, ties);
   // A floating body (docs/experiments.md §5): rigid modes the Dirichlet conditions leave free are
   // held by contact and friction only. Hold r DOFs off Γ_c at 0 so that the factorized block is SPD
   // (its inverse is a generalized inverse A⁺); the modes come back as Rβ in solve().
-  const Eigen::MatrixXd modes = free_rigid_modes(mesh_->reference_positions(), prescribed_by_user);
+  const Eigen::MatrixXd modes = free_rigid_modes(mesh_->reference_positions(), prescribed_by_user, ties);
   if (modes.cols() > 0) {
     if (!definition_.contact)
       throw InvalidInput(fmt::format(
           "dirichlet: the Dirichlet conditions leave {} rigid-body mode{} free and the body has no contact to hold "
           "them; expected conditions that hold the body (the stiffness matrix would be singular)",
           modes.cols(), modes.cols() == 1 ? "" : "s"));
-    fixing_dofs_ = study::fixing_dofs(modes, prescribed_by_user,
+    // A fixing DOF is neither prescribed nor tied (a plate's unknown stays an unknown).
+    std::vector<int> not_candidates = prescribed_by_user;
+    for (const auto& group : ties) not_candidates.insert(not_candidates.end(), group.begin(), group.end());
+    fixing_dofs_ = study::fixing_dofs(modes, not_candidates,
                                mesh_->boundary(definition_.contact_surface).nodes, mesh_->dim());
     for (int d : fixing_dofs_) prescribed.dofs.push_back(d), prescribed.values.push_back(0.0);
   }
   fem_ = std::make_unique<fem::LinearElasticity>(*mesh_, definition_.material, prescribed, definition_.tractions,
-                                                 definition_.linear_solver);
+                                                 definition_.linear_solver, ties);
+  if (modes.cols() > 0) fem_->set_free_modes(modes, modes_are_translations(modes, mesh_->dim()));
   admissible_ = shape::make_admissible_set(definition_.shape, definition_.admissible);
   if (definition_.friction_orientation) {
     // Orientation as a design (docs/theory/friction-design.md): x = (α, s), Υ gets the bound on s
@@ -56,11 +66,14 @@ ElasticBody::ElasticBody(BodyDefinition definition) : definition_(std::move(defi
     admissible_ = orientation_design_->extend(admissible_);
   }
   EngineSetup setup{*mesh_, *fem_, definition_.material, nullptr, {}, {}, prescribed_by_user, fixing_dofs_};
-  if (!definition_.forces.empty()) {
+  if (!definition_.forces.empty() || !definition_.plates.empty()) {
     // Checked against the user's conditions (a force on a fixing DOF is carried by the floating
-    // body's equilibrium, not refused).
-    setup.nodal_forces_full = fem::nodal_force_load(*mesh_, user_dofs, definition_.forces);
-    setup.nodal_forces = fem_->dofs().restrict(setup.nodal_forces_full);
+    // body's equilibrium, not refused). A plate's total force, split over its nodes, reaches its
+    // tied unknown whole through Pᵀ (restrict_forces).
+    std::vector<fem::NodalForce> forces = definition_.forces;
+    for (fem::NodalForce& f : fem::plate_nodal_forces(definition_.plates)) forces.push_back(std::move(f));
+    setup.nodal_forces_full = fem::nodal_force_load(*mesh_, user_dofs, forces);
+    setup.nodal_forces = fem_->dofs().restrict_forces(setup.nodal_forces_full);
   }
   if (definition_.contact) {
     if (definition_.contact->law.dim() != mesh_->dim())
@@ -147,6 +160,11 @@ BodyState ElasticBody::solve_impl(const Eigen::Ref<const Eigen::VectorXd>& x, co
   request.design_label = design_label;
   request.warm_start = &warm_start_;
   engine_->solve(state, request);
+  if (!definition_.plates.empty() && state.displacement.size() == mesh_->num_dofs()) {
+    const Eigen::VectorXd residual = fem_->residual(state.positions, state.displacement);
+    for (const fem::LoadingPlate& plate : definition_.plates)
+      state.plates.push_back(fem::read_plate(*mesh_, plate, state.displacement, residual));
+  }
   return state;
 }
 

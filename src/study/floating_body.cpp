@@ -5,6 +5,7 @@
 
 #include <Eigen/LU>
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -35,15 +36,23 @@ Eigen::MatrixXd rigid_body_modes(const Eigen::Ref<const Eigen::MatrixXd>& X) {
 }
 
 Eigen::MatrixXd free_rigid_modes(const Eigen::Ref<const Eigen::MatrixXd>& X,
-                                 const std::vector<int>& prescribed_dofs) {
+                                 const std::vector<int>& prescribed_dofs,
+                                 const std::vector<std::vector<int>>& ties) {
   const Eigen::MatrixXd R0 = rigid_body_modes(X);
   Eigen::MatrixXd K;
-  if (prescribed_dofs.empty()) {
+  Eigen::Index tie_rows = 0;
+  for (const auto& group : ties) tie_rows += std::max<Eigen::Index>(0, static_cast<Eigen::Index>(group.size()) - 1);
+  if (prescribed_dofs.empty() && tie_rows == 0) {
     K = Eigen::MatrixXd::Identity(R0.cols(), R0.cols());
   } else {
-    Eigen::MatrixXd Rd(prescribed_dofs.size(), R0.cols());
+    Eigen::MatrixXd Rd(static_cast<Eigen::Index>(prescribed_dofs.size()) + tie_rows, R0.cols());
     for (std::size_t i = 0; i < prescribed_dofs.size(); ++i)
       Rd.row(static_cast<Eigen::Index>(i)) = R0.row(prescribed_dofs[i]);
+    // A tied group moves as one: the mode's differences over the group vanish (a plate admits
+    // translations, no rotation that turns it).
+    Eigen::Index row = static_cast<Eigen::Index>(prescribed_dofs.size());
+    for (const auto& group : ties)
+      for (std::size_t k = 1; k < group.size(); ++k) Rd.row(row++) = R0.row(group[k]) - R0.row(group[0]);
     // The kernel of the prescribed rows, relative to their scale (a rank decision on a
     // (#prescribed × 6) matrix of coordinates: 1e-10 is far below any body's aspect ratio).
     Eigen::FullPivLU<Eigen::MatrixXd> lu(Rd);
@@ -59,6 +68,16 @@ Eigen::MatrixXd free_rigid_modes(const Eigen::Ref<const Eigen::MatrixXd>& X,
   for (Eigen::Index j = 0; j < Q.cols(); ++j)
     for (int d : prescribed_dofs) Q(d, j) = 0.0;  // exact zeros (round-off of the kernel)
   return Q;
+}
+
+bool modes_are_translations(const Eigen::Ref<const Eigen::MatrixXd>& modes, int dim) {
+  const Eigen::Index nodes = modes.rows() / dim;
+  for (Eigen::Index j = 0; j < modes.cols(); ++j)
+    for (Eigen::Index a = 1; a < nodes; ++a)
+      for (int c = 0; c < dim; ++c)
+        // Relative to the column's scale (orthonormal columns: entries ~ 1/√nodes).
+        if (std::abs(modes(a * dim + c, j) - modes(c, j)) > 1e-9 * modes.col(j).cwiseAbs().maxCoeff()) return false;
+  return true;
 }
 
 std::vector<int> fixing_dofs(const Eigen::Ref<const Eigen::MatrixXd>& modes,

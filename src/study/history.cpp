@@ -303,7 +303,7 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
     }
     // The step's residual is A(α)u_k − l_k(α): the adjoint differentiated A(α)u_k − l(α).
     out.subgradient.head(d) += result.subgradient.head(d) +
-                               step_loads_->load_change_shape_derivative(k, s.positions, dofs.expand_homogeneous(result.psi_u));
+                               step_loads_->load_change_shape_derivative(k, s.positions, result.psi_full);
     if (result.subgradient.size() > d) out.subgradient.tail(1) += result.subgradient.tail(1);
     if (friction) out.friction_gradient += result.friction_gradient;
     out.psi_z[i] = result.psi_z;

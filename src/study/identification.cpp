@@ -269,6 +269,11 @@ void Identification::Impl::setup_contact(ExperimentModel& e) {
   ElasticBody& body = *e.body;
   // The FE problem does not depend on the parameters except through E (a scalar factor):
   // assemble, factorize and build M once, from a state solve at the case's parameters.
+  // Its contact problem without the floating body's equilibrium rows (docs/theory/loading-plate.md §3).
+  if (body.num_floating_modes() > 0)
+    throw InvalidInput(fmt::format("identification: the body floats ({} rigid-body modes held by contact only); "
+                                   "expected Dirichlet conditions that hold it",
+                                   body.num_floating_modes()));
   const BodyState s = body.solve(e.definition.initial_design, "initial design");
   if (!s.contact)
     throw InvalidInput("identification: the elasticity problem at the initial design could not be factorized: " +
@@ -297,7 +302,7 @@ void Identification::Impl::setup_contact(ExperimentModel& e) {
                                        body.engine().name()));
   e.M0 = s.contact->delassus_matrix;
   e.M0_op = std::make_unique<contact::DenseDelassus>(e.M0);
-  const Eigen::VectorXd l_traction = fem.dofs().restrict(fem.traction_load(s.positions));
+  const Eigen::VectorXd l_traction = fem.dofs().restrict_forces(fem.traction_load(s.positions));
   const Eigen::VectorXd l_lift = fem.load() - l_traction;
   e.c_traction = boundary.times(fem.factorization().solve(l_traction));
   e.c_dirichlet = boundary.times(fem.factorization().solve(l_lift));

@@ -74,12 +74,12 @@ StepLoads StepLoadBuilder::build(const std::vector<double>& load_scale,
   step.prescribed_change = Eigen::VectorXd::Zero(mesh.num_dofs());
   for (std::size_t d = 0; d < prescribed.dofs.size(); ++d)
     step.prescribed_change(prescribed.dofs[d]) = prescribed.values[d] - case_prescribed_.values[d];
-  step.load_change = fem.dofs().restrict(change);
+  step.load_change = fem.dofs().restrict_forces(change);
   if (!step.prescribed_change.isZero(0.0)) {
     // Lifting of the change of prescribed values: −A_fd Δu_d, with A_full Δu_d from the
     // element-by-element residual (A_full u − l_traction) + l_traction.
     const Eigen::VectorXd lifted = fem.residual(X_, step.prescribed_change) + fem.traction_load(X_);
-    step.load_change -= fem.dofs().restrict(lifted);
+    step.load_change -= fem.dofs().restrict_forces(lifted);
   }
   step.previous_tangential = previous_tangential;
   step.friction = friction;

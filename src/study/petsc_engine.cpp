@@ -14,6 +14,12 @@ PetscEngine::PetscEngine(const BodyDefinition& definition, const EngineSetup& se
                        "gradient; expected solver.engine = \"direct\"");
   if (!boundary_)
     throw InvalidInput("solver.engine = \"petsc\": the PETSc engine solves contact problems; expected a [contact] table");
+  // Tied DOFs (PᵀAP) are not in the distributed assembly.
+  if (!definition.plates.empty())
+    throw InvalidInput(fmt::format("{}: solver.engine = \"petsc\" does not solve loading plates (the distributed "
+                                   "stiffness has no tied unknowns); expected engine = \"direct\" for a case with "
+                                   "[[plate]] tables",
+                                   definition.plates.front().field));
   // The PETSc engine solves the static clamped problem; point forces and floating bodies exist
   // in the direct engine only so far.
   if (!setup.fixing_dofs.empty() || !definition.forces.empty())

@@ -22,6 +22,7 @@ void describe_state(Evaluation& e, const BodyState& s) {
   e.state = s.summary;
   e.contact = s.contact ? s.contact->summary : contact::CoulombSolver::Summary{};
   e.resultants = s.contact ? s.contact->resultants : contact::ContactResultants{};
+  e.plates = s.plates;
 }
 std::vector<double> key_of(const Eigen::Ref<const Eigen::VectorXd>& alpha) { return {alpha.data(), alpha.data() + alpha.size()}; }
 // Bounded memory: the bundle method revisits only the last few designs.

@@ -29,10 +29,12 @@ namespace frictopt::fem {
 class LinearElasticity {
  public:
   /// Throws InvalidInput for an invalid material or traction vectors of the wrong size.
-  /// `solver` chooses the SpdSolver backend that factorizes the stiffness.
+  /// `solver` chooses the SpdSolver backend that factorizes the stiffness. `ties`: groups of
+  /// DOFs that share one unknown (DofMap; loading plates), so that the assembled stiffness and
+  /// load are PᵀA_fullP and Pᵀl (docs/theory/loading-plate.md).
   LinearElasticity(const mesh::Mesh& mesh, const IsotropicMaterial& material,
                    const PrescribedDofs& dirichlet, std::vector<FaceTraction> tractions,
-                   linalg::SpdSolver::Options solver = {});
+                   linalg::SpdSolver::Options solver = {}, const std::vector<std::vector<int>>& ties = {});
 
   const mesh::Mesh& mesh() const { return mesh_; }
   const DofMap& dofs() const { return dofs_; }
@@ -55,6 +57,17 @@ class LinearElasticity {
   /// PETSc engine's Krylov solves, docs/petsc-engine.md); factorize() is then not called by the
   /// owner.
   void set_factorization(std::unique_ptr<linalg::SpdSolver> solver) { solver_ = std::move(solver); }
+  /// A floating body (study/floating_body.hpp): the rigid motions the conditions leave free (full
+  /// DOF vectors, orthonormal, zero at the user's prescribed DOFs) that the factorized system
+  /// holds by its fixing DOFs; `translations` says whether each is a translation (then it does
+  /// not depend on the design). The sensitivity reads them (sensitivity::AdjointSensitivity:
+  /// the adjoint bordered by the equilibrium rows, docs/theory/loading-plate.md §3).
+  void set_free_modes(Eigen::MatrixXd modes, bool translations) {
+    free_modes_ = std::move(modes);
+    free_modes_translations_ = translations;
+  }
+  const Eigen::MatrixXd& free_modes() const { return free_modes_; }
+  bool free_modes_are_translations() const { return free_modes_translations_; }
   /// The full displacement for the assembled load: u_f = A⁻¹ l, u_d prescribed.
   Eigen::VectorXd solve() const;
 
@@ -106,6 +119,8 @@ class LinearElasticity {
   linalg::SpdSolver::Options solver_options_;
   std::unique_ptr<linalg::SpdSolver> solver_;
   std::vector<int> trailing_;
+  Eigen::MatrixXd free_modes_;
+  bool free_modes_translations_ = true;
 };
 
 }  // namespace frictopt::fem

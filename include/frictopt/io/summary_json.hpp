@@ -48,6 +48,11 @@ void add_members(JsonValue& into, const JsonValue& members);
 /// The load a design carries (a run's initial_load / final_load): total normal force, total
 /// tangential force and its norm, contact area, node counts.
 [[nodiscard]] JsonValue load_to_json(const contact::ContactResultants& resultants);
+/// The loading plates of a state (docs/case-format.md, "[[plate]]"): per plate its part, tied and
+/// held directions, translation [m], the total force it applies [N] and the prescribed force [N].
+[[nodiscard]] JsonValue plates_to_json(const std::vector<fem::PlateReading>& plates);
+/// One line per plate (joined by newlines, none at the end) for the console: "plate "top": u = [...] m, F = [...] N (prescribed [...])".
+[[nodiscard]] std::string plates_report(const std::vector<fem::PlateReading>& plates);
 /// certify's comparison of the load the design `alpha` carries with the initial design's
 /// (study::load_change_warnings; a state solve per design the oracle has not cached):
 /// "initial_load", "final_load" (when both solve), "warnings", "load_warning_fraction".

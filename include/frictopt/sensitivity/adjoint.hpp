@@ -74,6 +74,14 @@ struct AdjointOptions {
 /// vectors — so the dense LU and the M block are of the size of the nodes in contact, not of
 /// all of Γ_c. Two sparse solves with the existing factorization plus that LU: never a dense
 /// inverse of the stiffness matrix.
+/// A floating body (fem::LinearElasticity::free_modes(): r rigid translations R the conditions
+/// leave free, held by r fixing DOFs in the factorization A_F): the state is u = A_F⁺(l + Gᵀz) +
+/// Rβ with the equilibrium Rᵀ(l + Gᵀz) = 0, so both systems are bordered by W = G R:
+///   [(M Sᵀ + C_zᵀ)  W] [ψ_z]   [−∇_z J − G A_F⁺ ∇_u J]
+///   [ Wᵀ Sᵀ         0] [ψ_β] = [−Rᵀ ∇_u J           ],   ψ_u = −A_F⁺(∇_u J + Gᵀ Sᵀ ψ_z) − R ψ_β
+/// (and the forward one with the rows Wᵀ δz = Rᵀ r_α h, δu gaining R δβ;
+/// docs/theory/loading-plate.md §3). Free rotations depend on the design and are refused
+/// (InvalidInput).
 /// Lifetime: `fem` (factorized at the design) and `boundary` must outlive this object.
 class AdjointSensitivity {
  public:
@@ -90,6 +98,9 @@ class AdjointSensitivity {
   struct Result {
     Eigen::VectorXd subgradient;  ///< ξ (d)
     Eigen::VectorXd psi_u;        ///< adjoint on the free DOFs
+    /// ψ_u over all DOFs (zero at prescribed ones): P ψ_u, and for a floating body also its
+    /// rigid part −Rψ_β, which the fixing DOFs carry (docs/theory/loading-plate.md §3).
+    Eigen::VectorXd psi_full;
     Eigen::VectorXd psi_z;        ///< adjoint on the contact rows (dim·p)
     /// ∂Θ/∂p_k for the friction parameters p of friction_parameters(law) (same piece and adjoint;
     /// the costs do not depend on μ explicitly).

@@ -16,6 +16,7 @@
 #include "frictopt/contact/friction_law.hpp"
 #include "frictopt/cost/cost_kind.hpp"
 #include "frictopt/fem/boundary_conditions.hpp"
+#include "frictopt/fem/loading_plate.hpp"
 #include "frictopt/fem/material.hpp"
 #include "frictopt/fem/node_selection.hpp"
 #include "frictopt/linalg/spd_solver.hpp"
@@ -115,6 +116,9 @@ struct BodyDefinition {
   /// Point / node-set forces [N] (docs/experiments.md §3).
   std::vector<fem::NodalForce> forces;
   std::vector<fem::NodalConstraint> constraints;  ///< point / node-set displacements (constant in programs)
+  /// Rigid loading plates driven by a total force (docs/theory/loading-plate.md); their forces are
+  /// the same in every step of a loading program and every load case.
+  std::vector<fem::LoadingPlate> plates;
   shape::AdmissibleSetParameters admissible;  ///< Υ
   Eigen::VectorXd initial_design;             ///< α⁰
   /// [design] friction_orientation (docs/theory/friction-design.md): the orientation φ of the

@@ -16,6 +16,7 @@
 #include "frictopt/contact/floating_coulomb_solver.hpp"
 #include "frictopt/core/status.hpp"
 #include "frictopt/fem/linear_elasticity.hpp"
+#include "frictopt/fem/loading_plate.hpp"
 #include "frictopt/fem/stress_recovery.hpp"
 #include "frictopt/mesh/mesh.hpp"
 #include "frictopt/sensitivity/adjoint.hpp"
@@ -74,6 +75,9 @@ struct BodyState {
   /// boxes, → 0 as a trial design distorts the cells (an inverted one is refused before).
   double min_scaled_jacobian = kNaN;
   std::optional<ContactResult> contact;  ///< present when the body has a foundation
+  /// One reading per loading plate of the definition (its translation and the total force it
+  /// applies; fem::read_plate), in the definition's order; empty without plates.
+  std::vector<fem::PlateReading> plates;
   StateSummary summary;
 };
 

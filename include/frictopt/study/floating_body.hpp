@@ -19,11 +19,18 @@ namespace frictopt::study {
 /// 3D 6 columns (translations; rotations about the axes through the centroid).
 [[nodiscard]] Eigen::MatrixXd rigid_body_modes(const Eigen::Ref<const Eigen::MatrixXd>& X);
 
-/// The rigid motions that leave every prescribed DOF at rest: an orthonormal basis R
-/// (num_dofs × r, r = 0 when the conditions hold the body) of {R₀k : (R₀k)_d = 0 for all
-/// prescribed d}, R₀ = rigid_body_modes(X). A R = 0 for the stiffness A of the free DOFs.
+/// The rigid motions that leave every prescribed DOF at rest and move every tie group (a loading
+/// plate's direction, fem::DofMap) as one: an orthonormal basis R (num_dofs × r, r = 0 when the
+/// conditions hold the body) of {R₀k : (R₀k)_d = 0 for all prescribed d, (R₀k)_d equal over
+/// each group}, R₀ = rigid_body_modes(X). A R = 0 for the stiffness A of the free DOFs.
 [[nodiscard]] Eigen::MatrixXd free_rigid_modes(const Eigen::Ref<const Eigen::MatrixXd>& X,
-                                               const std::vector<int>& prescribed_dofs);
+                                               const std::vector<int>& prescribed_dofs,
+                                               const std::vector<std::vector<int>>& ties = {});
+
+/// Whether every column of `modes` (full DOF vectors, node-major) is a translation: the same
+/// vector at every node, so that it does not depend on the design. A floating body whose free
+/// modes include a rotation has no sensitivity here (docs/theory/loading-plate.md §3).
+[[nodiscard]] bool modes_are_translations(const Eigen::Ref<const Eigen::MatrixXd>& modes, int dim);
 
 /// r = modes.cols() DOFs, none prescribed and none on `excluded_nodes` (the contact nodes),
 /// on which the modes are linearly independent, chosen by a column-pivoted QR of the modes'

@@ -40,6 +40,9 @@ struct Evaluation {
   /// describes (contact::contact_resultants): what the design carries, reported per evaluation
   /// so that a design which lowers Θ by carrying less load is seen (docs/optim.md, "Outcomes").
   contact::ContactResultants resultants;
+  /// The loading plates' translations and forces at that state (BodyState::plates): a plate's
+  /// force stays the prescribed one whatever the design (docs/theory/loading-plate.md).
+  std::vector<fem::PlateReading> plates;
   double state_seconds = 0.0;
   double subgradient_seconds = 0.0;
   /// Load cases (docs/theory/load-cases.md): J_k of every case (unweighted, in the cases' order);
