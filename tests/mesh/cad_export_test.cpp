@@ -15,6 +15,9 @@
 #include <fstream>
 #include <random>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "common/invalid_input.hpp"
 #include "frictopt/mesh/gmsh_mesh.hpp"
 #include "frictopt/mesh/structured_mesh.hpp"
@@ -53,8 +56,33 @@ BezierGeometry wavy_surface() {
 }
 
 // Imports a STEP file with OpenCASCADE in metres and returns the largest distance between the
-// entity of dimension `dim` and the Bézier geometry on a 21 × 21 grid of parameters.
+// entity of dimension `dim` and the Bézier geometry on a 21 × 21 grid of parameters. In a child
+// process, as frictopt runs every Gmsh session: a second Gmsh session in one process imports
+// the next STEP file in millimetres (Geometry.OCCTargetUnit is not applied again).
+double step_read_back_distance_here(const fs::path& file, const BezierGeometry& g, int dim);
 double step_read_back_distance(const fs::path& file, const BezierGeometry& g, int dim) {
+  int fds[2];
+  if (::pipe(fds) != 0) return INFINITY;
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::close(fds[0]);
+    const double d = step_read_back_distance_here(file, g, dim);
+    const bool ok = ::testing::Test::HasFailure() == false;
+    const double message[2] = {d, ok ? 1.0 : 0.0};
+    [[maybe_unused]] const auto written = ::write(fds[1], message, sizeof message);
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  double message[2] = {INFINITY, 0.0};
+  const auto got = ::read(fds[0], message, sizeof message);
+  ::close(fds[0]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  EXPECT_EQ(got, static_cast<ssize_t>(sizeof message)) << "the read-back child ended without an answer";
+  EXPECT_EQ(message[1], 1.0) << "the read-back child found one entity of dimension " << dim << " and its vertices";
+  return message[0];
+}
+double step_read_back_distance_here(const fs::path& file, const BezierGeometry& g, int dim) {
   gmsh::initialize(0, nullptr, false);
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setString("Geometry.OCCTargetUnit", "M");
