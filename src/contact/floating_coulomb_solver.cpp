@@ -11,6 +11,8 @@
 
 #include <Eigen/QR>
 
+#include "frictopt/contact/delassus.hpp"
+#include "frictopt/contact/semismooth_newton_coulomb.hpp"
 #include "frictopt/core/error.hpp"
 #include "frictopt/core/validation.hpp"
 
@@ -27,6 +29,8 @@ constexpr double kFloorFactor = 1e4;
 constexpr int kAndersonMemory = 5;
 // The finest inner tolerance a stall may ask for (a few ulps of the relative increments).
 constexpr double kFinestInnerTolerance = 1e-14;
+// Accuracy of the penalized frictionless problem that starts the Newton method: only a start.
+constexpr double kNewtonStartTolerance = 1e-6;
 
 // M + ρEᵀE, applied as M x + ρEᵀ(E x): E has r <= 6 rows, so no m × m matrix is formed.
 class AugmentedOperator final : public linalg::LinearOperator {
@@ -66,6 +70,12 @@ void FloatingCoulombSolver::Options::validate() const {
 }
 
 std::string FloatingCoulombSolver::Summary::brief_report() const {
+  if (outer_iterations == 0)
+    return fmt::format(
+        "floating body (semismooth Newton on the Coulomb conditions and Rᵀ(l + Gᵀz) = 0): {} ({}); {} Newton "
+        "steps, {} factorizations, {} linear it, equality residual {:.2e}, {:.3f} s",
+        to_string(status), message, newton_iterations, inner.factorizations, inner.linear_iterations,
+        equality_residual, time_seconds);
   return fmt::format(
       "floating body (augmented Lagrangian on Rᵀ(l + Gᵀz) = 0): {} ({}); {} outer it, {} "
       "fixed-point it, "
@@ -88,14 +98,119 @@ FloatingCoulombSolver::FloatingCoulombSolver(const linalg::LinearOperator& delas
                     equality_.cols(), delassus_.size()));
 }
 
+bool FloatingCoulombSolver::uses_newton() const {
+  switch (options_.coulomb.method) {
+    case CoulombMethod::kSemismoothNewton:
+      return true;
+    case CoulombMethod::kAutomatic:
+      // Newton needs M's entries: held densely, or formed by m products while that stays cheap
+      // next to one augmented-Lagrangian solve (tens of fixed points of hundreds of products).
+      return dynamic_cast<const DenseDelassus*>(&delassus_) != nullptr ||
+             dynamic_cast<const linalg::DenseOperator*>(&delassus_) != nullptr ||
+             delassus_.size() <= options_.coulomb.newton.automatic_min_unknowns;
+    default:
+      return false;
+  }
+}
+
 FloatingCoulombSolver::Summary FloatingCoulombSolver::solve(
+    const Eigen::Ref<const Eigen::VectorXd>& c, const Eigen::Ref<const Eigen::VectorXd>& e,
+    ContactState& state, Eigen::VectorXd& beta) const {
+  if (e.size() != equality_.rows())
+    throw InvalidInput(fmt::format("FloatingCoulombSolver::solve: e has {} entries; expected {}",
+                                   e.size(), equality_.rows()));
+  if (!uses_newton()) return solve_augmented_lagrangian(c, e, state, beta);
+  const ContactState initial = state;
+  const Eigen::VectorXd initial_beta = beta;
+  const Summary newton = solve_newton(c, e, state, beta);
+  if (newton.converged()) return newton;
+  // The augmented Lagrangian from the same start: it also tells a load without equilibrium.
+  state = initial;
+  beta = initial_beta;
+  Summary summary = solve_augmented_lagrangian(c, e, state, beta);
+  summary.newton_iterations = newton.newton_iterations;
+  summary.message = fmt::format("semismooth Newton failed ({}); augmented Lagrangian: {}", newton.message, summary.message);
+  summary.time_seconds += newton.time_seconds;
+  return summary;
+}
+
+FloatingCoulombSolver::Summary FloatingCoulombSolver::solve_newton(const Eigen::Ref<const Eigen::VectorXd>& c,
+                                                                   const Eigen::Ref<const Eigen::VectorXd>& e,
+                                                                   ContactState& state, Eigen::VectorXd& beta) const {
+  const auto start = std::chrono::steady_clock::now();
+  const Eigen::MatrixXd& E = equality_;
+  const Eigen::Index m = delassus_.size(), r = E.rows();
+  const int dim = law_.dim();
+  Summary summary;
+  const double mean_m = delassus_.diagonal().mean();
+  const double mean_e = E.colwise().squaredNorm().mean();
+  const double rho0 = mean_e > 0.0 ? mean_m / mean_e : 1.0;
+  const Eigen::VectorXd ee = e;
+  const auto penalized_start = [&] {
+    // The balance as a penalty ρ₀‖Ez − e‖² (the augmented Lagrangian's first step): the
+    // frictionless problem, then the Tresca problem with its normal forces as slip bounds (one
+    // fixed-point step), so that the start has sticking nodes — from slip everywhere the
+    // Jacobian is singular in β (a polygon's vertices fix the tangential forces whatever the
+    // rigid motion) — and β ≈ ρ₀(Ez − e).
+    const AugmentedOperator op(delassus_, E, rho0);
+    const TrescaSolver qp(op, law_, options_.coulomb.tresca);
+    const Eigen::VectorXd linear = c - rho0 * (E.transpose() * ee);
+    ContactState first(dim, m / dim);
+    TrescaSolver::Summary s =
+        qp.solve_to(linear, Eigen::VectorXd::Zero(m / dim), first, kNewtonStartTolerance);
+    summary.qp_iterations += s.iterations;
+    const Eigen::VectorXd slip_bound = first.normal_forces().cwiseMax(0.0);
+    s = qp.solve_to(linear, slip_bound, first, kNewtonStartTolerance);
+    summary.qp_iterations += s.iterations;
+    state = first;
+    beta = rho0 * (E * state.z - ee);
+  };
+  if (state.z.size() != m || state.dim != dim) {
+    penalized_start();
+  } else if (beta.size() != r) {
+    // A warm z without its β: the β that closes the gaps of the touching nodes, (Mz + c + Eᵀβ)_ν =
+    // 0 where λ > 0, by least squares; too few touching nodes to fix β: the penalized start.
+    Eigen::VectorXd g(m);
+    delassus_.apply(state.z, g);
+    g += c;
+    std::vector<Eigen::Index> rows;
+    for (Eigen::Index i = 0; i < m / dim; ++i)
+      if (state.z(dim * i + dim - 1) > 0.0) rows.push_back(dim * i + dim - 1);
+    bool fitted = false;
+    if (static_cast<Eigen::Index>(rows.size()) >= r) {
+      Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), r);
+      Eigen::VectorXd b(A.rows());
+      for (Eigen::Index k = 0; k < A.rows(); ++k) {
+        A.row(k) = E.col(rows[static_cast<std::size_t>(k)]).transpose();
+        b(k) = -g(rows[static_cast<std::size_t>(k)]);
+      }
+      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+      if (qr.rank() == r) {
+        beta = qr.solve(b);
+        fitted = beta.allFinite();
+      }
+    }
+    if (!fitted) penalized_start();
+  }
+  const SemismoothNewtonCoulombSolver newton(delassus_, law_, options_.coulomb);
+  summary.inner = newton.solve_balanced(c, {E, ee, options_.equality_tolerance}, state, beta);
+  summary.newton_iterations = summary.inner.newton_iterations;
+  summary.qp_iterations += summary.inner.qp_iterations;
+  summary.status = summary.inner.status;
+  summary.equality_residual =
+      (E * state.z - ee).norm() / std::max({ee.norm(), E.norm() * state.z.norm(), std::numeric_limits<double>::min()});
+  summary.message = summary.converged() ? fmt::format("forces and moments balance to {:.1e} after {} Newton steps",
+                                                      summary.equality_residual, summary.newton_iterations)
+                                        : summary.inner.message;
+  summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+FloatingCoulombSolver::Summary FloatingCoulombSolver::solve_augmented_lagrangian(
     const Eigen::Ref<const Eigen::VectorXd>& c, const Eigen::Ref<const Eigen::VectorXd>& e,
     ContactState& state, Eigen::VectorXd& beta) const {
   const auto start = std::chrono::steady_clock::now();
   const Eigen::MatrixXd& E = equality_;
-  if (e.size() != E.rows())
-    throw InvalidInput(fmt::format("FloatingCoulombSolver::solve: e has {} entries; expected {}",
-                                   e.size(), E.rows()));
   Summary summary;
   // ρ₀ balances the two terms of M + ρEᵀE on the diagonal.
   const double mean_m = delassus_.diagonal().mean();
@@ -107,8 +222,10 @@ FloatingCoulombSolver::Summary FloatingCoulombSolver::solve(
   int stalled = 0;  // consecutive outer iterations without progress
   CoulombSolver::Options coulomb = options_.coulomb;  // inner tolerances, tightened on a stall
   // The inner operator M + ρEᵀE is applied, not formed: the semismooth Newton method would form
-  // it by m products per outer iteration, so the automatic choice stays with the fixed point.
-  if (coulomb.method == CoulombMethod::kAutomatic) coulomb.method = CoulombMethod::kFixedPoint;
+  // it by m products per outer iteration, so the inner solves are fixed points (the Newton
+  // method solves the whole floating problem instead: solve_newton).
+  if (coulomb.method == CoulombMethod::kAutomatic || coulomb.method == CoulombMethod::kSemismoothNewton)
+    coulomb.method = CoulombMethod::kFixedPoint;
   std::vector<Eigen::VectorXd> g_history, f_history;  // Anderson acceleration of μ
   double history_rho = rho;
   beta = mu;

@@ -2,6 +2,7 @@
 #include "frictopt/contact/semismooth_newton_coulomb.hpp"
 
 #include <Eigen/LU>
+#include <Eigen/QR>
 
 #include <algorithm>
 #include <chrono>
@@ -99,11 +100,11 @@ Eigen::VectorXd alart_curnier(const std::vector<FrictionLaw>& laws, const Eigen:
   return phi;
 }
 
-/// y = A v + RD (M v), with `mv` = M v given.
-void jacobian_times(const Linearization& lin, int dim, const Eigen::VectorXd& v, const Eigen::VectorXd& mv,
-                    Eigen::VectorXd& y) {
+/// y = A v + RD (M v) over the contact rows, with `mv` = M v given (M v + Eᵀ v_β for a
+/// floating body, whose balance rows the caller appends).
+void jacobian_times(const Linearization& lin, int dim, const Eigen::Ref<const Eigen::VectorXd>& v,
+                    const Eigen::VectorXd& mv, Eigen::Ref<Eigen::VectorXd> y) {
   const Eigen::Index p = static_cast<Eigen::Index>(lin.a.size());
-  y.resize(v.size());
   for (Eigen::Index i = 0; i < p; ++i) {
     const Eigen::Index b = dim * i;
     const Block& a = lin.a[static_cast<std::size_t>(i)];
@@ -112,18 +113,24 @@ void jacobian_times(const Linearization& lin, int dim, const Eigen::VectorXd& v,
   }
 }
 
-/// The dense J = A + RD·M (row blocks), in the scalar type T.
+/// The dense J = A + RD·M (row blocks), in the scalar type T; with balance rows E (r > 0) the
+/// bordered [A + RD·M, RD·Eᵀ; E, 0] of a floating body.
 template <class T>
 Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic> dense_jacobian(const Linearization& lin, const Eigen::MatrixXd& m,
-                                                                int dim) {
-  const Eigen::Index n = m.rows(), p = static_cast<Eigen::Index>(lin.a.size());
-  Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic> j(n, n);
+                                                                const Eigen::MatrixXd& e, int dim) {
+  const Eigen::Index n = m.rows(), p = static_cast<Eigen::Index>(lin.a.size()), r = e.rows();
+  Eigen::Matrix<T, Eigen::Dynamic, Eigen::Dynamic> j(n + r, n + r);
   for (Eigen::Index i = 0; i < p; ++i) {
     const Eigen::Index b = dim * i;
     const Eigen::MatrixXd rd = lin.rd[static_cast<std::size_t>(i)].topLeftCorner(dim, dim);
     // M is symmetric: its rows are its columns, read contiguously.
-    j.middleRows(b, dim) = (rd * m.middleCols(b, dim).transpose()).template cast<T>();
+    j.block(b, 0, dim, n) = (rd * m.middleCols(b, dim).transpose()).template cast<T>();
     j.block(b, b, dim, dim) += lin.a[static_cast<std::size_t>(i)].topLeftCorner(dim, dim).template cast<T>();
+    if (r > 0) j.block(b, n, dim, r) = (rd * e.middleCols(b, dim).transpose()).template cast<T>();
+  }
+  if (r > 0) {
+    j.bottomLeftCorner(r, n) = e.template cast<T>();
+    j.bottomRightCorner(r, r).setZero();
   }
   return j;
 }
@@ -268,7 +275,8 @@ CoulombSolver::Summary SemismoothNewtonCoulombSolver::solve(const Eigen::Ref<con
   if (!c.allFinite()) throw InvalidInput("SemismoothNewtonCoulombSolver::solve: c has non-finite entries");
   const Eigen::VectorXd cc = c;
   const ContactState initial = state;
-  CoulombSolver::Summary summary = iterate(cc, state);
+  Eigen::VectorXd no_beta;
+  CoulombSolver::Summary summary = iterate(cc, nullptr, state, no_beta);
   if (summary.converged() || !options_.newton.fallback_to_fixed_point) {
     fixed_point_.finish(cc, state, summary);
   } else {
@@ -289,17 +297,59 @@ CoulombSolver::Summary SemismoothNewtonCoulombSolver::solve(const Eigen::Ref<con
   return summary;
 }
 
-CoulombSolver::Summary SemismoothNewtonCoulombSolver::iterate(const Eigen::VectorXd& c, ContactState& state) const {
+CoulombSolver::Summary SemismoothNewtonCoulombSolver::solve_balanced(const Eigen::Ref<const Eigen::VectorXd>& c,
+                                                                     const Balance& balance, ContactState& state,
+                                                                     Eigen::VectorXd& beta) const {
+  const auto start = std::chrono::steady_clock::now();
+  const Eigen::Index m = delassus_.size();
+  if (c.size() != m || balance.equality.cols() != m || balance.rhs.size() != balance.equality.rows())
+    throw InvalidInput("SemismoothNewtonCoulombSolver::solve_balanced: c has size " + std::to_string(c.size()) +
+                       ", E is " + std::to_string(balance.equality.rows()) + " × " +
+                       std::to_string(balance.equality.cols()) + " and e has size " +
+                       std::to_string(balance.rhs.size()) + "; expected c and E's rows of size " +
+                       std::to_string(m) + ", e of E's row count");
+  if (!c.allFinite() || !balance.rhs.allFinite())
+    throw InvalidInput("SemismoothNewtonCoulombSolver::solve_balanced: non-finite c or e");
+  const Eigen::VectorXd cc = c;
+  CoulombSolver::Summary summary = iterate(cc, &balance, state, beta);
+  // The classification's scales from the effective linear term c + Eᵀβ.
+  fixed_point_.finish(cc + balance.equality.transpose() * beta, state, summary);
+  summary.time_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+CoulombSolver::Summary SemismoothNewtonCoulombSolver::iterate(const Eigen::VectorXd& c, const Balance* balance,
+                                                              ContactState& state, Eigen::VectorXd& beta) const {
   CoulombSolver::Summary summary;
   summary.method_given = summary.method_used = CoulombMethod::kSemismoothNewton;
   const int dim = dim_;
   const Eigen::Index m = c.size(), p = num_nodes_;
   const Eigen::MatrixXd& mat = *matrix_;
+  // The balance rows (none for a body held by its Dirichlet conditions: r = 0).
+  const Eigen::MatrixXd no_rows(0, m);
+  const Eigen::VectorXd no_rhs(0);
+  const Eigen::MatrixXd& E = balance ? balance->equality : no_rows;
+  const Eigen::VectorXd& e = balance ? balance->rhs : no_rhs;
+  const Eigen::Index nb = E.rows();
+  if (beta.size() != nb) beta = Eigen::VectorXd::Zero(nb);
+  const double e_norm = e.norm(), E_norm = E.norm();
   const auto apply_m = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
     y.resize(m);
     delassus_.apply(x, y);
     ++summary.operator_applications;
   };
+  // ∇ = Mz + c + Eᵀβ.
+  const auto gradient_at = [&](const Eigen::VectorXd& zz, const Eigen::VectorXd& bb, Eigen::VectorXd& gg) {
+    apply_m(zz, gg);
+    gg += c;
+    if (nb > 0) gg.noalias() += E.transpose() * bb;
+  };
+  // The balance residual relative to the loads (FloatingCoulombSolver's measure); 0 without rows.
+  const auto balance_error = [&](const Eigen::VectorXd& zz) {
+    if (nb == 0) return 0.0;
+    return (E * zz - e).norm() / std::max({e_norm, E_norm * zz.norm(), std::numeric_limits<double>::min()});
+  };
+  const double balance_target = balance ? balance->tolerance : 0.0;
   // Start: the warm start, or the frictionless problem.
   Eigen::VectorXd z;
   if (state.z.size() == m && state.dim == dim) {
@@ -319,7 +369,12 @@ CoulombSolver::Summary SemismoothNewtonCoulombSolver::iterate(const Eigen::Vecto
     const double trace = mat.block(dim * i, dim * i, dim, dim).trace();
     r(i) = trace > 0.0 ? dim / trace : 1.0;
   }
-  const double c_norm = c.norm() > 0.0 ? c.norm() : 1.0;
+  // The projected gradient relative to the linear term: c, or c + Eᵀβ for a floating body (the
+  // loads the contact balances).
+  const auto linear_norm = [&](const Eigen::VectorXd& bb) {
+    const double n = nb > 0 ? (c + E.transpose() * bb).norm() : c.norm();
+    return n > 0.0 ? n : 1.0;
+  };
   const double alpha = fixed_point_.tresca().step_length();
   const double target = options_.tresca.relative_tolerance;
   const auto finish_state = [&](const Eigen::VectorXd& zz, const Eigen::VectorXd& gg) {
@@ -328,31 +383,34 @@ CoulombSolver::Summary SemismoothNewtonCoulombSolver::iterate(const Eigen::Vecto
     state.gradient = gg;
   };
 
-  Eigen::VectorXd g(m), md(m), d(m), phi_t, g_t(m), z_t(m), zc(m), gc(m), jv(m), mv(m);
-  apply_m(z, g);
-  g += c;
+  Eigen::VectorXd g(m), md(m), phi_t, psi_t, g_t(m), z_t(m), zc(m), gc(m), mv(m), ed(nb);
+  Eigen::VectorXd d(m + nb), f(m + nb);
+  gradient_at(z, beta, g);
   Linearization lin;
   Eigen::VectorXd phi = alart_curnier(laws_, r, z, g, dim, &lin);
-  const double phi0 = std::max(phi.norm(), std::numeric_limits<double>::min());
+  Eigen::VectorXd psi = E * z - e;
+  const auto residual_norm = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    return std::sqrt(a.squaredNorm() + b.squaredNorm());
+  };
+  const double phi0 = std::max(residual_norm(phi, psi), std::numeric_limits<double>::min());
   linalg::blas::SinglePrecisionLu preconditioner;
   bool have_preconditioner = false;
   const bool direct = m <= options_.newton.direct_max_unknowns;
   for (int k = 0;; ++k) {
-    if (!phi.allFinite()) {
+    if (!phi.allFinite() || !psi.allFinite()) {
       summary.status = Status::kNumericalFailure;
       summary.message = "non-finite Alart–Curnier residual";
       break;
     }
     // The fixed point's inner stopping quantity at s = λ, on the feasible projection of z.
-    const double rpg = coulomb_projected_gradient_norm(laws_, z, g, dim, alpha) / c_norm;
+    const double rpg = coulomb_projected_gradient_norm(laws_, z, g, dim, alpha) / linear_norm(beta);
     summary.relative_projected_gradient = rpg;
-    if (rpg <= target || phi.norm() == 0.0) {
+    if ((rpg <= target && balance_error(z) <= balance_target) || residual_norm(phi, psi) == 0.0) {
       zc = z;
       project_feasible(laws_, dim, zc);
-      apply_m(zc, gc);
-      gc += c;
-      const double rpg_c = coulomb_projected_gradient_norm(laws_, zc, gc, dim, alpha) / c_norm;
-      if (rpg_c <= target) {
+      gradient_at(zc, beta, gc);
+      const double rpg_c = coulomb_projected_gradient_norm(laws_, zc, gc, dim, alpha) / linear_norm(beta);
+      if (rpg_c <= target && balance_error(zc) <= balance_target) {
         summary.status = Status::kConverged;
         summary.relative_projected_gradient = rpg_c;
         finish_state(zc, gc);
@@ -362,37 +420,50 @@ CoulombSolver::Summary SemismoothNewtonCoulombSolver::iterate(const Eigen::Vecto
     if (k >= options_.newton.max_iterations) {
       summary.status = Status::kMaxIterations;
       summary.message = "newton.max_iterations = " + std::to_string(options_.newton.max_iterations) +
-                        " reached; projected gradient " + format_number(rpg);
+                        " reached; projected gradient " + format_number(rpg) +
+                        (nb > 0 ? ", balance residual " + format_number(balance_error(z)) : std::string());
       break;
     }
-    // The Newton step J d = −Φ.
-    const Eigen::VectorXd rhs = -phi;
+    // The Newton step J d = −(Φ, Ez − e).
+    f.head(m) = -phi;
+    f.tail(nb) = -psi;
     d.setZero();
     if (direct) {
-      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(dense_jacobian<double>(lin, mat, dim));
+      const Eigen::MatrixXd jacobian = dense_jacobian<double>(lin, mat, E, dim);
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(jacobian);
       ++summary.factorizations;
       ++summary.linear_iterations;
-      d = lu.solve(rhs);
+      d = lu.solve(f);
+      // A singular Jacobian (a degenerate active set, e.g. every node of a floating body slipping
+      // at a polygon's vertex, where β moves no row): the least-squares step of least norm, which
+      // the line search then judges like any other.
+      if (!d.allFinite()) {
+        d = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(jacobian).solve(f);
+        ++summary.factorizations;
+      }
     } else {
-      const double eta = std::clamp(phi.norm() / phi0, kMinForcing, kMaxForcing);
+      const double eta = std::clamp(residual_norm(phi, psi) / phi0, kMinForcing, kMaxForcing);
       const auto apply_j = [&](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
-        apply_m(v, mv);
-        jacobian_times(lin, dim, v, mv, y);
+        y.resize(m + nb);
+        apply_m(v.head(m), mv);
+        if (nb > 0) mv.noalias() += E.transpose() * v.tail(nb);
+        jacobian_times(lin, dim, v.head(m), mv, y.head(m));
+        if (nb > 0) y.tail(nb).noalias() = E * v.head(m);
       };
       const auto apply_p = [&](Eigen::VectorXd& v) { preconditioner.solve_in_place(v); };
       bool ok = false;
       if (have_preconditioner)
-        summary.linear_iterations += gmres(apply_j, apply_p, rhs, d, eta, options_.newton.gmres_max_iterations, ok);
+        summary.linear_iterations += gmres(apply_j, apply_p, f, d, eta, options_.newton.gmres_max_iterations, ok);
       if (!ok) {
         // The last factorization's Jacobian is too far from this one: factorize this one.
-        if (!preconditioner.factorize(dense_jacobian<float>(lin, mat, dim))) {
+        if (!preconditioner.factorize(dense_jacobian<float>(lin, mat, E, dim))) {
           summary.status = Status::kNumericalFailure;
           summary.message = "singular Newton Jacobian";
           break;
         }
         have_preconditioner = true;
         ++summary.factorizations;
-        summary.linear_iterations += gmres(apply_j, apply_p, rhs, d, eta, 2 * options_.newton.gmres_max_iterations, ok);
+        summary.linear_iterations += gmres(apply_j, apply_p, f, d, eta, 2 * options_.newton.gmres_max_iterations, ok);
       }
     }
     if (!d.allFinite()) {
@@ -400,16 +471,21 @@ CoulombSolver::Summary SemismoothNewtonCoulombSolver::iterate(const Eigen::Vecto
       summary.message = "non-finite Newton step (singular Jacobian)";
       break;
     }
-    // Line search (Armijo on θ = ½‖Φ‖²); ∇ along the step is g + t·Md (M is linear).
-    apply_m(d, md);
-    const double theta = 0.5 * phi.squaredNorm();
+    // Line search (Armijo on θ = ½‖Φ‖² + ½‖Ez − e‖²); ∇ along the step is g + t·(M d_z + Eᵀd_β).
+    apply_m(d.head(m), md);
+    if (nb > 0) {
+      md.noalias() += E.transpose() * d.tail(nb);
+      ed.noalias() = E * d.head(m);
+    }
+    const double theta = 0.5 * (phi.squaredNorm() + psi.squaredNorm());
     double t = 1.0;
     bool accepted = false;
     for (; t >= kMinStep; t *= 0.5) {
-      z_t = z + t * d;
+      z_t = z + t * d.head(m);
       g_t = g + t * md;
       phi_t = alart_curnier(laws_, r, z_t, g_t, dim, nullptr);
-      if (0.5 * phi_t.squaredNorm() <= (1.0 - 2.0 * kArmijo * t) * theta) {
+      psi_t = psi + t * ed;
+      if (0.5 * (phi_t.squaredNorm() + psi_t.squaredNorm()) <= (1.0 - 2.0 * kArmijo * t) * theta) {
         accepted = true;
         break;
       }
@@ -423,20 +499,20 @@ CoulombSolver::Summary SemismoothNewtonCoulombSolver::iterate(const Eigen::Vecto
       break;
     }
     z = z_t;
+    if (nb > 0) beta += t * d.tail(nb);
     // A fresh ∇ every few steps keeps the updated one from drifting by rounding.
     if ((k + 1) % 8 == 0) {
-      apply_m(z, g);
-      g += c;
+      gradient_at(z, beta, g);
     } else {
       g = g_t;
     }
     phi = alart_curnier(laws_, r, z, g, dim, &lin);
+    psi = E * z - e;
   }
   // Not converged: the caller falls back or reports; the state holds the last iterate.
   zc = z;
   project_feasible(laws_, dim, zc);
-  apply_m(zc, gc);
-  gc += c;
+  gradient_at(zc, beta, gc);
   finish_state(zc, gc);
   return summary;
 }

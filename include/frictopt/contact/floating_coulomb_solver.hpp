@@ -6,7 +6,12 @@
 // dual QP min ½zᵀMz + zᵀc over the friction sets, with M = G A⁺ Gᵀ for a generalized inverse A⁺.
 // The multiplier of E z = e is β.
 //
-// Method: an augmented Lagrangian on the equality (the outer loop of Dostál's SMALBE) around
+// Method: the semismooth Newton method of SemismoothNewtonCoulombSolver on (z, β), the balance
+// rows bordering its Jacobian (SemismoothNewtonCoulombSolver::solve_balanced), for the Coulomb
+// methods semismooth_newton and automatic (when M's entries are at hand or cheap to form); it
+// starts from the warm state (β fitted to its touching nodes) or from the frictionless problem
+// with the balance as a penalty. When it fails, and for the methods fixed_point and split:
+// an augmented Lagrangian on the equality (the outer loop of Dostál's SMALBE) around
 // the Coulomb fixed point: iteration k solves the Coulomb problem for the operator M + ρEᵀE and
 // the linear term c + Eᵀ(μ_k − ρe) (warm-started), then μ_{k+1} = μ_k + ρ(Ez − e), and ρ grows
 // by `penalty_growth` when ‖Ez − e‖ did not fall below `required_decrease` of its last value
@@ -48,7 +53,8 @@ class FloatingCoulombSolver {
   struct Summary {
     Status status = Status::kNotRun;
     std::string message = "solve() has not been called";
-    int outer_iterations = 0;
+    int outer_iterations = 0;       ///< augmented-Lagrangian iterations (0: Newton solved it)
+    int newton_iterations = 0;      ///< Newton steps on (z, β), also those of a failed attempt
     int fixed_point_iterations = 0;  ///< summed over the inner Coulomb solves
     int qp_iterations = 0;
     double equality_residual = kNaN;  ///< ‖Ez − e‖ relative (see Options)
@@ -71,6 +77,13 @@ class FloatingCoulombSolver {
                               Eigen::VectorXd& beta) const;
 
  private:
+  bool uses_newton() const;
+  Summary solve_newton(const Eigen::Ref<const Eigen::VectorXd>& c, const Eigen::Ref<const Eigen::VectorXd>& e,
+                       ContactState& state, Eigen::VectorXd& beta) const;
+  Summary solve_augmented_lagrangian(const Eigen::Ref<const Eigen::VectorXd>& c,
+                                     const Eigen::Ref<const Eigen::VectorXd>& e, ContactState& state,
+                                     Eigen::VectorXd& beta) const;
+
   const linalg::LinearOperator& delassus_;
   Eigen::MatrixXd equality_;
   FrictionLaw law_;

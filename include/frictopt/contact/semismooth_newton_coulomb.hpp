@@ -50,8 +50,30 @@ class SemismoothNewtonCoulombSolver {
   /// summary's method_used is kSemismoothNewton, or kFixedPoint after a fallback.
   [[nodiscard]] CoulombSolver::Summary solve(const Eigen::Ref<const Eigen::VectorXd>& c, ContactState& state) const;
 
+  /// The balance rows of a floating body (FloatingCoulombSolver): E z = e, whose multiplier β
+  /// enters the kinematics as ∇ = Mz + c + Eᵀβ.
+  struct Balance {
+    const Eigen::MatrixXd& equality;  ///< E (r × m), r <= 6
+    const Eigen::VectorXd& rhs;       ///< e (r)
+    /// Met when ‖Ez − e‖ <= tolerance·max(‖e‖, ‖E‖_F·‖z‖) (FloatingCoulombSolver's measure).
+    double tolerance = 1e-10;
+  };
+
+  /// The floating body's problem by the same Newton method on (z, β): Φ(z) with ∇ = Mz + c + Eᵀβ
+  /// and the rows Ez − e, the Jacobian bordered as [A + RDM, RDEᵀ; E, 0] (docs/experiments.md §5).
+  /// Starts from state.z and `beta` as given (the caller's start: a cold
+  /// state starts from the frictionless problem without the rows, which rarely has contact
+  /// enough to determine β). Converged when the projected gradient meets
+  /// tresca.relative_tolerance relative to ‖c + Eᵀβ‖ and the rows meet balance.tolerance. No
+  /// fallback: a failure is returned as such (FloatingCoulombSolver then uses its augmented
+  /// Lagrangian, which also tells a load without equilibrium).
+  [[nodiscard]] CoulombSolver::Summary solve_balanced(const Eigen::Ref<const Eigen::VectorXd>& c,
+                                                      const Balance& balance, ContactState& state,
+                                                      Eigen::VectorXd& beta) const;
+
  private:
-  CoulombSolver::Summary iterate(const Eigen::VectorXd& c, ContactState& state) const;
+  CoulombSolver::Summary iterate(const Eigen::VectorXd& c, const Balance* balance, ContactState& state,
+                                 Eigen::VectorXd& beta) const;
 
   const linalg::LinearOperator& delassus_;
   std::vector<FrictionLaw> laws_;
