@@ -79,15 +79,9 @@ int run_identify(const std::filesystem::path& case_path, const std::filesystem::
     for (std::size_t k = 0; k < names.size(); ++k)
       truth_text += fmt::format("{}{} = {}", k ? ", " : "", names[k], truth(static_cast<Eigen::Index>(k)));
     // The rows as the case gives them (locations as written), in the experiments' order.
-    std::vector<study::Measurement> templates;
-    for (const auto& x : experiments) templates.insert(templates.end(), x.measurements.begin(), x.measurements.end());
-    const auto synthetic = study::synthetic_measurements(templates, exact.values, seed, !noise_free);
-    std::size_t first = 0;
+    const auto synthetic = study::synthetic_experiments(experiments, exact.values, seed, !noise_free);
     for (std::size_t k = 0; k < experiments.size(); ++k) {
-      const std::size_t count = experiments[k].measurements.size();
-      const std::vector<study::Measurement> rows(synthetic.begin() + static_cast<std::ptrdiff_t>(first),
-                                                 synthetic.begin() + static_cast<std::ptrdiff_t>(first + count));
-      first += count;
+      const std::vector<study::Measurement>& rows = synthetic[k].measurements;
       io::write_measurements(paths[k], rows,
                              fmt::format("synthetic: frictopt identify {} --generate-synthetic --seed {}{}; {}{}; {}",
                                          case_path.filename().string(), seed, noise_free ? " --noise-free" : "",

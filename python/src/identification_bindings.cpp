@@ -75,15 +75,24 @@ std::vector<study::IdentificationExperiment> experiments_of(const py::module_& m
     throw InvalidInput(fmt::format("{}: the case has {} [[identification.experiment]] tables, each with its own loads and "
                                    "measurements; expected experiments=[...] (one measurement list per experiment)",
                                    c.description.origin, setup.experiments.size()));
-  const io::IdentificationExperimentSetup& own = setup.experiments.front();
-  study::IdentificationExperiment x;
-  x.name = own.name;
-  x.load_scale = own.load_scale;
-  x.dirichlet_scale = own.dirichlet_scale;
-  x.force_scale = own.force_scale;
-  x.orientation = own.orientation;
+  study::IdentificationExperiment x = io::experiment_loads(setup.experiments.front());
   x.measurements = to_measurements(m, measurements);
   return {x};
+}
+
+// The experiments with synthetic values: the case's own law's prediction (raises when the model
+// cannot be evaluated there) plus noise, as `frictopt identify --generate-synthetic`.
+std::vector<study::IdentificationExperiment> synthetic_of(const Case& source,
+                                                          std::vector<study::IdentificationExperiment> experiments,
+                                                          std::uint64_t seed, bool noise) {
+  study::Identification identification(source.description.body, experiments, setup_of(source).options);
+  study::Identification::Prediction exact;
+  {
+    py::gil_scoped_release release;
+    exact = identification.predict(identification.case_parameters());
+  }
+  if (!exact.ok) throw std::runtime_error("the model could not be evaluated at the case's parameters: " + exact.message);
+  return study::synthetic_experiments(std::move(experiments), exact.values, seed, noise);
 }
 
 }  // namespace
@@ -179,15 +188,7 @@ experiment.
           throw InvalidInput(fmt::format("{}: the case has {} [[identification.experiment]] tables; expected "
                                          "synthetic_experiments(case) for them",
                                          source->description.origin, experiments.size()));
-        study::Identification identification(source->description.body, experiments, setup_of(*source).options);
-        study::Identification::Prediction exact;
-        {
-          py::gil_scoped_release release;
-          exact = identification.predict(identification.case_parameters());
-        }
-        if (!exact.ok)
-          throw std::runtime_error("the model could not be evaluated at the case's parameters: " + exact.message);
-        return study::synthetic_measurements(experiments.front().measurements, exact.values, seed, noise);
+        return synthetic_of(*source, experiments, seed, noise).front().measurements;
       },
       py::arg("case"), py::arg("templates") = py::none(), py::arg("seed") = 1, py::arg("noise") = true,
       "Measurements at the rows of `templates` (default: the case's measurements) with values of the\n"
@@ -197,25 +198,7 @@ experiment.
   m.def(
       "synthetic_experiments",
       [m](std::shared_ptr<const Case> source, const py::object& experiments, std::uint64_t seed, bool noise) {
-        auto list = experiments_of(m, *source, py::none(), experiments);
-        study::Identification identification(source->description.body, list, setup_of(*source).options);
-        study::Identification::Prediction exact;
-        {
-          py::gil_scoped_release release;
-          exact = identification.predict(identification.case_parameters());
-        }
-        if (!exact.ok)
-          throw std::runtime_error("the model could not be evaluated at the case's parameters: " + exact.message);
-        std::vector<study::Measurement> rows;
-        for (const auto& x : list) rows.insert(rows.end(), x.measurements.begin(), x.measurements.end());
-        const auto synthetic = study::synthetic_measurements(rows, exact.values, seed, noise);
-        std::size_t first = 0;
-        for (auto& x : list) {
-          std::copy(synthetic.begin() + static_cast<std::ptrdiff_t>(first),
-                    synthetic.begin() + static_cast<std::ptrdiff_t>(first + x.measurements.size()), x.measurements.begin());
-          first += x.measurements.size();
-        }
-        return list;
+        return synthetic_of(*source, experiments_of(m, *source, py::none(), experiments), seed, noise);
       },
       py::arg("case"), py::arg("experiments") = py::none(), py::arg("seed") = 1, py::arg("noise") = true,
       "The experiments (default: the case's, [[identification.experiment]] or its own loads) with the values\n"

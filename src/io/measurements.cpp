@@ -139,6 +139,16 @@ std::vector<study::Measurement> read_measurements(const std::filesystem::path& p
   return out;
 }
 
+study::IdentificationExperiment experiment_loads(const IdentificationExperimentSetup& setup) {
+  study::IdentificationExperiment e;
+  e.name = setup.name;
+  e.load_scale = setup.load_scale;
+  e.dirichlet_scale = setup.dirichlet_scale;
+  e.force_scale = setup.force_scale;
+  e.orientation = setup.orientation;
+  return e;
+}
+
 std::vector<study::IdentificationExperiment> identification_experiments(const IdentificationSetup& setup,
                                                                       std::string_view origin) {
   std::vector<study::IdentificationExperiment> out;
@@ -149,12 +159,7 @@ std::vector<study::IdentificationExperiment> identification_experiments(const Id
           "docs/identification.md) or [[identification.measurement]] tables in the case, or, from Python, "
           "identify(case, measurements=[...]) or experiments=[...]",
           origin));
-    study::IdentificationExperiment e;
-    e.name = x.name;
-    e.load_scale = x.load_scale;
-    e.dirichlet_scale = x.dirichlet_scale;
-    e.force_scale = x.force_scale;
-    e.orientation = x.orientation;
+    study::IdentificationExperiment e = experiment_loads(x);
     if (x.measurements) e.measurements = read_measurements(*x.measurements);
     e.measurements.insert(e.measurements.end(), x.inline_measurements.begin(), x.inline_measurements.end());
     out.push_back(std::move(e));

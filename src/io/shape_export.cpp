@@ -22,7 +22,8 @@ constexpr double kPlaneTolerance = 1e-9;
 
 }  // namespace
 
-DesignSurface design_surface(const study::ElasticBody& body, const Eigen::Ref<const Eigen::VectorXd>& x) {
+DesignSurface design_surface(const study::ElasticBody& body, const Eigen::Ref<const Eigen::VectorXd>& x,
+                             const Eigen::Ref<const Eigen::MatrixXd>& X) {
   const study::BodyDefinition& d = body.definition();
   const shape::BezierShape& shape = d.shape;
   const mesh::Mesh& mesh = body.mesh();
@@ -78,7 +79,6 @@ DesignSurface design_surface(const study::ElasticBody& body, const Eigen::Ref<co
       g.points.row(i + m1 * j).head(dim) = p.transpose();
     }
   // The surface against the designed mesh at every patch node.
-  const Eigen::MatrixXd X = mesh.positions(alpha);
   for (int i : nodes) {
     const Eigen::VectorXd r = reference.row(i).transpose();
     const double u = (frame.tangents.col(0).dot(r) - origin(0)) / a;
@@ -109,7 +109,7 @@ ShapeExport export_shape(const std::filesystem::path& run_dir, const std::filesy
     run.write_text_file(file, bytes);
     out.files.push_back(run.file(file));
   };
-  out.surface = design_surface(body, x);
+  out.surface = design_surface(body, x, X);
   if (out.surface.geometry) {
     // The surface is built from α and the chart only; a deviation from the mesh beyond round-off
     // would mean the chart is not the one the mesh moved with: refuse rather than write a wrong part.

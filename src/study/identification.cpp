@@ -955,4 +955,16 @@ std::vector<Measurement> synthetic_measurements(const std::vector<Measurement>& 
   return out;
 }
 
+std::vector<IdentificationExperiment> synthetic_experiments(std::vector<IdentificationExperiment> experiments,
+                                                            const Eigen::Ref<const Eigen::VectorXd>& exact,
+                                                            std::uint64_t seed, bool add_noise) {
+  std::vector<Measurement> rows;
+  for (const auto& x : experiments) rows.insert(rows.end(), x.measurements.begin(), x.measurements.end());
+  const std::vector<Measurement> synthetic = synthetic_measurements(rows, exact, seed, add_noise);
+  auto next = synthetic.begin();
+  for (auto& x : experiments)
+    for (Measurement& m : x.measurements) m = *next++;
+  return experiments;
+}
+
 }  // namespace frictopt::study

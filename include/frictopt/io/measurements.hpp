@@ -26,6 +26,10 @@ namespace frictopt::io {
 /// the CSV reader and the case file's inline [[identification.measurement]] rows.
 void parse_location(study::Measurement& m, std::string_view location, const std::string& where);
 
+/// One [[identification.experiment]] table's loads as a study experiment (name, scales,
+/// orientation), its measurements left empty for the caller to give.
+[[nodiscard]] study::IdentificationExperiment experiment_loads(const IdentificationExperimentSetup& setup);
+
 /// The experiments of a case's [identification] table with their measurements: each experiment's
 /// CSV rows (read now) followed by its inline rows; without [[identification.experiment]] tables,
 /// one experiment, "case", with the case's own loads and the table's measurements. Throws

@@ -31,7 +31,9 @@ struct DesignSurface {
   double size = 0.0;
   std::string note;
 };
-[[nodiscard]] DesignSurface design_surface(const study::ElasticBody& body, const Eigen::Ref<const Eigen::VectorXd>& x);
+/// `positions` is the body's mesh at x (mesh().positions(α)), which the caller has computed.
+[[nodiscard]] DesignSurface design_surface(const study::ElasticBody& body, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                           const Eigen::Ref<const Eigen::MatrixXd>& positions);
 
 /// What export_shape wrote.
 struct ShapeExport {

@@ -259,4 +259,11 @@ std::vector<Measurement> synthetic_measurements(const std::vector<Measurement>& 
                                                 const Eigen::Ref<const Eigen::VectorXd>& exact, std::uint64_t seed,
                                                 bool add_noise = true);
 
+/// The experiments with every measurement's value replaced by synthetic_measurements over all
+/// their rows in order (one seeded stream): `exact` holds one value per row, as
+/// Identification::predict returns them for these experiments.
+std::vector<IdentificationExperiment> synthetic_experiments(std::vector<IdentificationExperiment> experiments,
+                                                            const Eigen::Ref<const Eigen::VectorXd>& exact,
+                                                            std::uint64_t seed, bool add_noise = true);
+
 }  // namespace frictopt::study
