@@ -34,7 +34,10 @@ function(frictopt_target_defaults target)
                           "sanitizers cannot be combined; choose one.")
     endif()
     list(JOIN FRICTOPT_SANITIZE "," _san)
-    target_compile_options(${target} PRIVATE -fsanitize=${_san} -fno-omit-frame-pointer -g)
+    # Line tables for the reports (-g1), full debug information only in a Debug build: -g took
+    # 37 % longer to compile under the sanitizers than -g1 and wrote 4× the object size.
+    target_compile_options(${target} PRIVATE -fsanitize=${_san} -fno-omit-frame-pointer
+                                             $<IF:$<CONFIG:Debug>,-g,-g1>)
     target_link_options(${target} PUBLIC -fsanitize=${_san})
     target_compile_definitions(${target} PUBLIC FRICTOPT_ENABLE_ASSERTS=1)
   endif()
@@ -68,11 +71,21 @@ endfunction()
 # frictopt_add_test(module SOURCES x_test.cpp ... [LABELS slow] [DEPENDS extra])
 # One test binary per call, registered with CTest through gtest_discover_tests.
 function(frictopt_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;LABELS;DEFINITIONS" ${ARGN})
+  if("slow" IN_LIST ARG_LABELS AND NOT FRICTOPT_BUILD_SLOW_TESTS)
+    return()
+  endif()
   add_executable(${name}_test ${ARG_SOURCES})
   target_include_directories(${name}_test PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   target_link_libraries(${name}_test PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main)
   frictopt_target_defaults(${name}_test)
+  # The test programs' own code at -O1 (after the -O2 above, so it wins): the library under test
+  # keeps the Release -O2; a test's body is checks and calls into it, and -O1 compiles it in
+  # about two thirds of the time (measured on tests/contact/tresca_solver_test.cpp: 35 s → 23 s).
+  target_compile_options(${name}_test PRIVATE $<$<CONFIG:Release>:-O1>)
+  if(ARG_DEFINITIONS)
+    target_compile_definitions(${name}_test PRIVATE ${ARG_DEFINITIONS})
+  endif()
   set(_labels ${ARG_LABELS})
   if(NOT _labels)
     set(_labels quick)
