@@ -251,8 +251,8 @@ TEST(LoadingPlate, PlateOnAGmshGroup) {
     EXPECT_NEAR(s.contact->resultants.normal_force, 3e7, 1e-8 * 3e7);
     EXPECT_NEAR(s.plates[0].force(2), -3e7, 1e-8 * 3e7);
   }
-  // ξ·h against a central difference along one direction (the floating solve on the Gmsh body
-  // takes seconds: a full gradient by differences would take 33 of them).
+  // ξ·h against a central difference along one direction (the full gradient by differences is
+  // LoadingPlate.SubgradientMatchesCentralDifferences' on the box).
   ShapeOracle oracle(body, cost::make_normal_force_power(4.0));
   const Evaluation e = oracle.evaluate_design(def.initial_design);
   ASSERT_TRUE(e.ok) << e.message;
