@@ -720,45 +720,55 @@ Status status_of(ceres::TerminationType t) {
 }
 }  // namespace
 
-Identification::Summary Identification::run() {
-  const auto start = std::chrono::steady_clock::now();
-  Impl& s = *impl_;
-  Summary out;
-  const Eigen::Index n = s.scale.size();
-  const auto nm = static_cast<Eigen::Index>(s.measurements.size());
-  const int solves_before = s.state_solves, jacobians_before = s.jacobian_evaluations;
-  std::vector<double> x(static_cast<std::size_t>(n));
-  for (Eigen::Index k = 0; k < n; ++k) x[static_cast<std::size_t>(k)] = s.initial(k) / s.scale(k);
+namespace {
 
+// The fit's Ceres problem: x holds the parameters divided by their scales, one size-1 block per
+// parameter (bounds, constant blocks and covariance blocks per parameter), one residual block per
+// measurement with the shared robust loss.
+struct LeastSquaresFit {
+  std::vector<double> x;
+  std::vector<double*> blocks;
+  std::unique_ptr<ceres::LossFunction> loss;
+  std::unique_ptr<ceres::Problem> problem;
+};
+
+std::unique_ptr<LeastSquaresFit> least_squares_fit(Identification::Impl& s) {
+  auto fit = std::make_unique<LeastSquaresFit>();
+  const Eigen::Index n = s.scale.size();
+  fit->x.resize(static_cast<std::size_t>(n));
+  for (Eigen::Index k = 0; k < n; ++k) fit->x[static_cast<std::size_t>(k)] = s.initial(k) / s.scale(k);
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // one loss shared by all blocks
-  ceres::Problem problem(problem_options);
-  std::unique_ptr<ceres::LossFunction> loss;
-  if (s.options.loss == RobustLoss::kHuber) loss = std::make_unique<ceres::HuberLoss>(s.options.loss_scale);
-  if (s.options.loss == RobustLoss::kCauchy) loss = std::make_unique<ceres::CauchyLoss>(s.options.loss_scale);
-  std::vector<double*> blocks;
-  for (double& v : x) blocks.push_back(&v);
+  fit->problem = std::make_unique<ceres::Problem>(problem_options);
+  if (s.options.loss == RobustLoss::kHuber) fit->loss = std::make_unique<ceres::HuberLoss>(s.options.loss_scale);
+  if (s.options.loss == RobustLoss::kCauchy) fit->loss = std::make_unique<ceres::CauchyLoss>(s.options.loss_scale);
+  for (double& v : fit->x) fit->blocks.push_back(&v);
   for (std::size_t r = 0; r < s.measurements.size(); ++r)
-    problem.AddResidualBlock(new MeasurementResidual(s, r), loss.get(), blocks);
+    fit->problem->AddResidualBlock(new MeasurementResidual(s, r), fit->loss.get(), fit->blocks);
   for (Eigen::Index k = 0; k < n; ++k) {
     const ParameterSpec& spec = s.options.parameters[static_cast<std::size_t>(k)];
-    double* b = blocks[static_cast<std::size_t>(k)];
-    problem.SetParameterLowerBound(b, 0, spec.lower / s.scale(k));
-    problem.SetParameterUpperBound(b, 0, spec.upper / s.scale(k));
+    double* b = fit->blocks[static_cast<std::size_t>(k)];
+    fit->problem->SetParameterLowerBound(b, 0, spec.lower / s.scale(k));
+    fit->problem->SetParameterUpperBound(b, 0, spec.upper / s.scale(k));
   }
+  return fit;
+}
 
+// Levenberg–Marquardt with dense QR, serial (the model and its cache are not thread-safe) and
+// silent (the library never prints); the summary's solver fields.
+void solve_fit(const Identification::Options& options, LeastSquaresFit& fit, Identification::Summary& out) {
   ceres::Solver::Options solver_options;
   solver_options.minimizer_type = ceres::TRUST_REGION;
   solver_options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   solver_options.linear_solver_type = ceres::DENSE_QR;
-  solver_options.max_num_iterations = s.options.max_iterations;
-  solver_options.function_tolerance = s.options.function_tolerance;
-  solver_options.parameter_tolerance = s.options.parameter_tolerance;
-  solver_options.gradient_tolerance = s.options.gradient_tolerance;
-  solver_options.num_threads = 1;  // the model and its cache are not thread-safe
-  solver_options.logging_type = ceres::SILENT;  // the library never prints
+  solver_options.max_num_iterations = options.max_iterations;
+  solver_options.function_tolerance = options.function_tolerance;
+  solver_options.parameter_tolerance = options.parameter_tolerance;
+  solver_options.gradient_tolerance = options.gradient_tolerance;
+  solver_options.num_threads = 1;
+  solver_options.logging_type = ceres::SILENT;
   ceres::Solver::Summary ceres_summary;
-  ceres::Solve(solver_options, &problem, &ceres_summary);
+  ceres::Solve(solver_options, fit.problem.get(), &ceres_summary);
   out.ceres_brief_report = ceres_summary.BriefReport();
   out.ceres_full_report = ceres_summary.FullReport();
   out.iterations = std::max(0, static_cast<int>(ceres_summary.iterations.size()) - 1);  // none when it failed at once
@@ -766,15 +776,200 @@ Identification::Summary Identification::run() {
   out.final_cost = ceres_summary.final_cost;
   out.status = status_of(ceres_summary.termination_type);
   out.message = ceres_summary.message;
+}
+
+// The normalized residuals at the estimate, the χ² and each experiment's share.
+void record_residuals(const Identification::Impl& s, const Identification::Prediction& final_prediction,
+                      const Eigen::VectorXd& sigma, Identification::Summary& out) {
+  const auto nm = static_cast<Eigen::Index>(s.measurements.size());
+  Eigen::VectorXd value(nm);
+  for (Eigen::Index r = 0; r < nm; ++r) value(r) = s.measurements[static_cast<std::size_t>(r)].value;
+  out.predictions = final_prediction.values;
+  out.residuals = (out.predictions - value).cwiseQuotient(sigma);
+  out.chi_square = out.residuals.squaredNorm();
+  out.index_sets = final_prediction.index_sets;
+  for (const auto& e : s.experiments) {
+    Identification::Summary::ExperimentResidual& r = out.experiments.emplace_back();
+    r.name = e.name;
+    r.first_measurement = e.first_row;
+    r.num_measurements = e.num_rows;
+    r.chi_square = out.residuals.segment(e.first_row, e.num_rows).squaredNorm();
+    r.rms_residual = std::sqrt(r.chi_square / static_cast<double>(e.num_rows));
+    r.num_slipping_nodes = e.num_slipping_nodes;
+    r.index_sets = e.index_sets;
+  }
+}
+
+// The measurement whose normalized residual or Jacobian row is not finite (a σ too small for its
+// value, σ = 1e-308, overflows them: Eigen's and Ceres' SVDs crash on such numbers), as the
+// summary's failure; false when every row is finite.
+bool refuse_non_finite_rows(const Identification::Impl& s, const Eigen::MatrixXd& Js, Identification::Summary& out) {
+  for (Eigen::Index r = 0; r < Js.rows(); ++r) {
+    if (std::isfinite(out.residuals(r)) && Js.row(r).allFinite()) continue;
+    const Measurement& m = s.measurements[static_cast<std::size_t>(r)];
+    out.status = Status::kNumericalFailure;
+    out.message = fmt::format(
+        "{}: the normalized residual (fitted − measured)/σ = ({:g} − {:g})/{:g} = {:g} or its derivative is not a "
+        "finite number; expected a standard deviation σ that the value's scale does not overflow",
+        m.label.empty() ? fmt::format("measurement {}", r) : m.label, out.predictions(r), m.value, m.sigma,
+        out.residuals(r));
+    return true;
+  }
+  return false;
+}
+
+// Parameters whose column of the scaled Jacobian vanishes are not determined; a friction
+// coefficient of an all-sticking state has a lower bound only, which the note gives. Returns the
+// others (the "live" parameters).
+std::vector<Eigen::Index> mark_undetermined(const Identification::Impl& s, const Eigen::MatrixXd& Js,
+                                            const Eigen::VectorXd& p, int num_slipping_nodes,
+                                            Identification::Summary& out) {
+  const Eigen::VectorXd column_norms = Js.colwise().norm();
+  std::vector<Eigen::Index> live;
+  for (Eigen::Index k = 0; k < Js.cols(); ++k) {
+    Identification::ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
+    if (column_norms(k) > s.options.zero_column_tolerance) {
+      live.push_back(k);
+      continue;
+    }
+    e.identifiability = Identifiability::kNotDetermined;
+    const bool friction = s.friction_index[static_cast<std::size_t>(k)] >= 0;
+    if (!friction || num_slipping_nodes > 0) {
+      e.note = friction ? "no measured quantity depends on it: no slipping node uses this coefficient at the "
+                          "estimate (its Jacobian column is zero)"
+                        : "no measured quantity depends on it (its Jacobian column is zero)";
+      continue;
+    }
+    // Every node sticks (or separates): any coefficient above the one that puts the most loaded
+    // friction force on the boundary of λW gives the same state. Over every experiment, each
+    // with its own (turned) law.
+    double g = 0.0;
+    for (const auto& model : s.experiments) {
+      const contact::FrictionLaw law = s.law_for(model.law0, p);
+      const contact::ContactState& state = *model.warm_start;  // the final prediction's state
+      for (Eigen::Index i = 0; i < model.num_nodes; ++i) {
+        const double lambda = state.lambda(i);
+        if (lambda > 0) g = std::max(g, law.gauge(state.q(i) / lambda));
+      }
+    }
+    e.note = s.friction_values0.size() == 1
+                 ? fmt::format("only a lower bound: {} >= {:.6g} (every contact node sticks, so any larger "
+                               "coefficient explains the data equally well)",
+                               e.name, g * p(k))
+                 : fmt::format("only bounded from below: every contact node sticks (the friction forces lie "
+                               "inside λ·W, scaling W by {:.4g} would still hold them), so the data cannot "
+                               "determine the coefficients",
+                               g);
+  }
+  return live;
+}
+
+// Of the live parameters, those with a visible share (> 1e-3) in a null direction of the scaled
+// Jacobian's live columns are determined only in combination (marked correlated); returns the
+// determined rest. Records the singular values.
+std::vector<Eigen::Index> mark_correlated(const Identification::Options& options, const Eigen::MatrixXd& Js,
+                                          const std::vector<Eigen::Index>& live, Identification::Summary& out) {
+  const auto nl = static_cast<Eigen::Index>(live.size());
+  Eigen::MatrixXd Jl(Js.rows(), nl);
+  for (Eigen::Index j = 0; j < nl; ++j) Jl.col(j) = Js.col(live[static_cast<std::size_t>(j)]);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Jl, Eigen::ComputeFullV);
+  out.singular_values = svd.singularValues();
+  const Eigen::VectorXd& sv = svd.singularValues();
+  std::vector<Eigen::Index> correlated;
+  if (sv.size() < nl || sv(sv.size() - 1) <= options.rank_tolerance * sv(0)) {
+    for (Eigen::Index j = 0; j < nl; ++j) {
+      double share = 0.0;
+      for (Eigen::Index c = 0; c < nl; ++c)
+        if (c >= sv.size() || sv(c) <= options.rank_tolerance * sv(0))
+          share = std::max(share, std::abs(svd.matrixV()(j, c)));
+      if (share > 1e-3) correlated.push_back(live[static_cast<std::size_t>(j)]);
+    }
+    for (Eigen::Index k : correlated) {
+      Identification::ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
+      e.identifiability = Identifiability::kCorrelated;
+      e.note = "only a combination with other parameters is determined (the Jacobian is rank deficient)";
+    }
+  }
+  std::vector<Eigen::Index> determined;
+  for (Eigen::Index k : live)
+    if (std::find(correlated.begin(), correlated.end(), k) == correlated.end()) determined.push_back(k);
+  return determined;
+}
+
+// Covariance of the determined parameters with the others held fixed (Ceres, dense SVD), their
+// standard deviations and correlations; a parameter on a bound is marked so.
+void record_covariance(const Identification::Impl& s, LeastSquaresFit& fit, const std::vector<Eigen::Index>& determined,
+                       Identification::Summary& out) {
+  const Eigen::Index n = s.scale.size();
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (std::find(determined.begin(), determined.end(), k) == determined.end())
+      fit.problem->SetParameterBlockConstant(fit.blocks[static_cast<std::size_t>(k)]);
+  if (determined.empty()) return;
+  ceres::Covariance::Options co;
+  co.algorithm_type = ceres::DENSE_SVD;
+  co.num_threads = 1;
+  co.null_space_rank = 0;  // rank deficiency was handled before: fail rather than drop directions
+  co.min_reciprocal_condition_number = s.options.rank_tolerance * s.options.rank_tolerance;
+  ceres::Covariance covariance(co);
+  const auto block = [&](Eigen::Index k) { return fit.blocks[static_cast<std::size_t>(k)]; };
+  std::vector<std::pair<const double*, const double*>> pairs;
+  for (Eigen::Index a : determined)
+    for (Eigen::Index b : determined)
+      if (a <= b) pairs.emplace_back(block(a), block(b));
+  if (!covariance.Compute(pairs, fit.problem.get())) {
+    for (Eigen::Index k : determined) {
+      Identification::ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
+      e.identifiability = Identifiability::kCorrelated;
+      e.note = "ceres::Covariance found the Jacobian rank deficient";
+    }
+    return;
+  }
+  for (Eigen::Index a : determined)
+    for (Eigen::Index b : determined) {
+      if (a > b) continue;
+      double v = kNaN;
+      (void)covariance.GetCovarianceBlock(block(a), block(b), &v);
+      out.covariance(a, b) = out.covariance(b, a) = v * s.scale(a) * s.scale(b);
+    }
+  for (Eigen::Index k : determined) {
+    Identification::ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
+    e.standard_deviation = std::sqrt(out.covariance(k, k));
+    const double tol = 1e-9 * s.scale(k);
+    const bool at_bound = std::abs(e.value - e.lower) <= tol || std::abs(e.value - e.upper) <= tol;
+    e.identifiability = at_bound ? Identifiability::kAtBound : Identifiability::kDetermined;
+    if (at_bound) e.note = "the estimate is on a bound: the deviation is that of the unconstrained problem";
+  }
+  for (Eigen::Index a : determined)
+    for (Eigen::Index b : determined)
+      out.correlation(a, b) = out.covariance(a, b) / std::sqrt(out.covariance(a, a) * out.covariance(b, b));
+}
+
+}  // namespace
+
+Identification::Summary Identification::run() {
+  const auto start = std::chrono::steady_clock::now();
+  Impl& s = *impl_;
+  Summary out;
+  const Eigen::Index n = s.scale.size();
+  const auto nm = static_cast<Eigen::Index>(s.measurements.size());
+  const int solves_before = s.state_solves, jacobians_before = s.jacobian_evaluations;
+  const auto finish = [&] {
+    out.state_solves = s.state_solves - solves_before;
+    out.jacobian_evaluations = s.jacobian_evaluations - jacobians_before;
+    out.time_seconds = seconds_since(start);
+    return out;
+  };
+  const std::unique_ptr<LeastSquaresFit> fit = least_squares_fit(s);
+  solve_fit(s.options, *fit, out);
   out.degrees_of_freedom = static_cast<int>(nm - n);
 
   Eigen::VectorXd p(n);
-  for (Eigen::Index k = 0; k < n; ++k) p(k) = x[static_cast<std::size_t>(k)] * s.scale(k);
+  for (Eigen::Index k = 0; k < n; ++k) p(k) = fit->x[static_cast<std::size_t>(k)] * s.scale(k);
   const Prediction final_prediction = s.predict(p, true);
   out.estimates.resize(static_cast<std::size_t>(n));
   for (Eigen::Index k = 0; k < n; ++k) {
     const ParameterSpec& spec = s.options.parameters[static_cast<std::size_t>(k)];
-    ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
+    Identification::ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
     e.name = spec.name;
     e.initial = s.initial(k);
     e.value = p(k);
@@ -789,155 +984,17 @@ Identification::Summary Identification::run() {
     out.time_seconds = seconds_since(start);
     return out;
   }
-  out.predictions = final_prediction.values;
-  Eigen::VectorXd sigma(nm), value(nm);
-  for (Eigen::Index r = 0; r < nm; ++r) {
-    sigma(r) = s.measurements[static_cast<std::size_t>(r)].sigma;
-    value(r) = s.measurements[static_cast<std::size_t>(r)].value;
-  }
-  out.residuals = (out.predictions - value).cwiseQuotient(sigma);
-  out.chi_square = out.residuals.squaredNorm();
-  out.index_sets = final_prediction.index_sets;
-  for (const ExperimentModel& e : s.experiments) {
-    Summary::ExperimentResidual& r = out.experiments.emplace_back();
-    r.name = e.name;
-    r.first_measurement = e.first_row;
-    r.num_measurements = e.num_rows;
-    r.chi_square = out.residuals.segment(e.first_row, e.num_rows).squaredNorm();
-    r.rms_residual = std::sqrt(r.chi_square / static_cast<double>(e.num_rows));
-    r.num_slipping_nodes = e.num_slipping_nodes;
-    r.index_sets = e.index_sets;
-  }
+  Eigen::VectorXd sigma(nm);
+  for (Eigen::Index r = 0; r < nm; ++r) sigma(r) = s.measurements[static_cast<std::size_t>(r)].sigma;
+  record_residuals(s, final_prediction, sigma, out);
 
   // Identifiability on the scaled Jacobian J_s = diag(1/σ) J diag(scale): column k is the change
   // of the normalized residuals for a 100% change of parameter k.
   const Eigen::MatrixXd Js = sigma.cwiseInverse().asDiagonal() * final_prediction.jacobian * s.scale.asDiagonal();
-  // A σ too small for its value (σ = 1e-308) overflows the normalized residual or its row of
-  // J_s: no SVD or covariance of non-finite numbers (Eigen's and Ceres' SVDs crash on them).
-  for (Eigen::Index r = 0; r < nm; ++r) {
-    if (std::isfinite(out.residuals(r)) && Js.row(r).allFinite()) continue;
-    const Measurement& m = s.measurements[static_cast<std::size_t>(r)];
-    out.status = Status::kNumericalFailure;
-    out.message = fmt::format(
-        "{}: the normalized residual (fitted − measured)/σ = ({:g} − {:g})/{:g} = {:g} or its derivative is not a "
-        "finite number; expected a standard deviation σ that the value's scale does not overflow",
-        m.label.empty() ? fmt::format("measurement {}", r) : m.label, out.predictions(r), m.value, m.sigma,
-        out.residuals(r));
-    out.state_solves = s.state_solves - solves_before;
-    out.jacobian_evaluations = s.jacobian_evaluations - jacobians_before;
-    out.time_seconds = seconds_since(start);
-    return out;
-  }
-  const Eigen::VectorXd column_norms = Js.colwise().norm();
-  std::vector<Eigen::Index> live;
-  for (Eigen::Index k = 0; k < n; ++k) {
-    ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
-    if (column_norms(k) <= s.options.zero_column_tolerance) {
-      e.identifiability = Identifiability::kNotDetermined;
-      const bool friction = s.friction_index[static_cast<std::size_t>(k)] >= 0;
-      if (friction && final_prediction.num_slipping_nodes == 0) {
-        // Every node sticks (or separates): any coefficient above the one that puts the most
-        // loaded friction force on the boundary of λW gives the same state.
-        // Over every experiment, each with its own (turned) law.
-        double g = 0.0;
-        for (const ExperimentModel& model : s.experiments) {
-          const contact::FrictionLaw law = s.law_for(model.law0, p);
-          const contact::ContactState& state = *model.warm_start;  // the final prediction's state
-          for (Eigen::Index i = 0; i < model.num_nodes; ++i) {
-            const double lambda = state.lambda(i);
-            if (lambda > 0) g = std::max(g, law.gauge(state.q(i) / lambda));
-          }
-        }
-        e.note = s.friction_values0.size() == 1
-                     ? fmt::format("only a lower bound: {} >= {:.6g} (every contact node sticks, so any larger "
-                                   "coefficient explains the data equally well)",
-                                   e.name, g * p(k))
-                     : fmt::format("only bounded from below: every contact node sticks (the friction forces lie "
-                                   "inside λ·W, scaling W by {:.4g} would still hold them), so the data cannot "
-                                   "determine the coefficients",
-                                   g);
-      } else {
-        e.note = friction ? "no measured quantity depends on it: no slipping node uses this coefficient at the "
-                            "estimate (its Jacobian column is zero)"
-                          : "no measured quantity depends on it (its Jacobian column is zero)";
-      }
-    } else {
-      live.push_back(k);
-    }
-  }
-  if (!live.empty()) {
-    Eigen::MatrixXd Jl(nm, static_cast<Eigen::Index>(live.size()));
-    for (std::size_t j = 0; j < live.size(); ++j) Jl.col(static_cast<Eigen::Index>(j)) = Js.col(live[j]);
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Jl, Eigen::ComputeFullV);
-    out.singular_values = svd.singularValues();
-    const Eigen::VectorXd& sv = svd.singularValues();
-    std::vector<Eigen::Index> correlated;
-    if (sv.size() < static_cast<Eigen::Index>(live.size()) || sv(sv.size() - 1) <= s.options.rank_tolerance * sv(0)) {
-      // Parameters with a visible share in a null direction are only determined in combination.
-      for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(live.size()); ++j) {
-        double share = 0.0;
-        for (Eigen::Index c = 0; c < static_cast<Eigen::Index>(live.size()); ++c)
-          if (c >= sv.size() || sv(c) <= s.options.rank_tolerance * sv(0))
-            share = std::max(share, std::abs(svd.matrixV()(j, c)));
-        if (share > 1e-3) correlated.push_back(live[static_cast<std::size_t>(j)]);
-      }
-      for (Eigen::Index k : correlated) {
-        ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
-        e.identifiability = Identifiability::kCorrelated;
-        e.note = "only a combination with other parameters is determined (the Jacobian is rank deficient)";
-      }
-    }
-    std::vector<Eigen::Index> determined;
-    for (Eigen::Index k : live)
-      if (std::find(correlated.begin(), correlated.end(), k) == correlated.end()) determined.push_back(k);
-    // Covariance of the determined parameters with the others held fixed (Ceres, dense SVD).
-    for (Eigen::Index k = 0; k < n; ++k)
-      if (std::find(determined.begin(), determined.end(), k) == determined.end())
-        problem.SetParameterBlockConstant(blocks[static_cast<std::size_t>(k)]);
-    if (!determined.empty()) {
-      ceres::Covariance::Options co;
-      co.algorithm_type = ceres::DENSE_SVD;
-      co.num_threads = 1;
-      co.null_space_rank = 0;  // rank deficiency was handled above: fail rather than drop directions
-      co.min_reciprocal_condition_number = s.options.rank_tolerance * s.options.rank_tolerance;
-      ceres::Covariance covariance(co);
-      std::vector<std::pair<const double*, const double*>> pairs;
-      for (Eigen::Index a : determined)
-        for (Eigen::Index b : determined)
-          if (a <= b) pairs.emplace_back(blocks[static_cast<std::size_t>(a)], blocks[static_cast<std::size_t>(b)]);
-      if (covariance.Compute(pairs, &problem)) {
-        for (Eigen::Index a : determined)
-          for (Eigen::Index b : determined) {
-            if (a > b) continue;
-            double v = kNaN;
-            (void)covariance.GetCovarianceBlock(blocks[static_cast<std::size_t>(a)], blocks[static_cast<std::size_t>(b)], &v);
-            out.covariance(a, b) = out.covariance(b, a) = v * s.scale(a) * s.scale(b);
-          }
-        for (Eigen::Index k : determined) {
-          ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
-          e.standard_deviation = std::sqrt(out.covariance(k, k));
-          const double tol = 1e-9 * s.scale(k);
-          const bool at_bound = std::abs(e.value - e.lower) <= tol || std::abs(e.value - e.upper) <= tol;
-          e.identifiability = at_bound ? Identifiability::kAtBound : Identifiability::kDetermined;
-          if (at_bound)
-            e.note = "the estimate is on a bound: the deviation is that of the unconstrained problem";
-        }
-        for (Eigen::Index a : determined)
-          for (Eigen::Index b : determined)
-            out.correlation(a, b) = out.covariance(a, b) / std::sqrt(out.covariance(a, a) * out.covariance(b, b));
-      } else {
-        for (Eigen::Index k : determined) {
-          ParameterEstimate& e = out.estimates[static_cast<std::size_t>(k)];
-          e.identifiability = Identifiability::kCorrelated;
-          e.note = "ceres::Covariance found the Jacobian rank deficient";
-        }
-      }
-    }
-  }
-  out.state_solves = s.state_solves - solves_before;
-  out.jacobian_evaluations = s.jacobian_evaluations - jacobians_before;
-  out.time_seconds = seconds_since(start);
-  return out;
+  if (refuse_non_finite_rows(s, Js, out)) return finish();
+  const std::vector<Eigen::Index> live = mark_undetermined(s, Js, p, final_prediction.num_slipping_nodes, out);
+  if (!live.empty()) record_covariance(s, *fit, mark_correlated(s.options, Js, live, out), out);
+  return finish();
 }
 
 std::vector<Measurement> synthetic_measurements(const std::vector<Measurement>& templates,
