@@ -39,10 +39,13 @@ export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$root/scripts/lsan-suppression
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 cd "$build"
 # The install test (a consumer project configured and built against the installed package) checks
-# packaging, not memory: the Release suite runs it. Two end-to-end repeats are left to the Release
-# suite too (measured under the sanitizers: 138 s and 113 s, 10x their Release time): solving every
-# shipped case on a coarsened copy, and check-gradient along a program through the CLI — the
-# sanitizers run the same code in the smaller CLI and study tests.
-heavy='^(StudiesSmoke\.EveryShipped3dCaseSolvesOnACoarsenedCopy|HistoryCli\.CheckGradientReadsTheProgram)$'
+# packaging, not memory: the Release suite runs it. So are
+# four end-to-end repeats of 53–138 s under the sanitizers (3–10x their Release time):
+# solving every shipped case on a coarsened copy, check-gradient along a program through the CLI,
+# a resumed run repeated bit for bit, and orientation design over load cases — the sanitizers run
+# the same code in the smaller CLI, run-file and study tests.
+heavy='^(StudiesSmoke\.EveryShipped3dCaseSolvesOnACoarsenedCopy|HistoryCli\.CheckGradientReadsTheProgram'
+heavy+='|RunFiles\.AResumeAcrossTheAggregateAndThePiecesCutsRepeatsTheRunBitForBit'
+heavy+='|OrientationDesign\.LoadCasesSumTheOrientationComponent)$'
 if [ "$#" -eq 0 ]; then set -- -L quick -LE "slow|viz|install" -E "$heavy"; fi
 ctest --output-on-failure -j "$jobs" "$@"
