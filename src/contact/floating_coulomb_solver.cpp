@@ -72,7 +72,7 @@ void FloatingCoulombSolver::Options::validate() const {
 }
 
 std::string FloatingCoulombSolver::Summary::brief_report() const {
-  if (outer_iterations == 0)
+  if (solved_by_newton)
     return fmt::format(
         "floating body (semismooth Newton on the Coulomb conditions and Rᵀ(l + Gᵀz) = 0): {} ({}); {} Newton "
         "steps, {} factorizations, {} linear it, equality residual {:.2e}, {:.3f} s",
@@ -115,6 +115,12 @@ bool FloatingCoulombSolver::uses_newton() const {
   }
 }
 
+double FloatingCoulombSolver::initial_penalty() const {
+  const double mean_m = delassus_.diagonal().mean();
+  const double mean_e = equality_.colwise().squaredNorm().mean();
+  return mean_e > 0.0 ? mean_m / mean_e : 1.0;
+}
+
 FloatingCoulombSolver::Summary FloatingCoulombSolver::solve(
     const Eigen::Ref<const Eigen::VectorXd>& c, const Eigen::Ref<const Eigen::VectorXd>& e,
     ContactState& state, Eigen::VectorXd& beta) const {
@@ -144,10 +150,9 @@ FloatingCoulombSolver::Summary FloatingCoulombSolver::solve_newton(const Eigen::
   const Eigen::Index m = delassus_.size(), r = E.rows();
   const int dim = law_.dim();
   Summary summary;
-  const double mean_m = delassus_.diagonal().mean();
-  const double mean_e = E.colwise().squaredNorm().mean();
-  const double rho0 = mean_e > 0.0 ? mean_m / mean_e : 1.0;
+  const double rho0 = initial_penalty();
   const Eigen::VectorXd ee = e;
+  const SemismoothNewtonCoulombSolver::Balance balance{E, ee, options_.equality_tolerance};
   const auto penalized_start = [&] {
     // The balance as a penalty ρ₀‖Ez − e‖² (the augmented Lagrangian's first step): the
     // frictionless problem, then the Tresca problem with its normal forces as slip bounds (one
@@ -195,12 +200,12 @@ FloatingCoulombSolver::Summary FloatingCoulombSolver::solve_newton(const Eigen::
     if (!fitted) penalized_start();
   }
   const SemismoothNewtonCoulombSolver newton(delassus_, law_, options_.coulomb);
-  summary.inner = newton.solve_balanced(c, {E, ee, options_.equality_tolerance}, state, beta);
+  summary.inner = newton.solve_balanced(c, balance, state, beta);
   summary.newton_iterations = summary.inner.newton_iterations;
   summary.qp_iterations += summary.inner.qp_iterations;
   summary.status = summary.inner.status;
-  summary.equality_residual =
-      (E * state.z - ee).norm() / std::max({ee.norm(), E.norm() * state.z.norm(), std::numeric_limits<double>::min()});
+  summary.solved_by_newton = summary.converged();
+  summary.equality_residual = balance.residual(state.z);
   summary.message = summary.converged() ? fmt::format("forces and moments balance to {:.1e} after {} Newton steps",
                                                       summary.equality_residual, summary.newton_iterations)
                                         : summary.inner.message;
@@ -214,10 +219,9 @@ FloatingCoulombSolver::Summary FloatingCoulombSolver::solve_augmented_lagrangian
   const auto start = std::chrono::steady_clock::now();
   const Eigen::MatrixXd& E = equality_;
   Summary summary;
-  // ρ₀ balances the two terms of M + ρEᵀE on the diagonal.
-  const double mean_m = delassus_.diagonal().mean();
-  const double mean_e = E.colwise().squaredNorm().mean();
-  const double rho0 = mean_e > 0.0 ? mean_m / mean_e : 1.0;
+  const Eigen::VectorXd ee = e;
+  const SemismoothNewtonCoulombSolver::Balance balance{E, ee, options_.equality_tolerance};
+  const double rho0 = initial_penalty();
   double rho = rho0;
   Eigen::VectorXd mu = Eigen::VectorXd::Zero(E.rows());
   double last = std::numeric_limits<double>::infinity();
@@ -247,9 +251,7 @@ FloatingCoulombSolver::Summary FloatingCoulombSolver::solve_augmented_lagrangian
       break;
     }
     const Eigen::VectorXd r = E * state.z - e;
-    const double scale =
-        std::max({e.norm(), E.norm() * state.z.norm(), std::numeric_limits<double>::min()});
-    summary.equality_residual = r.norm() / scale;
+    summary.equality_residual = balance.residual(state.z);
     // ∇ = (M + ρEᵀE)z + c_k = Mz + c + Eᵀ(μ + ρr): the kinematics with β = μ + ρr.
     beta = mu + rho * r;
     // The next multiplier: the first-order update μ ← μ + ρr is the fixed-point map

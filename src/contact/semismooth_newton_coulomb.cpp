@@ -297,6 +297,11 @@ CoulombSolver::Summary SemismoothNewtonCoulombSolver::solve(const Eigen::Ref<con
   return summary;
 }
 
+double SemismoothNewtonCoulombSolver::Balance::residual(const Eigen::Ref<const Eigen::VectorXd>& z) const {
+  return (equality * z - rhs).norm() /
+         std::max({rhs.norm(), equality.norm() * z.norm(), std::numeric_limits<double>::min()});
+}
+
 CoulombSolver::Summary SemismoothNewtonCoulombSolver::solve_balanced(const Eigen::Ref<const Eigen::VectorXd>& c,
                                                                      const Balance& balance, ContactState& state,
                                                                      Eigen::VectorXd& beta) const {
@@ -332,8 +337,7 @@ CoulombSolver::Summary SemismoothNewtonCoulombSolver::iterate(const Eigen::Vecto
   const Eigen::VectorXd& e = balance ? balance->rhs : no_rhs;
   const Eigen::Index nb = E.rows();
   if (beta.size() != nb) beta = Eigen::VectorXd::Zero(nb);
-  const double e_norm = e.norm(), E_norm = E.norm();
-  const auto apply_m = [&](const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  const auto apply_m = [&](const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::VectorXd& y) {
     y.resize(m);
     delassus_.apply(x, y);
     ++summary.operator_applications;
@@ -344,11 +348,8 @@ CoulombSolver::Summary SemismoothNewtonCoulombSolver::iterate(const Eigen::Vecto
     gg += c;
     if (nb > 0) gg.noalias() += E.transpose() * bb;
   };
-  // The balance residual relative to the loads (FloatingCoulombSolver's measure); 0 without rows.
-  const auto balance_error = [&](const Eigen::VectorXd& zz) {
-    if (nb == 0) return 0.0;
-    return (E * zz - e).norm() / std::max({e_norm, E_norm * zz.norm(), std::numeric_limits<double>::min()});
-  };
+  // The balance residual relative to the loads; 0 without rows.
+  const auto balance_error = [&](const Eigen::VectorXd& zz) { return balance ? balance->residual(zz) : 0.0; };
   const double balance_target = balance ? balance->tolerance : 0.0;
   // Start: the warm start, or the frictionless problem.
   Eigen::VectorXd z;

@@ -520,9 +520,12 @@ JsonValue solve_summary(const std::string& case_name, const study::ElasticBody& 
     contact["min_initial_gap"] = c.gaps.size() ? c.gaps.minCoeff() : 0.0;
     if (c.floating) {
       JsonValue f = status_fields(c.floating->status, c.floating->message);
-      // Which method produced the state: Newton on (z, β), or the augmented Lagrangian (its
-      // outer iterations; also after a failed Newton attempt, whose steps newton_iterations counts).
-      f["method"] = c.floating->outer_iterations == 0 ? "semismooth_newton" : "augmented_lagrangian";
+      // Which method produced the state: Newton on (z, β), the augmented Lagrangian (also after a
+      // failed Newton attempt, whose steps newton_iterations counts), or none (a load refused
+      // before solving, beyond the friction capacity).
+      f["method"] = c.floating->solved_by_newton        ? "semismooth_newton"
+                    : c.floating->outer_iterations > 0 ? "augmented_lagrangian"
+                                                       : "none";
       f["newton_iterations"] = c.floating->newton_iterations;
       f["outer_iterations"] = c.floating->outer_iterations;
       f["fixed_point_iterations"] = c.floating->fixed_point_iterations;

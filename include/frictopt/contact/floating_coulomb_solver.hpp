@@ -55,6 +55,7 @@ class FloatingCoulombSolver {
     std::string message = "solve() has not been called";
     int outer_iterations = 0;       ///< augmented-Lagrangian iterations (0: Newton solved it)
     int newton_iterations = 0;      ///< Newton steps on (z, β), also those of a failed attempt
+    bool solved_by_newton = false;  ///< the state is Newton's (else the augmented Lagrangian's, or none)
     int fixed_point_iterations = 0;  ///< summed over the inner Coulomb solves
     int qp_iterations = 0;
     double equality_residual = kNaN;  ///< ‖Ez − e‖ relative (see Options)
@@ -78,6 +79,8 @@ class FloatingCoulombSolver {
 
  private:
   bool uses_newton() const;
+  /// ρ₀: balances the two terms of M + ρEᵀE on the diagonal.
+  double initial_penalty() const;
   Summary solve_newton(const Eigen::Ref<const Eigen::VectorXd>& c, const Eigen::Ref<const Eigen::VectorXd>& e,
                        ContactState& state, Eigen::VectorXd& beta) const;
   Summary solve_augmented_lagrangian(const Eigen::Ref<const Eigen::VectorXd>& c,

@@ -55,8 +55,10 @@ class SemismoothNewtonCoulombSolver {
   struct Balance {
     const Eigen::MatrixXd& equality;  ///< E (r × m), r <= 6
     const Eigen::VectorXd& rhs;       ///< e (r)
-    /// Met when ‖Ez − e‖ <= tolerance·max(‖e‖, ‖E‖_F·‖z‖) (FloatingCoulombSolver's measure).
+    /// Met when residual(z) <= tolerance.
     double tolerance = 1e-10;
+    /// ‖Ez − e‖ / max(‖e‖, ‖E‖_F·‖z‖): the balance of forces and moments relative to the loads.
+    [[nodiscard]] double residual(const Eigen::Ref<const Eigen::VectorXd>& z) const;
   };
 
   /// The floating body's problem by the same Newton method on (z, β): Φ(z) with ∇ = Mz + c + Eᵀβ
