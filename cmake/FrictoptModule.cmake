@@ -34,12 +34,21 @@ function(frictopt_target_defaults target)
                           "sanitizers cannot be combined; choose one.")
     endif()
     list(JOIN FRICTOPT_SANITIZE "," _san)
-    # Line tables for the reports (-g1), full debug information only in a Debug build: -g took
-    # 37 % longer to compile under the sanitizers than -g1 and wrote 4× the object size.
-    target_compile_options(${target} PRIVATE -fsanitize=${_san} -fno-omit-frame-pointer
-                                             $<IF:$<CONFIG:Debug>,-g,-g1>)
+    # A test program's own code is instrumented only with FRICTOPT_SANITIZE_TEST_CODE (below).
+    get_target_property(_is_test_code ${target} FRICTOPT_TEST_CODE)
+    if(FRICTOPT_SANITIZE_TEST_CODE OR NOT _is_test_code)
+      # Line tables for the reports (-g1), full debug information only in a Debug build: -g took
+      # 37 % longer to compile under the sanitizers than -g1 and wrote 4× the object size.
+      target_compile_options(${target} PRIVATE -fsanitize=${_san} -fno-omit-frame-pointer
+                                               $<IF:$<CONFIG:Debug>,-g,-g1>)
+    endif()
     target_link_options(${target} PUBLIC -fsanitize=${_san})
     target_compile_definitions(${target} PUBLIC FRICTOPT_ENABLE_ASSERTS=1)
+    # For code (the tests) that must know it runs under AddressSanitizer, also when it is not
+    # instrumented itself and so has no __SANITIZE_ADDRESS__.
+    if("address" IN_LIST FRICTOPT_SANITIZE)
+      target_compile_definitions(${target} PUBLIC FRICTOPT_ADDRESS_SANITIZER=1)
+    endif()
   endif()
 endfunction()
 
@@ -68,14 +77,22 @@ function(frictopt_add_module name)
   set_property(GLOBAL APPEND PROPERTY FRICTOPT_MODULES ${name})
 endfunction()
 
-# frictopt_add_test(module SOURCES x_test.cpp ... [LABELS slow] [DEPENDS extra])
-# One test binary per call, registered with CTest through gtest_discover_tests.
+# frictopt_add_test(module SOURCES x_test.cpp ... [LABELS slow|end_to_end] [DEPENDS extra]
+#                   [DEFINITIONS X=1 ...] [COMMAND_LINE])
+# One test binary per call, registered with CTest through gtest_discover_tests. Labels: none means
+# quick; end_to_end (whole studies, or the command line run on whole cases) is also quick.
+# COMMAND_LINE: the program runs the frictopt binary (FRICTOPT_BINARY, FRICTOPT_SOURCE_DIR, built
+# first). A program left out by FRICTOPT_BUILD_SLOW_TESTS / _END_TO_END_TESTS has no target.
 function(frictopt_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;LABELS;DEFINITIONS" ${ARGN})
+  cmake_parse_arguments(ARG "COMMAND_LINE" "" "SOURCES;DEPENDS;LABELS;DEFINITIONS" ${ARGN})
   if("slow" IN_LIST ARG_LABELS AND NOT FRICTOPT_BUILD_SLOW_TESTS)
     return()
   endif()
+  if("end_to_end" IN_LIST ARG_LABELS AND NOT FRICTOPT_BUILD_END_TO_END_TESTS)
+    return()
+  endif()
   add_executable(${name}_test ${ARG_SOURCES})
+  set_target_properties(${name}_test PROPERTIES FRICTOPT_TEST_CODE ON)
   target_include_directories(${name}_test PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   target_link_libraries(${name}_test PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main)
   frictopt_target_defaults(${name}_test)
@@ -86,9 +103,21 @@ function(frictopt_add_test name)
   if(ARG_DEFINITIONS)
     target_compile_definitions(${name}_test PRIVATE ${ARG_DEFINITIONS})
   endif()
+  if(ARG_COMMAND_LINE)
+    target_compile_definitions(${name}_test PRIVATE FRICTOPT_BINARY="$<TARGET_FILE:frictopt>"
+                                                    FRICTOPT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+    add_dependencies(${name}_test frictopt)
+  endif()
+  if(FRICTOPT_SANITIZE AND FRICTOPT_SANITIZE_TEST_CODE AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    # GCC 12 warns "may be used uninitialized" inside libstdc++'s <regex> when the sanitizers
+    # instrument it (GCC PR 105562, a false positive in std::__detail::_NFA); tests use <regex>.
+    target_compile_options(${name}_test PRIVATE -Wno-maybe-uninitialized)
+  endif()
   set(_labels ${ARG_LABELS})
   if(NOT _labels)
     set(_labels quick)
+  elseif(_labels STREQUAL "end_to_end")
+    set(_labels quick end_to_end)
   endif()
   gtest_discover_tests(${name}_test PROPERTIES LABELS "${_labels}" DISCOVERY_TIMEOUT 60
                        WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})

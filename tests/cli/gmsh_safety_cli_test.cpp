@@ -78,7 +78,7 @@ TEST(CliGmshSafety, GmshCrashIsExit2) {
   const fs::path case_path = copy_gmsh_body(dir, "Mesh.Algorithm = 8;\n");
   const RunResult r = run("solve " + case_path.string() + " -o " + (dir / "out").string());
   EXPECT_EQ(r.exit_code, 2) << r.output;  // was 139
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(FRICTOPT_ADDRESS_SANITIZER)
   // Under AddressSanitizer the child's SIGSEGV is reported by the sanitizer as an exit status.
   EXPECT_NE(r.output.find("Gmsh"), std::string::npos) << r.output;
 #else
@@ -122,7 +122,7 @@ TEST(CliGmshSafety, ResumeRefusesAGeoThatSwappedTheClampedGroup) {
 // Gmsh meshing for 29 s up to the memory of 2,000,000 unknowns (8.5 GB) whatever --max-memory
 // said; the child's memory is now that of the unknowns the limit allows.
 TEST(CliGmshSafety, GeoAskingForMillionsOfCellsEndsAtTheMemoryLimit) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(FRICTOPT_ADDRESS_SANITIZER)
   // The child's memory limit is an address-space limit, which AddressSanitizer's shadow memory
   // makes meaningless; the normal build tests it.
   GTEST_SKIP() << "address-space limits under AddressSanitizer";

@@ -174,7 +174,7 @@ TEST_F(GmshSafety, GmshCrashIsInvalidInput) {
                              "Mesh.RecombineAll = 1;\nPhysical Surface(\"Body\") = {1};\n"
                              "Physical Curve(\"Bottom\") = {1};\n");
   const std::string message = invalid_input_message([&] { GmshMesh{geo}; });
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(FRICTOPT_ADDRESS_SANITIZER)
   // Under AddressSanitizer the child's SIGSEGV is caught and reported by the sanitizer, which
   // ends the process with a status instead of the signal: still a refused file, not a crash.
   EXPECT_NE(message.find("occ.geo: Gmsh"), std::string::npos) << message;
@@ -197,7 +197,7 @@ TEST_F(GmshSafety, AGeoThatDoesNotEndIsStoppedAtTheTimeLimit) {
 // --- Sizes ----------------------------------------------------------------------------------
 
 TEST_F(GmshSafety, SizesSetByTheGeoItselfAreBounded) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(FRICTOPT_ADDRESS_SANITIZER)
   // The child's memory limit is an address-space limit, which AddressSanitizer's shadow memory
   // makes meaningless (and its instrumented meshing takes minutes); the normal build tests it.
   GTEST_SKIP() << "address-space limits under AddressSanitizer";
