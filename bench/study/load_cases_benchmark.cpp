@@ -98,14 +98,14 @@ Row time_evaluations(const io::CaseDescription& description, int K, int repeats)
     if (!c.ok) throw NumericalFailure(c.message);
     // The floor's parts at the same α: the factorization (with assembly) of case 0, the K
     // contact solves as the solver reports them, and K adjoints timed one by one.
-    const study::BodyState& s0 = weighted.case_state(alpha, 0);
+    const study::BodyState& s0 = *weighted.program(alpha, 0).cost_state();
     fact_s.push_back(s0.summary.assembly_seconds + s0.summary.factorization_seconds);
     double contact = 0, adjoints = 0;
     for (int k = 0; k < K; ++k) {
-      contact += weighted.case_state(alpha, k).contact->summary.time_seconds;
-      const auto piece = sensitivity::default_piece(weighted.case_index_sets(alpha, k));
+      contact += weighted.program(alpha, k).cost_state()->contact->summary.time_seconds;
+      const auto piece = sensitivity::default_piece(weighted.program(alpha, k).cost_step_index_sets());
       t0 = Clock::now();
-      const auto result = weighted.case_subgradients(alpha, k, {piece});
+      const auto result = weighted.program(alpha, k).cost_step_subgradients({piece});
       adjoints += seconds(t0, Clock::now());
       if (result[0].summary.status != Status::kConverged) throw NumericalFailure(result[0].summary.message);
     }

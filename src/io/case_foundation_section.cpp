@@ -65,4 +65,10 @@ contact::Foundation read_foundation(const TableReader& r, int dim) {
   return f;
 }
 
+std::optional<contact::Foundation> read_foundation_section(const TableReader& top, std::string_view origin, int dim) {
+  const toml::table* table = top.optional_table("foundation");
+  if (table == nullptr) return std::nullopt;
+  return read_foundation(TableReader(*table, "foundation", origin, {"normal", "offset", "axis1"}), dim);
+}
+
 }  // namespace frictopt::io::detail

@@ -4,6 +4,7 @@
 // friction law's frame (axis1). Private to io; called by case_file.cpp.
 #pragma once
 
+#include <optional>
 #include <string_view>
 
 #include "frictopt/contact/contact_boundary.hpp"
@@ -16,5 +17,7 @@ namespace frictopt::io::detail {
 /// or of e2 when e1 is parallel to n). Throws InvalidInput naming "foundation.<key>", its value
 /// and the expectation.
 contact::Foundation read_foundation(const TableReader& foundation, int dim);
+/// The root's [foundation] table (read_foundation with its keys), or nullopt when absent.
+std::optional<contact::Foundation> read_foundation_section(const TableReader& top, std::string_view origin, int dim);
 
 }  // namespace frictopt::io::detail

@@ -150,4 +150,12 @@ std::string read_boundary_group(const TableReader& r, const mesh::Mesh& mesh) {
   return group;
 }
 
+ImportedBody read_imported_mesh_section(const TableReader& top, std::string_view case_origin, int dim,
+                                        const mesh::PlaneFrame& design_frame) {
+  const toml::table* table = top.optional_table("mesh");
+  if (table == nullptr) top.fail_missing("mesh", "a table [mesh]");
+  return read_imported_mesh(TableReader(*table, "mesh", case_origin, {"file", "size", "contact", "patch", "extension"}),
+                            dim, case_origin, design_frame);
+}
+
 }  // namespace frictopt::io::detail

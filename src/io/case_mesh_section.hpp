@@ -41,6 +41,10 @@ struct ImportedBody {
 ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view case_origin,
                                 const mesh::PlaneFrame& design_frame);
 
+/// [mesh] of an imported body (read_imported_mesh on the root's [mesh] table with its keys).
+ImportedBody read_imported_mesh_section(const TableReader& top, std::string_view case_origin, int dim,
+                                        const mesh::PlaneFrame& design_frame);
+
 /// `boundary = "Group"` of a [[load]] or [[dirichlet]] table on an imported body: the name of
 /// one of the mesh's boundary groups (else InvalidInput listing them).
 std::string read_boundary_group(const TableReader& r, const mesh::Mesh& mesh);

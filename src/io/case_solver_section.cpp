@@ -5,7 +5,50 @@
 
 #include <cmath>
 
+#include "frictopt/core/error.hpp"
+
 namespace frictopt::io::detail {
+namespace {
+
+// Solver limits (docs/case-format.md, "[solver]"): a relative tolerance below the
+// double precision floor cannot be met, so with a large iteration cap a solve would run for
+// hours before reporting the cap; both are bounded. [solver.coulomb] and [solver.qp] override
+// the Coulomb fixed point's and the Tresca QP's own defaults (absent keys keep them).
+constexpr double kMinRelativeTolerance = 1e-15;
+template <class SolverOptions>
+void read_iterative_solver(const TableReader& r, int max_iterations_bound, SolverOptions& options) {
+  if (const std::optional<int> n = r.optional_int("max_iterations")) {
+    if (*n < 1 || *n > max_iterations_bound)
+      r.fail_value("max_iterations", fmt::format("1 <= max_iterations <= {}", max_iterations_bound));
+    options.max_iterations = *n;
+  }
+  if (const std::optional<double> tol = r.optional_number("relative_tolerance")) {
+    if (!(*tol >= kMinRelativeTolerance && *tol < 1))
+      r.fail_value("relative_tolerance",
+                   fmt::format("{:g} <= relative_tolerance < 1 (below it double precision cannot meet it)",
+                               kMinRelativeTolerance));
+    options.relative_tolerance = *tol;
+  }
+}
+
+// [solver] into the Coulomb solver's options (read, and validated, with or without [contact]).
+contact::CoulombSolver::Options read_solver(const TableReader& r, std::string_view origin) {
+  contact::CoulombSolver::Options s;
+  const auto sub = [&](std::string_view key, std::initializer_list<std::string_view> keys) {
+    const toml::table* t = r.optional_table(key);
+    return t ? std::optional<TableReader>(std::in_place, *t, r.field(key), origin, keys)
+             : std::nullopt;
+  };
+  if (auto coulomb = sub("coulomb", {"max_iterations", "relative_tolerance", "method"}))
+    read_iterative_solver(*coulomb, 10'000, s);
+  if (auto qp = sub("qp", {"max_iterations", "relative_tolerance"})) read_iterative_solver(*qp, 1'000'000, s.tresca);
+  // [solver.fem] is reserved: it may appear, but has no keys yet (the direct solver has no
+  // options a case should change); the empty key list makes any key an error.
+  (void)sub("fem", {});
+  return s;
+}
+
+}  // namespace
 
 void read_solver_engine(const TableReader& solver, std::string_view origin, study::EngineDefinition& out) {
   if (const std::optional<std::string> engine = solver.optional_string("engine")) {
@@ -58,6 +101,17 @@ void read_coulomb_method(const TableReader& solver, std::string_view origin, con
   if (engine.kind == study::StateEngine::kPetsc && !newton)
     r.fail_value("method", "automatic or semismooth_newton with engine = \"petsc\" (the PETSc engine solves by "
                            "semismooth Newton on the displacements; the fixed point is the direct engine's)");
+}
+
+contact::CoulombSolver::Options read_solver_section(const TableReader& top, std::string_view origin,
+                                                    study::EngineDefinition& engine) {
+  const toml::table* table = top.optional_table("solver");
+  if (table == nullptr) return {};
+  const TableReader solver(*table, "solver", origin, {"coulomb", "qp", "fem", "engine", "petsc_options", "newton"});
+  contact::CoulombSolver::Options coulomb = read_solver(solver, origin);
+  read_solver_engine(solver, origin, engine);
+  read_coulomb_method(solver, origin, engine, coulomb);
+  return coulomb;
 }
 
 }  // namespace frictopt::io::detail

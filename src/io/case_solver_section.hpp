@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The engine keys of a case's [solver] table (docs/case-format.md, "[solver]"):
 // engine = "direct" | "petsc", petsc_options, [solver.newton] for the PETSc engine's
-// Newton method, and [solver.coulomb] method. Private to io; called by case_file.cpp.
+// Newton method, [solver.coulomb] method, and the iterative solvers' options ([solver.coulomb],
+// [solver.qp], [solver.fem]). Private to io; called by case_file.cpp.
 #pragma once
 
 #include "frictopt/contact/coulomb_solver.hpp"
@@ -9,6 +10,12 @@
 #include "toml_reader.hpp"
 
 namespace frictopt::io::detail {
+
+/// [solver] (absent: the defaults): the Coulomb solver's options ([solver.coulomb], [solver.qp],
+/// [solver.fem] and the method), and the engine into `engine`. Throws InvalidInput naming the
+/// field, its value and the expectation.
+contact::CoulombSolver::Options read_solver_section(const TableReader& top, std::string_view origin,
+                                                    study::EngineDefinition& engine);
 
 /// Reads engine, petsc_options and [solver.newton] {max_iterations, relative_tolerance} from
 /// `solver` into `out`. Throws InvalidInput naming the field, its value and the expectation

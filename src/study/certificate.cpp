@@ -309,7 +309,8 @@ MordukhovichReport mordukhovich_report(const Certificate& c, const Eigen::Vector
 // 𝕃 = Π_k 𝕃_k when at most one step has more than one piece (always for one step: a static load
 // case); otherwise (or when a step's 𝕃_k is sampled) the generators are a sample.
 struct HistoryGenerators {
-  std::vector<Eigen::VectorXd> columns;  // column 0: the default pieces
+  std::vector<Eigen::VectorXd> columns;  // the static problem: column default_column is its default piece
+  int default_column = 0;                // programs: column 0, the default pieces
   std::vector<std::string> summaries;
   double cardinality = 1.0;
   bool sampled = false;
@@ -317,7 +318,30 @@ struct HistoryGenerators {
   std::string failure;                  // why a piece's adjoint failed (then the rest is partial)
 };
 
+// The static problem: the pieces of 𝕃 as enumerated (all of them up to the cap, else a sample
+// that starts with the default piece), their ξ_i by the state engine in one call.
+HistoryGenerators static_problem_generators(ProgramHistory& history, const CertifyOptions& options) {
+  HistoryGenerators out;
+  const sensitivity::PieceEnumeration enumeration = history.cost_step_pieces(options.cap);
+  out.cardinality = enumeration.cardinality;
+  out.sampled = enumeration.sampled;
+  const auto results = history.cost_step_subgradients(enumeration.pieces);
+  const sensitivity::Piece default_piece = sensitivity::default_piece(history.index_sets(0));
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    // A singular piece gives a finite but meaningless ξ_i: it must not enter conv{ξ_i}.
+    if (results[i].summary.status != Status::kConverged || !results[i].subgradient.allFinite()) {
+      out.failure = fmt::format("piece {} ({}): {}", i, enumeration.pieces[i].summary(), results[i].summary.brief_report());
+      return out;
+    }
+    out.columns.push_back(results[i].subgradient);
+    out.summaries.push_back(enumeration.pieces[i].summary());
+    if (enumeration.pieces[i].nodes == default_piece.nodes) out.default_column = static_cast<int>(i);
+  }
+  return out;
+}
+
 HistoryGenerators history_generators(ProgramHistory& history, const CertifyOptions& options) {
+  if (history.is_static_problem()) return static_problem_generators(history, options);
   HistoryGenerators out;
   const std::vector<sensitivity::Piece> defaults = history.default_pieces();
   const bool one_step = history.num_steps() == 1;
@@ -374,9 +398,10 @@ bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, con
     lc.value = values[k];
     lc.weighted_value = w * values[k];
     lc.active = w > 0.0 && (!worst || lc.weighted_value >= theta - options.case_active_tolerance * std::abs(theta));
-    lc.index_sets = oracle.case_index_sets(alpha, kk);
+    ProgramHistory& history = oracle.program(alpha, kk);
+    lc.index_sets = history.cost_step_index_sets();
     if (lc.active) {
-      HistoryGenerators g = history_generators(oracle.case_history(alpha, kk), options);
+      HistoryGenerators g = history_generators(history, options);
       if (!g.failure.empty()) {
         c.status = Status::kNumericalFailure;
         c.message = fmt::format("load case \"{}\", {}", lc.name, g.failure);
@@ -457,25 +482,25 @@ bool load_case_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, con
   return true;
 }
 
-// A cost along one loading history: its generators (history_generators).
+// One history (the static problem or a cost along a loading program): its generators
+// (history_generators).
 bool single_history_generators(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const CertifyOptions& options,
                                Certificate& c) {
-  // pieces() re-solves the program if the oracle's cache answered without touching the state:
-  // from here on the history's states are those at α.
-  (void)oracle.pieces(alpha, 1);
-  ProgramHistory& history = *oracle.history();
+  // program() re-solves if the oracle's cache answered without touching the state: from here on
+  // the history's states (and the body's factorization) are those at α.
+  ProgramHistory& history = oracle.program(alpha);
   HistoryGenerators g = history_generators(history, options);
   if (!g.failure.empty()) {
     c.status = Status::kNumericalFailure;
     c.message = g.failure;
     return false;
   }
-  c.default_piece_column = 0;
+  c.default_piece_column = g.default_column;
   c.cardinality = g.cardinality;
   c.sampled = g.sampled;
   c.history_steps = std::move(g.step_lines);
   c.piece_summaries = std::move(g.summaries);
-  c.index_sets = history.index_sets(history.cost_step());
+  c.index_sets = history.cost_step_index_sets();
   c.subgradients.resize(alpha.size(), static_cast<Eigen::Index>(g.columns.size()));
   for (std::size_t j = 0; j < g.columns.size(); ++j) c.subgradients.col(static_cast<Eigen::Index>(j)) = g.columns[j];
   c.scale = c.subgradients.colwise().norm().maxCoeff();
@@ -562,7 +587,6 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   options.validate();
   const auto start = std::chrono::steady_clock::now();
   const ElasticBody& body = oracle.body();
-  const Eigen::Index d = body.num_design_variables();
   require_admissible_design(body, alpha, options.active_tolerance, "certify");
   const shape::LinearConstraints& upsilon = body.admissible_set();
   const LinearConstraints& constraints = upsilon;  // one type: shape builds it, optim uses it
@@ -579,30 +603,8 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
   const int selected_case = e.selected_case;
   if (oracle.load_cases()) {
     if (!load_case_generators(oracle, alpha, case_values, c.value, selected_case, options, c)) return c;
-  } else if (oracle.history()) {
-    if (!single_history_generators(oracle, alpha, options, c)) return c;
-  } else {
-  // pieces() re-solves if the cache answered without touching the state: from here on the
-  // oracle's last state (and the body's factorization) is the one at α.
-  const sensitivity::PieceEnumeration enumeration = oracle.pieces(alpha, options.cap);
-  c.index_sets = e.index_sets;  // classified at this state by evaluate_design
-  c.cardinality = enumeration.cardinality;
-  c.sampled = enumeration.sampled;
-  const auto results = oracle.subgradients(alpha, enumeration.pieces);
-  c.subgradients.resize(d, static_cast<Eigen::Index>(results.size()));
-  const sensitivity::Piece default_piece = sensitivity::default_piece(c.index_sets);
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    // A singular piece gives a finite but meaningless ξ_i: it must not enter conv{ξ_i}.
-    if (results[i].summary.status != Status::kConverged || !results[i].subgradient.allFinite()) {
-      c.status = Status::kNumericalFailure;
-      c.message = fmt::format("piece {} ({}): {}", i, enumeration.pieces[i].summary(), results[i].summary.brief_report());
-      return c;
-    }
-    c.subgradients.col(static_cast<Eigen::Index>(i)) = results[i].subgradient;
-    c.piece_summaries.push_back(enumeration.pieces[i].summary());
-    if (enumeration.pieces[i].nodes == default_piece.nodes) c.default_piece_column = static_cast<int>(i);
-  }
-  c.scale = c.subgradients.colwise().norm().maxCoeff();
+  } else if (!single_history_generators(oracle, alpha, options, c)) {
+    return c;
   }
 
   const optim::StationarityOptions qp{options.active_tolerance};
@@ -635,7 +637,7 @@ Certificate certify(ShapeOracle& oracle, const Eigen::VectorXd& alpha, const Cer
     // case given as a program of several steps is a history (above).
     for (std::size_t k = 0; k < c.load_cases.size(); ++k) {
       if (!c.load_cases[k].active) continue;
-      if (oracle.case_history(alpha, static_cast<int>(k)).num_steps() > 1) {
+      if (oracle.program(alpha, static_cast<int>(k)).num_steps() > 1) {
         c.load_cases[k].mf1.not_computed_reason =
             "not computed for a load case given as a loading program (the tight system couples the steps; "
             "docs/theory/history-adjoint.md §4)";

@@ -38,26 +38,39 @@ class DissipationName final : public cost::CostFunctional {
 
 }  // namespace
 
+ProgramHistory::ProgramHistory(ElasticBody& body, std::unique_ptr<cost::CostFunctional> cost,
+                               Eigen::MatrixXd gap_matrix)
+    : body_(body), static_problem_(true), gap_matrix_(std::move(gap_matrix)), step_cost_(std::move(cost)) {
+  prepare_static(nullptr);
+}
+
+void ProgramHistory::prepare_static(const CostDefinition* definition) {
+  if (!body_.contact_boundary() || !body_.definition().contact)
+    throw InvalidInput("the shape oracle needs a body in contact: add a [contact] table to the case");
+  states_.resize(1);
+  sets_.resize(1);
+  if (!definition) return;
+  validate_combination(*definition);
+  // A cost that reads the initial state ("initial_mean" targets) gets it solved here; the shape
+  // oracle keeps it as its first state, so the optimizer's first evaluation does not solve again.
+  const bool initial = needs_initial_state(*definition);
+  if (initial) solve(body_.initial_design());
+  step_cost_ = make_cost(*definition, body_, initial ? states_.front().get() : nullptr);
+}
+
 ProgramHistory::ProgramHistory(ElasticBody& body, const CostDefinition& definition, Eigen::MatrixXd gap_matrix,
                                std::string_view where)
-    : body_(body), gap_matrix_(std::move(gap_matrix)) {
-  if (!definition.program)
-    throw InvalidInput("ProgramHistory: the cost definition has no loading program; expected [[program.step]] tables");
+    : body_(body), static_problem_(!definition.program), gap_matrix_(std::move(gap_matrix)) {
+  if (static_problem_) {
+    prepare_static(&definition);
+    return;
+  }
   if (!body_.contact_boundary() || !body_.definition().contact)
     throw InvalidInput("a cost along a loading history needs a body in contact: add a [contact] table to the case");
   program_ = *definition.program;
   program_.validate(body_.definition(), where);
   const int k_steps = num_steps();
-  const std::string tables = step_tables(where);
-  if (definition.kind == cost::CostKind::kCompliance)
-    throw InvalidInput("cost.kind = \"compliance\" with " + tables +
-                       " tables: the compliance reads the case file's own loads, not a step's; expected a contact cost "
-                       "(target_pressure, normal_force_power, pressure_norm, total_slip, traction_uniformity) or "
-                       "dissipation");
-  if (definition.step < 0 || definition.step > k_steps)
-    throw InvalidInput(fmt::format("cost.step = {}; expected \"last\" or an integer in [1, {}] ({} has {} step{} ({} "
-                                   "tables))",
-                                   definition.step, k_steps, where, k_steps, k_steps == 1 ? "" : "s", tables));
+  validate_combination(definition);
   dissipation_ = definition.kind == cost::CostKind::kDissipation;
   cost_step_ = definition.step == 0 ? k_steps - 1 : definition.step - 1;
   step_loads_ = std::make_unique<LoadCases>(body_, steps_as_cases(program_, body_.definition()));
@@ -91,7 +104,8 @@ void ProgramHistory::set_warm_starts(std::vector<std::optional<contact::ContactS
 }
 
 std::string ProgramHistory::name() const {
-  return dissipation_ ? step_cost_->name() : fmt::format("{} at step {}", step_cost_->name(), cost_step_ + 1);
+  if (dissipation_ || static_problem_) return step_cost_->name();
+  return fmt::format("{} at step {}", step_cost_->name(), cost_step_ + 1);
 }
 
 const contact::FrictionLaw& ProgramHistory::law(int k) const {
@@ -99,7 +113,25 @@ const contact::FrictionLaw& ProgramHistory::law(int k) const {
   return *states_[static_cast<std::size_t>(k)]->contact->law;  // the law the step was solved with
 }
 
+void ProgramHistory::solve_static(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
+  std::shared_ptr<BodyState>& state = states_.front();
+  if (state && state->contact) {
+    // The previous state stays readable for output; its Delassus operator (up to m² doubles)
+    // is released — the sensitivity needs it only for the last design, with its factorization.
+    state->contact->delassus.reset();
+    state->contact->delassus_matrix.reset();
+  }
+  sets_.front().reset();
+  partials_.reset();
+  alpha_ = alpha;
+  state = std::make_shared<BodyState>(body_.solve(alpha, "design"));
+  factorizations_ = state->summary.factorization_seconds > 0.0 ? 1 : 0;
+  ok_ = state->summary.status == Status::kConverged;
+  message_ = ok_ ? std::string("solved") : state->summary.message;
+}
+
 void ProgramHistory::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
+  if (static_problem_) return solve_static(alpha);
   const BodyDefinition& def = body_.definition();
   const mesh::Mesh& mesh = body_.mesh();
   // x = α, or (α, s) with [design] friction_orientation: solve_step turns the law to φ = s/k.
@@ -115,6 +147,7 @@ void ProgramHistory::solve(const Eigen::Ref<const Eigen::VectorXd>& alpha) {
       s->contact->delassus_matrix.reset();
     }
   for (auto& s : sets_) s.reset();
+  partials_.reset();
   const StepLoadBuilder builder(body_, mesh.positions(alpha.head(def.shape.num_controls())));
   const Eigen::Index p = body_.contact_boundary()->num_nodes();
   tangential_.assign(1, Eigen::VectorXd::Zero((mesh.dim() - 1) * p));  // u_t^0 = 0
@@ -164,11 +197,12 @@ double ProgramHistory::value() const {
   return d;
 }
 
-std::vector<sensitivity::CostPartials> ProgramHistory::partials() const {
+const std::vector<sensitivity::CostPartials>& ProgramHistory::partials() const {
+  if (partials_) return *partials_;
   const contact::ContactBoundary& boundary = *body_.contact_boundary();
   const int dim = body_.mesh().dim(), nt = dim - 1;
   const auto n = static_cast<std::size_t>(num_steps());
-  std::vector<sensitivity::CostPartials> out(n);
+  std::vector<sensitivity::CostPartials>& out = partials_.emplace(n);
   for (std::size_t k = 0; k < n; ++k) out[k].d_displacement = Eigen::VectorXd::Zero(body_.mesh().num_dofs());
   if (!dissipation_) {
     const BodyState& s = *states_[static_cast<std::size_t>(cost_step_)];
@@ -229,6 +263,16 @@ sensitivity::PieceEnumeration ProgramHistory::cost_step_pieces(int cap) {
 
 std::vector<sensitivity::AdjointSensitivity::Result> ProgramHistory::cost_step_subgradients(
     const std::vector<sensitivity::Piece>& pieces) {
+  FRICTOPT_ASSERT(ok_, "ProgramHistory::cost_step_subgradients needs a solved program");
+  if (static_problem_) {
+    // The state engine's adjoints, all pieces at once (the PETSc engine's too).
+    const BodyState& state = *states_.front();
+    std::vector<sensitivity::AdjointSensitivity::Result> out =
+        body_.engine().subgradients(state, pieces, partials().front(), gap_matrix_);
+    for (std::size_t i = 0; i < pieces.size(); ++i)
+      append_orientation_derivative(body_.orientation_design(), law(0), pieces[i], state.contact->state, out[i]);
+    return out;
+  }
   std::vector<sensitivity::AdjointSensitivity::Result> out;
   std::vector<sensitivity::Piece> chosen = default_pieces();
   for (const sensitivity::Piece& piece : pieces) {
@@ -247,9 +291,34 @@ std::vector<sensitivity::AdjointSensitivity::Result> ProgramHistory::cost_step_s
   return out;
 }
 
+sensitivity::AdjointSensitivity::StateDerivative ProgramHistory::state_derivative(
+    const Eigen::Ref<const Eigen::VectorXd>& h, const sensitivity::Piece* piece) {
+  if (!static_problem_)
+    throw InvalidInput("ShapeOracle::state_derivative: not available for a cost along a loading history or for load "
+                       "cases (the state derivative of one step depends on the earlier steps', and a case's on its "
+                       "own load change)");
+  FRICTOPT_ASSERT(states_.front() != nullptr, "ProgramHistory::state_derivative needs a solved state");
+  const sensitivity::Piece chosen = piece ? *piece : sensitivity::default_piece(index_sets(0));
+  return body_.engine().state_derivative(*states_.front(), chosen, gap_matrix_, h);
+}
+
 HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Piece>& pieces, bool coupled) {
   FRICTOPT_ASSERT(ok_, "ProgramHistory::subgradient needs a solved program");
   FRICTOPT_ASSERT(static_cast<int>(pieces.size()) == num_steps(), "one piece per step");
+  if (static_problem_) {
+    // The subgradient an evaluation reports: the engine's for the piece (its own linearization
+    // for the PETSc engine, docs/petsc-engine.md).
+    const BodyState& state = *states_.front();
+    auto result = body_.engine().evaluation_subgradient(state, pieces.front(), partials().front(), gap_matrix_);
+    append_orientation_derivative(body_.orientation_design(), law(0), pieces.front(), state.contact->state, result);
+    HistorySubgradient out;
+    out.subgradient = std::move(result.subgradient);
+    out.friction_gradient = std::move(result.friction_gradient);
+    out.summary = result.summary;
+    out.psi_z.push_back(std::move(result.psi_z));
+    out.psi_u.push_back(std::move(result.psi_u));
+    return out;
+  }
   const contact::ContactBoundary& boundary = *body_.contact_boundary();
   const fem::DofMap& dofs = body_.elasticity().dofs();
   const int dim = body_.mesh().dim();
@@ -260,7 +329,7 @@ HistorySubgradient ProgramHistory::subgradient(const std::vector<sensitivity::Pi
     if (s->contact->delassus) delassus = s->contact->delassus.get();
   FRICTOPT_ASSERT(delassus != nullptr, "the program's solve provides the Delassus matrix");
 
-  std::vector<sensitivity::CostPartials> j = partials();
+  const std::vector<sensitivity::CostPartials>& j = partials();
   HistorySubgradient out;
   const Eigen::Index d = body_.definition().shape.num_controls();
   out.subgradient = Eigen::VectorXd::Zero(body_.num_design_variables());

@@ -180,6 +180,43 @@ TEST(HistoryAdjoint, OneStepProgramIsTheStaticOracle) {
   }
 }
 
+// The one evaluation path keeps the static path inside: the oracle's static problem is
+// ElasticBody::solve's state, the cost's partials there and the state engine's subgradient, bit
+// for bit (a refactor of the oracle must change no static result), and it alone has a state
+// derivative and no warm starts of its own (the body's own warm start chains the designs).
+TEST(HistoryAdjoint, TheStaticProblemIsTheBodysSolveAndTheEnginesSubgradientBitForBit) {
+  ElasticBody oracle_body(two_load_body_2d()), direct_body(two_load_body_2d());
+  CostDefinition plain;
+  plain.kind = cost::CostKind::kNormalForcePower;
+  plain.exponent = 2.0;
+  ShapeOracle oracle(oracle_body, plain);
+  ASSERT_EQ(oracle.num_programs(), 1);
+  EXPECT_EQ(oracle.history(), nullptr) << "no [[program.step]] tables";
+  const Eigen::VectorXd alpha = oracle_body.definition().initial_design;
+  const Evaluation e = oracle.evaluate_design(alpha);
+  ASSERT_TRUE(e.ok) << e.message;
+  EXPECT_TRUE(oracle.program(alpha).is_static_problem());
+  EXPECT_TRUE(oracle.history_warm_starts().empty());
+  EXPECT_TRUE(e.step_index_sets.empty());
+
+  const BodyState state = direct_body.solve(alpha, "design");
+  const auto cost = make_cost(plain, direct_body, nullptr);
+  const contact::ContactBoundary& boundary = *direct_body.contact_boundary();
+  const sensitivity::CostPartials j = cost->evaluate({direct_body.elasticity(), boundary, state.alpha, state.positions,
+                                                      state.displacement, state.contact->state,
+                                                      boundary.tributary_areas()});
+  const sensitivity::IndexSets sets = sensitivity::classify(state.contact->state, *state.contact->law);
+  const auto xi = direct_body.engine().evaluation_subgradient(state, sensitivity::default_piece(sets), j,
+                                                             boundary.gap_jacobian(direct_body.mesh()));
+  EXPECT_EQ(e.value, j.value);
+  EXPECT_EQ(e.index_sets.summary(), sets.summary());
+  ASSERT_EQ(e.subgradient.size(), xi.subgradient.size());
+  EXPECT_TRUE(e.subgradient == xi.subgradient) << "max |Δξ| = " << (e.subgradient - xi.subgradient).cwiseAbs().maxCoeff();
+  EXPECT_TRUE(e.friction_gradient == xi.friction_gradient);
+  const Eigen::VectorXd h = Eigen::VectorXd::Ones(alpha.size());
+  EXPECT_EQ(oracle.state_derivative(alpha, h).contact.size(), state.contact->state.z.size());
+}
+
 TEST(HistoryAdjoint, FrictionGradientMatchesCentralDifferences) {
   // Σ_k of each friction step's ∂/∂μ rows (docs/theory/history-adjoint.md §4), here for the disc's
   // one coefficient approximated by the regular polygon's circumradius.

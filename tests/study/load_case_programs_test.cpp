@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "common/case_text.hpp"
@@ -18,6 +19,7 @@
 #include "frictopt/core/error.hpp"
 #include "frictopt/io/case_file.hpp"
 #include "frictopt/study/certificate.hpp"
+#include "frictopt/study/cost_factory.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 
 namespace frictopt::study {
@@ -66,7 +68,7 @@ using frictopt::testing::oracle_central_gradient;
 
 void expect_every_step_strict(ShapeOracle& oracle, const Eigen::VectorXd& alpha) {
   for (int k = 0; k < oracle.load_cases()->size(); ++k) {
-    ProgramHistory& h = oracle.case_history(alpha, k);
+    ProgramHistory& h = oracle.program(alpha, k);
     for (int s = 0; s < h.num_steps(); ++s)
       ASSERT_EQ(h.index_sets(s).num_weak_nodes(), 0)
           << "case " << k << ", step " << s + 1 << " must be strict: " << h.index_sets(s).summary();
@@ -224,14 +226,14 @@ TEST(ProgramCasesInput, TheOracleRefusesWhatHasNoMeaning) {
             std::string::npos);
   CostDefinition beyond = cases_cost(cost::CostKind::kNormalForcePower, CaseCombination::kWorst, {long_case(), short_case()});
   beyond.step = 3;
-  EXPECT_NE(expect_refused(beyond).find("cost.step = 3; expected \"last\" or an integer in [1, 2] (load_case[1] has 2 steps"),
+  EXPECT_NE(expect_refused(beyond).find("cost: expected \"last\" or an integer step in [1, 2] (load case 2 \"short\" has 2 steps"),
             std::string::npos);
   EXPECT_NE(expect_refused(cases_cost(cost::CostKind::kDissipation, CaseCombination::kWorst, {static_case("a", {1.0, 1.0})}))
-                .find("dissipation\" with load cases that are static loads"),
+                .find("cost: expected a cost of one state (the loads are one step"),
             std::string::npos);
   CostDefinition with_program = cases_cost(cost::CostKind::kDissipation, CaseCombination::kWorst, {long_case()});
   with_program.program = std::make_shared<const LoadingProgramDefinition>(*short_case().program);
-  EXPECT_NE(expect_refused(with_program).find("[[load_case]] tables with [[program.step]] tables"), std::string::npos);
+  EXPECT_NE(expect_refused(with_program).find("cost: expected a loading program or load cases, not both"), std::string::npos);
   LoadCaseDefinition wrong = short_case();
   wrong.program->steps[1].load_scale = {1.0};
   EXPECT_NE(expect_refused(cases_cost(cost::CostKind::kDissipation, CaseCombination::kWorst, {wrong}))
@@ -276,6 +278,51 @@ TEST(ProgramCasesInput, ProgramsParse) {
   EXPECT_NO_THROW((void)io::parse_case(block_case("[cost]\nkind = \"dissipation\"\n", kTwoPrograms), "ok.toml"));
 }
 
+// The combination rules of a cost with its loads, in the model's terms (study/cost_factory.hpp):
+// the part each rule names, which the case reader turns into cost.kind or cost.step.
+TEST(CostCombination, EachRuleNamesItsPart) {
+  using Part = CostCombinationProblem::Part;
+  const auto part_of = [](const CostDefinition& d) {
+    const auto problem = find_combination_problem(d);
+    return problem ? std::optional<Part>(problem->part) : std::nullopt;
+  };
+  CostDefinition one_state = cases_cost(cost::CostKind::kNormalForcePower, CaseCombination::kWorst, {});
+  one_state.load_cases.reset();
+  EXPECT_EQ(part_of(one_state), std::nullopt) << "a cost of the static problem";
+  CostDefinition compliance = one_state;
+  compliance.kind = cost::CostKind::kCompliance;
+  EXPECT_EQ(part_of(compliance), std::nullopt) << "the compliance of the case's own loads";
+  CostDefinition stepped = one_state;
+  stepped.step = 1;
+  EXPECT_EQ(part_of(stepped), Part::kStep) << "a step of a one-step problem";
+  CostDefinition dissipation = one_state;
+  dissipation.kind = cost::CostKind::kDissipation;
+  EXPECT_EQ(part_of(dissipation), Part::kKind) << "the dissipation of one state";
+
+  CostDefinition programs = cases_cost(cost::CostKind::kNormalForcePower, CaseCombination::kWorst,
+                                       {long_case(), short_case()});
+  EXPECT_EQ(part_of(programs), std::nullopt);
+  programs.step = 2;
+  EXPECT_EQ(part_of(programs), std::nullopt) << "step 2 exists in both programs";
+  programs.step = 3;
+  ASSERT_EQ(part_of(programs), Part::kStep);
+  EXPECT_NE(find_combination_problem(programs)->expectation.find("[1, 2] (load case 2 \"short\" has 2 steps)"),
+            std::string::npos);
+  programs.step = -1;
+  EXPECT_EQ(part_of(programs), Part::kStep);
+  programs.step = 0;
+  programs.kind = cost::CostKind::kCompliance;
+  EXPECT_EQ(part_of(programs), Part::kKind) << "the compliance of a case's loads";
+  programs.kind = cost::CostKind::kDissipation;
+  EXPECT_EQ(part_of(programs), std::nullopt);
+  programs.step = 1;
+  EXPECT_EQ(part_of(programs), Part::kStep) << "the dissipation reads every step";
+  programs.step = 0;
+  programs.program = std::make_shared<const LoadingProgramDefinition>(*short_case().program);
+  EXPECT_EQ(part_of(programs), Part::kLoads) << "a program and load cases";
+  EXPECT_THROW(validate_combination(programs), InvalidInput);
+}
+
 TEST(ProgramCasesInput, BadInputNamesTheField) {
   using frictopt::testing::expect_invalid_case;
   const std::string press = "[[load_case]]\nname = \"press\"\n";
@@ -288,12 +335,16 @@ TEST(ProgramCasesInput, BadInputNamesTheField) {
                       {"load_case[0].step[0]", "frction"});
   // A step beyond the fewest steps of any case (the static case has one).
   expect_invalid_case(block_case(cost + "step = 2\n", kTwoPrograms),
-                      {"cost.step = 2", "[1, 1]", "load_case[1] \"static\" is a static load: one step"});
+                      {"cost.step = 2", "[1, 1]", "load case 2 \"static\" is a static load: one step"});
   expect_invalid_case(block_case(cost + "step = 3\n", press + "[[load_case.step]]\n[[load_case.step]]\n"),
-                      {"cost.step = 3", "[1, 2]", "load_case[0] \"press\" has 2 [[load_case.step]] tables"});
+                      {"cost.step = 3", "[1, 2]", "load case 1 \"press\" has 2 steps"});
   // No case has steps: a history cost on one-step cases.
   expect_invalid_case(block_case("[cost]\nkind = \"dissipation\"\n", press), {"cost.kind = \"dissipation\"", "one state"});
   expect_invalid_case(block_case(cost + "step = 1\n", press), {"cost.step = 1", "no step"});
+  // The compliance reads the case file's own loads, not a case's (refused with its line since the
+  // reader checks the model's combination rules; before, only the shape oracle refused it).
+  expect_invalid_case(block_case("[cost]\nkind = \"compliance\"\n", press + "load_scale = [1.0]\n"),
+                      {"cost.kind = \"compliance\"", "a contact cost", "not a step's or a case's"});
   // [[program.step]] and [[load_case]] together.
   expect_invalid_case(block_case(cost, press + "[[program.step]]\ndirichlet_scale = [1.0]\n"),
                       {"[[program.step]] tables with [[load_case]] tables", "[[load_case.step]]"});

@@ -90,7 +90,7 @@ TEST(LoadCases, WeightedSubgradientMatchesCentralDifferences) {
   const Evaluation e = oracle.evaluate_design(alpha);
   ASSERT_TRUE(e.ok) << e.message;
   for (int k = 0; k < 3; ++k)
-    ASSERT_EQ(oracle.case_index_sets(alpha, k).num_weak_nodes(), 0) << "case " << k << " must be strict";
+    ASSERT_EQ(oracle.program(alpha, k).cost_step_index_sets().num_weak_nodes(), 0) << "case " << k << " must be strict";
   EXPECT_DOUBLE_EQ(e.value, 0.5 * e.case_values[0] + e.case_values[1] + 2.0 * e.case_values[2]);
   const Eigen::VectorXd fd = oracle_central_gradient(oracle, alpha);
   const double error = (e.subgradient - fd).norm() / fd.norm();
@@ -106,7 +106,7 @@ TEST(LoadCases, TheLoadChangeTermIsNeeded) {
   const Eigen::VectorXd alpha = body.definition().initial_design;
   const Evaluation e = oracle.evaluate_design(alpha);
   ASSERT_TRUE(e.ok) << e.message;
-  const auto results = oracle.case_subgradients(alpha, 0, {sensitivity::default_piece(e.index_sets)});
+  const auto results = oracle.program(alpha, 0).cost_step_subgradients({sensitivity::default_piece(e.index_sets)});
   Eigen::VectorXd psi = Eigen::VectorXd::Zero(body.mesh().num_dofs());
   const auto& dofs = body.elasticity().dofs();
   for (int k = 0; k < dofs.num_free(); ++k) psi(dofs.free_dofs()[static_cast<std::size_t>(k)]) = results[0].psi_u(k);
@@ -200,8 +200,8 @@ TEST(LoadCases, AtATieTheOneSidedDerivativesAreTheMaxOfTheCases) {
   const Evaluation p = probe.evaluate_design(alpha, false);
   ASSERT_TRUE(p.ok) << p.message;
   const double w_c = p.case_values[0] / p.case_values[1];
-  const auto xi = probe.case_subgradients(alpha, 0, {sensitivity::default_piece(probe.case_index_sets(alpha, 0))});
-  const auto xc = probe.case_subgradients(alpha, 1, {sensitivity::default_piece(probe.case_index_sets(alpha, 1))});
+  const auto xi = probe.program(alpha, 0).cost_step_subgradients({sensitivity::default_piece(probe.program(alpha, 0).cost_step_index_sets())});
+  const auto xc = probe.program(alpha, 1).cost_step_subgradients({sensitivity::default_piece(probe.program(alpha, 1).cost_step_index_sets())});
   const Eigen::VectorXd xi_a = xi[0].subgradient, xi_c = w_c * xc[0].subgradient;
 
   ElasticBody body(two_load_body_2d());

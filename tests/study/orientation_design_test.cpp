@@ -168,7 +168,7 @@ TEST(OrientationDesign, LoadCasesSumTheOrientationComponent) {
   const Eigen::VectorXd x = body.initial_design();
   const GradientCheck check = check_gradient(oracle, x, 1e-6);
   ASSERT_TRUE(check.evaluation.ok) << check.evaluation.message;
-  for (int k = 0; k < 2; ++k) ASSERT_EQ(oracle.case_index_sets(x, k).num_weak_nodes(), 0);
+  for (int k = 0; k < 2; ++k) ASSERT_EQ(oracle.program(x, k).cost_step_index_sets().num_weak_nodes(), 0);
   ASSERT_EQ(check.evaluation.case_values.size(), 2u);
   std::printf("load cases: dTheta/ds adjoint %.10e, central difference %.10e; worst error %.2e of max|xi|\n",
               check.components.back().adjoint, check.components.back().finite_difference, check.worst_relative_error);

@@ -3,7 +3,8 @@
 // a loading program at one design on one factorization, a cost that reads the state after one
 // step (any cost kind but the compliance) or the whole history (the friction dissipation), and
 // one element ξ of its pseudodifferential by an adjoint run backward over the steps, each step
-// with its own index-set piece.
+// with its own index-set piece. The static problem (the case file's own loads) is the one-step
+// special case: every evaluation of the shape oracle is a cost over K >= 1 such histories.
 #pragma once
 
 #include <Eigen/Core>
@@ -35,8 +36,15 @@ struct HistorySubgradient {
   std::vector<Eigen::VectorXd> psi_z, psi_u;
 };
 
-/// A loading program with a cost on its history, at one design at a time. Lifetime: `body` must
-/// outlive this object; not thread-safe (the body's factorization is reused).
+/// A loading program with a cost on its history, at one design at a time — or the static problem,
+/// its one-step special case. Lifetime: `body` must outlive this object; not thread-safe (the
+/// body's factorization is reused).
+///
+/// The static problem (no [[program.step]] tables: one step with the case file's loads) keeps the
+/// static path inside: its state is ElasticBody::solve's (warm-started by the body itself, so it
+/// has no warm_starts() of its own), its subgradients the state engine's (the PETSc engine's too),
+/// and it alone offers state_derivative(). A one-step program through the general path gives the
+/// same numbers to round-off (1e-14), this path the same bits as before the histories existed.
 class ProgramHistory {
  public:
   /// `definition.program` must be set. Throws InvalidInput for the compliance (it reads the case
@@ -45,14 +53,21 @@ class ProgramHistory {
   /// cost reads (the chosen step) at the initial design, which is solved here. `where` names the
   /// program's tables in messages: "program" ([[program.step]]) or "load_case[k]" (a load
   /// case's own program; ShapeOracle holds one history per load case).
+  /// Without `definition.program`: the static problem (cost.step must be 0; the cost may be the
+  /// compliance).
   ProgramHistory(ElasticBody& body, const CostDefinition& definition, Eigen::MatrixXd gap_matrix,
                  std::string_view where = "program");
+  /// The static problem with a given cost.
+  ProgramHistory(ElasticBody& body, std::unique_ptr<cost::CostFunctional> cost, Eigen::MatrixXd gap_matrix);
 
-  int num_steps() const { return static_cast<int>(program_.steps.size()); }
+  /// True for the static problem (the case file's own loads, one step; see the class comment).
+  bool is_static_problem() const { return static_problem_; }
+  int num_steps() const { return static_problem_ ? 1 : static_cast<int>(program_.steps.size()); }
   /// The contact state each step's next solve starts from (one per step; empty: a cold start),
   /// for a checkpoint: a resumed run continues them so that it repeats the uninterrupted run.
+  /// None for the static problem, whose warm start is the body's own.
   const std::vector<std::optional<contact::ContactState>>& warm_starts() const { return warm_starts_; }
-  /// Restores warm_starts(); `states` must have num_steps() entries (InvalidInput otherwise).
+  /// Restores warm_starts(); `states` must have warm_starts().size() entries (InvalidInput otherwise).
   void set_warm_starts(std::vector<std::optional<contact::ContactState>> states);
   /// 0-based index of the step whose state the cost reads (the last for the dissipation).
   int cost_step() const { return cost_step_; }
@@ -88,6 +103,8 @@ class ProgramHistory {
   double value() const;
   /// The index sets of step k (classified with that step's law; cached per solve).
   const sensitivity::IndexSets& index_sets(int k);
+  /// The index sets of the cost step.
+  const sensitivity::IndexSets& cost_step_index_sets() { return index_sets(cost_step_); }
   /// 𝕃 of step k.
   sensitivity::PieceEnumeration pieces(int k, int cap);
   /// Every step's default piece.
@@ -106,10 +123,20 @@ class ProgramHistory {
   /// tests use to show the coupling matters.
   [[nodiscard]] HistorySubgradient subgradient(const std::vector<sensitivity::Piece>& pieces, bool coupled = true);
 
+  /// The static problem: R h, the derivative of its state along h for `piece` (the default piece
+  /// when null). Throws InvalidInput for a program (a step's state derivative depends on the
+  /// earlier steps').
+  [[nodiscard]] sensitivity::AdjointSensitivity::StateDerivative state_derivative(
+      const Eigen::Ref<const Eigen::VectorXd>& h, const sensitivity::Piece* piece = nullptr);
+
  private:
-  std::vector<sensitivity::CostPartials> partials() const;
+  void solve_static(const Eigen::Ref<const Eigen::VectorXd>& alpha);
+  void prepare_static(const CostDefinition* definition);
+  /// The cost's partials per step at the solved states (cached per solve).
+  const std::vector<sensitivity::CostPartials>& partials() const;
 
   ElasticBody& body_;
+  bool static_problem_ = false;
   LoadingProgramDefinition program_;
   Eigen::MatrixXd gap_matrix_;
   int cost_step_ = 0;
@@ -126,6 +153,7 @@ class ProgramHistory {
   std::vector<Eigen::VectorXd> tangential_;  // u_t^k of the contact nodes, k = 0..K (u_t^0 = 0)
   std::vector<std::optional<contact::ContactState>> warm_starts_;
   std::vector<std::optional<sensitivity::IndexSets>> sets_;
+  mutable std::optional<std::vector<sensitivity::CostPartials>> partials_;
 };
 
 }  // namespace frictopt::study

@@ -65,7 +65,12 @@ struct Evaluation {
 };
 
 /// Θ(α) and ξ ∈ ∂Θ(α) (or of the pseudodifferential, docs/theory/sensitivity.md §7) for a body with
-/// contact and a cost. With [design] friction_orientation every "α" below is the optimizer's x =
+/// contact and a cost. Every evaluation is one path: a cost over K >= 1 loading histories
+/// (ProgramHistory), combined by the load cases (docs/theory/load-cases.md) — the static problem is
+/// K = 1 history of one step (the case file's loads), a cost along a loading program K = 1 history
+/// of its steps, load cases K histories (each case's program, or one step with its scales), all
+/// on the one factorization of A(α).
+/// With [design] friction_orientation every "α" below is the optimizer's x =
 /// (α, s): the body turns its law to φ = s/k per solve, states and the cache are keyed by x, and ξ
 /// gets ∂Θ/∂s as its last entry (study/orientation_design.hpp; state_derivative takes α only).
 /// Lifetime: `body` must outlive the oracle; the oracle owns the cost. Not thread-safe.
@@ -87,54 +92,40 @@ class ShapeOracle final : public optim::Oracle {
   [[nodiscard]] optim::OracleResult evaluate(const Eigen::Ref<const Eigen::VectorXd>& x) override;
 
   /// The adjoint results (ξ_i and each solve's status: a singular piece is kNumericalFailure) for
-  /// the given pieces at α (the state is re-solved if α is not the cached design).
+  /// the given pieces of the selected history's cost step at α (its other steps at their default
+  /// pieces; the state is re-solved if α is not the cached design).
   std::vector<sensitivity::AdjointSensitivity::Result> subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                                                     const std::vector<sensitivity::Piece>& pieces);
-  /// R_i h: the derivative of the state of `piece` at α along h (default piece when null).
+  /// R_i h: the derivative of the state of `piece` at α along h (default piece when null); the
+  /// static problem only (InvalidInput otherwise).
   sensitivity::AdjointSensitivity::StateDerivative state_derivative(const Eigen::Ref<const Eigen::VectorXd>& alpha,
                                                                     const Eigen::Ref<const Eigen::VectorXd>& h,
                                                                     const sensitivity::Piece* piece = nullptr);
-  /// The index sets and 𝕃 at α (with load cases: of the selected case).
+  /// 𝕃 of the selected history's cost step at α, with the cardinality of its whole history.
   sensitivity::PieceEnumeration pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int cap = 256);
 
-  /// The history of a cost along a loading program (null: the static problem). With it, the
-  /// state, pieces() and subgradients() are those of the step the cost reads (the last for the
-  /// dissipation), the other steps keeping their default pieces; pieces()' cardinality is that of
-  /// the whole history (the product over the steps). state_derivative() is not available.
-  ProgramHistory* history() { return history_.get(); }
-  const ProgramHistory* history() const { return history_.get(); }
-  /// The warm starts of the loading programs' steps (the history's, or every load case's in
-  /// order), which the body's own warm start does not hold; empty for the static problem. For
-  /// checkpoints: set_history_warm_starts restores them (InvalidInput for another count).
+  /// The K histories: load case k's (k in [0, K)), or the one history without load cases (k = 0),
+  /// solved at α. "Case k's state" is the state its cost reads (its program's cost step).
+  ProgramHistory& program(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k = 0);
+  int num_programs() const { return static_cast<int>(programs_.size()); }
+  /// The history of a cost along a loading program ([[program.step]] tables); null for the static
+  /// problem and for load cases.
+  ProgramHistory* history() { return has_program_history() ? programs_.front().get() : nullptr; }
+  const ProgramHistory* history() const { return has_program_history() ? programs_.front().get() : nullptr; }
+  /// The warm starts of the loading programs' steps (every history's in order), which the body's
+  /// own warm start does not hold; empty for the static problem. For checkpoints:
+  /// set_history_warm_starts restores them (InvalidInput for another count).
   std::vector<std::optional<contact::ContactState>> history_warm_starts() const;
   void set_history_warm_starts(const std::vector<std::optional<contact::ContactState>>& states);
-  /// The load cases of the cost definition (null: the case file's own loads). Each case is solved
-  /// as a loading program — its own [[load_case.step]] tables, or one step with its scales (the
-  /// static load) — on the one factorization of A(α) (study/history.hpp); "case k's state" below
-  /// is the state its cost reads (its program's cost step).
+  /// The load cases of the cost definition (null: the case file's own loads, or its program).
   const LoadCases* load_cases() const { return cases_.get(); }
-  /// Load cases: case k's history, solved at α.
-  ProgramHistory& case_history(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
-  /// Load cases: ξ_i of J_k (case k's own cost, unweighted) for the given pieces of case k's cost
-  /// step at α (its other steps at their default pieces).
-  std::vector<sensitivity::AdjointSensitivity::Result> case_subgradients(const Eigen::Ref<const Eigen::VectorXd>& alpha,
-                                                                         int k,
-                                                                         const std::vector<sensitivity::Piece>& pieces);
-  /// Load cases: 𝕃 of case k's cost step at α (the cardinality that of its whole history).
-  sensitivity::PieceEnumeration case_pieces(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k, int cap = 256);
-  /// Load cases: the index sets of case k's state at α.
-  const sensitivity::IndexSets& case_index_sets(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
-  /// Load cases: case k's state at α (solved now if α is not the last solved design).
-  const BodyState& case_state(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
   /// Load cases: makes case k's state at α the last_state() (and the one pieces() and
   /// subgradients() read), e.g. for certify's (MF1′) of each active case.
   void select_case(const Eigen::Ref<const Eigen::VectorXd>& alpha, int k);
 
   const ElasticBody& body() const { return body_; }
   /// The cost (with load cases: that of case 0; each case has its own when a target is initial_mean).
-  const cost::CostFunctional& cost() const {
-    return cost_ ? *cost_ : history_ ? history_->cost() : case_histories_.front()->cost();
-  }
+  const cost::CostFunctional& cost() const { return programs_.front()->cost(); }
   /// The state of the last solved design.
   const BodyState& last_state() const { return *state_; }
   /// The state at α for output (VTK, reports): one of the last kRecentStates solved states when
@@ -148,29 +139,29 @@ class ShapeOracle final : public optim::Oracle {
   void set_case_cuts(bool on) { case_cuts_ = on; }
 
  private:
+  bool has_program_history() const { return !cases_ && !programs_.front()->is_static_problem(); }
   void solve_state(const Eigen::VectorXd& alpha);
-  void solve_cases(const Eigen::VectorXd& alpha);
   void remember(std::shared_ptr<BodyState> state, const Eigen::VectorXd& alpha);
-  sensitivity::CostPartials partials() const;
-  void evaluate_cases(Evaluation& e, bool with_subgradient);
-  void evaluate_history(Evaluation& e, bool with_subgradient);
+  /// "load case "name": " (or "loading program: " for `state_failure` of a program, "" for the
+  /// static problem) before a failure's message.
+  std::string failure_prefix(int k, bool state_failure) const;
+  void add_subgradient(Evaluation& e, int selected);
 
   ElasticBody& body_;
-  std::unique_ptr<cost::CostFunctional> cost_;
   Eigen::MatrixXd gap_matrix_;  // B̃ at the contact nodes
+  // The K histories (K >= 1) and, with load cases, their definitions and combination (null: one
+  // history, Θ = its J). Each history has its cost, its states at state_alpha_ and its own warm
+  // starts; state_ is the selected history's cost state.
+  std::unique_ptr<LoadCases> cases_;
+  std::vector<std::unique_ptr<ProgramHistory>> programs_;
   std::shared_ptr<BodyState> state_;  // the last solved design (the body's factorization is of it)
   Eigen::VectorXd state_alpha_;
   std::deque<std::shared_ptr<BodyState>> recent_;  // newest first, state_ included
   std::map<std::vector<double>, Evaluation> cache_;
   int state_solves_ = 0;
-  // Load cases: their definitions and combination, one history per case (each with
-  // its cost, its states at state_alpha_ and its own warm starts; state_ is the selected case's).
-  std::unique_ptr<LoadCases> cases_;
-  std::vector<std::unique_ptr<ProgramHistory>> case_histories_;
   int selected_ = 0;
   int last_factorizations_ = 0;
   bool case_cuts_ = true;
-  std::unique_ptr<ProgramHistory> history_;  // a cost along a loading program
 };
 
 }  // namespace frictopt::study
