@@ -41,6 +41,7 @@ from ._frictopt import (
     optimize,
     parse_case,
     read_measurements,
+    solve_program,
     synthetic_experiments,
     synthetic_measurements,
     write_measurements,
@@ -52,7 +53,7 @@ from ._toml import to_toml
 __all__ = [
     "Body", "Case", "Evaluation", "Experiment", "FrictionLaw", "Measurement", "Oracle", "State", "Summary",
     "certify", "check_gradient", "experiment", "export_shape", "identify", "load_case", "optimize", "parse_case",
-    "read_measurements", "synthetic_experiments", "synthetic_measurements", "write_measurements", "to_toml",
+    "read_measurements", "solve_program", "synthetic_experiments", "synthetic_measurements", "write_measurements", "to_toml",
     "STATUS_SEPARATED", "STATUS_STICK", "STATUS_SLIP",
 ]
 

@@ -260,6 +260,8 @@ def experiment(case: Case, run_directory: PathLike | None = None) -> Summary: ..
 
 def export_shape(run_directory: PathLike, design: PathLike | None = None) -> Summary: ...
 
+def solve_program(case: Case, run_directory: PathLike | None = None) -> Summary: ...
+
 class Measurement:
     """One measured contact quantity with its standard deviation."""
     def __init__(self, quantity: str, value: float, sigma: float = 1.0, node: int = -1,

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // frictopt.experiment: the virtual tribometer of a case's [experiment] table (io::run_experiment,
 // the same run as `frictopt experiment`), with an optional run directory that gets the CLI's
-// files, and the angles' ramps returned as numpy columns.
+// files, and the angles' ramps returned as numpy columns; frictopt.solve_program: a case's loading
+// program (io::run_loading_program, the same run as `frictopt solve` of such a case).
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -10,6 +11,7 @@
 
 #include "bindings.hpp"
 #include "frictopt/io/experiment_run.hpp"
+#include "frictopt/io/program_run.hpp"
 #include "frictopt/io/run_directory.hpp"
 #include "frictopt/io/summary_json.hpp"
 
@@ -77,6 +79,40 @@ sliding_force, measured_mu, law_mu (the radial μ(φ)), law_resistance (the supp
 relative_error, normality_residual, ...) with its ramp as numpy columns (pull,
 normal_force, tangential_force_x1, tangential_force_x2, stick_fraction). A solve that does not
 converge is a status, not an exception.)doc");
+
+  m.def(
+      "solve_program",
+      [](std::shared_ptr<const Case> source, const py::object& run_directory) {
+        namespace fs = std::filesystem;
+        std::optional<io::RunDirectory> run;
+        io::ProgramRunRequest request{source->description, source->description.origin, {}, {}};
+        if (!run_directory.is_none()) {
+          const fs::path dir = run_directory.cast<fs::path>();
+          // As the CLI's: created if missing, frictopt's files in it replaced, foreign ones kept.
+          request.open_run = [&run, dir]() -> io::RunDirectory* { return &run.emplace(dir, io::RunOpening::kOutput); };
+        }
+        io::ProgramRunResult result;
+        {
+          py::gil_scoped_release release;
+          result = io::run_loading_program(request);
+        }
+        py::object summary = to_python(result.summary_json);
+        summary.attr("__setitem__")("run_directory", run ? py::cast(run->path()) : py::none());
+        return summary;
+      },
+      py::arg("case"), py::arg("run_directory") = py::none(),
+      R"doc(Solves the case's loading program ([[program.step]] tables, docs/experiments.md) at its
+initial design, as ``frictopt solve`` of such a case: the steps in order from the unloaded body,
+each on the one factorization, friction acting on each step's slip increment.
+
+run_directory: when given, the CLI's files (the VTK series NAME.pvd of the steps, summary.json);
+created if missing, frictopt's files in it are replaced.
+
+Returns a Summary with the fields of the CLI's summary.json (status, message, steps_solved,
+factorizations, factorization_seconds, contact_seconds, time_seconds, and steps: one Summary per
+step with the solve's fields, step, label and external_work). A step that does not converge ends
+the run with its status, not an exception; a case without [[program.step]] tables raises
+ValueError.)doc");
 }
 
 }  // namespace frictopt::python

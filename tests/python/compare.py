@@ -7,7 +7,8 @@ import re
 
 import numpy as np
 
-TIMINGS = {"assembly_seconds", "factorization_seconds", "solve_seconds", "time_seconds", "elapsed_seconds"}
+TIMINGS = {"assembly_seconds", "factorization_seconds", "solve_seconds", "time_seconds", "elapsed_seconds",
+           "contact_seconds", "stress_seconds", "subgradient_seconds", "state_seconds"}
 # Ratios of singular values (in [0, 1]): an SVD gives every singular value to about ε·σ_max, so
 # a ratio near zero is exact to ~1e-16 ABSOLUTELY but not relatively — measured in CI: the
 # (MF1) ratio 2.749161075631567e-10 (CLI) against 2.7491610994504885e-10 (Python), 9e-9

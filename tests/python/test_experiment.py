@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 """frictopt.experiment: the virtual tribometer from Python, the same run as ``frictopt experiment``
 (io::run_experiment): summary.json's fields to 1e-12, the same CSV files, each angle's ramp as
-numpy columns, and a case without [experiment] refused with the CLI's message."""
+numpy columns, and a case without [experiment] refused with the CLI's message. frictopt.solve_program:
+a loading program, the same run as ``frictopt solve`` of such a case (io::run_loading_program)."""
 from __future__ import annotations
 
 import json
@@ -62,3 +63,32 @@ def test_a_case_without_an_experiment_is_refused(root, tmp_path) -> None:
     with pytest.raises(ValueError, match=r"no \[experiment\] table; expected one with normal_force"):
         frictopt.experiment(case, tmp_path / "out")
     assert not (tmp_path / "out").exists()
+
+
+def test_solve_program_agrees_with_the_cli(root, tmp_path, frictopt_binary) -> None:
+    """The shipped Cattaneo–Mindlin program (press, then two tangential steps) on a coarse grid:
+    summary.json and the VTK series as the CLI writes them."""
+    case = frictopt.load_case(root / "cases3d/mindlin-loading/case.toml").with_overrides(
+        mesh={"cells": [8, 8, 3], "growth": None, "refine_box": None})
+    path = tmp_path / "case.toml"
+    path.write_text(case.toml)
+    subprocess.run([frictopt_binary, "solve", path, "-o", tmp_path / "cli"], check=True, capture_output=True)
+    cli = json.loads((tmp_path / "cli" / "summary.json").read_text())
+    loaded = frictopt.load_case(path)
+    result = frictopt.solve_program(loaded, tmp_path / "py")
+    cli["case"] = loaded.origin
+    for step in cli["steps"]:
+        step["case"] = loaded.origin
+    assert_same(cli, result)
+    assert result.status == "converged"
+    assert result.steps_solved == len(result.steps) == 6
+    assert result.factorizations == 1
+    assert [s.step for s in result.steps] == list(range(1, 7))
+    assert sorted(p.name for p in (tmp_path / "py").glob("*.pvd")) == sorted(p.name for p in (tmp_path / "cli").glob("*.pvd"))
+    assert frictopt.solve_program(frictopt.load_case(path)).run_directory is None
+
+
+def test_solve_program_refuses_a_case_without_a_program(root) -> None:
+    with pytest.raises(ValueError, match="no \\[\\[program.step\\]\\] tables"):
+        frictopt.solve_program(frictopt.load_case(root / "cases3d/punch/case.toml"))
+
