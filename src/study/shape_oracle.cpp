@@ -27,9 +27,7 @@ void describe_state(Evaluation& e, const BodyState& s) {
 std::vector<double> key_of(const Eigen::Ref<const Eigen::VectorXd>& alpha) { return {alpha.data(), alpha.data() + alpha.size()}; }
 // Bounded memory: the bundle method revisits only the last few designs.
 constexpr std::size_t kCacheSize = 512;
-}  // namespace
 
-namespace {
 Eigen::MatrixXd gap_matrix_of(const ElasticBody& body) {
   if (!body.contact_boundary())
     throw InvalidInput("the shape oracle needs a body in contact: add a [contact] table to the case");
@@ -39,6 +37,7 @@ Eigen::MatrixXd gap_matrix_of(const ElasticBody& body) {
 
 ShapeOracle::ShapeOracle(ElasticBody& body, std::unique_ptr<cost::CostFunctional> cost)
     : body_(body), gap_matrix_(gap_matrix_of(body)) {
+  if (!cost) throw InvalidInput("ShapeOracle: no cost functional; expected a cost (cost::make_... or study::make_cost)");
   programs_.push_back(std::make_unique<ProgramHistory>(body_, std::move(cost), gap_matrix_));
 }
 
