@@ -68,6 +68,8 @@ py::object to_python(const io::JsonValue& value);
 /// α from Python (sequence or array of floats); None → `fallback`. Throws InvalidInput when the
 /// size is not `expected` (naming `what`).
 Eigen::VectorXd design_from_python(const py::object& alpha, const Eigen::VectorXd& fallback, const char* what);
+/// A RuntimeWarning naming the violated constraint when α is outside Υ (by more than 1e-9 m).
+void warn_if_outside(const study::ElasticBody& body, const Eigen::VectorXd& alpha, const char* what);
 
 /// The optimizer's x⁰ of a case: α⁰, or (α⁰, s⁰ = kφ⁰) with [design] friction_orientation (as
 /// study::ElasticBody::initial_design, without building the body; its size is the number of

@@ -242,6 +242,7 @@ Example::
           [](std::shared_ptr<Body> self, const py::object& alpha) {
             const Eigen::VectorXd a =
                 design_from_python(alpha, self->body->initial_design(), "alpha");
+            if (!alpha.is_none()) warn_if_outside(*self->body, a, "alpha");
             const std::string label = alpha.is_none() ? "initial design" : "design";
             auto state = std::make_shared<State>();
             state->body = self;

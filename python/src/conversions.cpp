@@ -60,6 +60,9 @@ py::object to_python(const io::JsonValue& value) {
 
 Eigen::VectorXd design_from_python(const py::object& alpha, const Eigen::VectorXd& fallback, const char* what) {
   if (alpha.is_none()) return fallback;
+  // numpy's forcecast below would drop an imaginary part silently.
+  if (py::module_::import("numpy").attr("iscomplexobj")(alpha).cast<bool>())
+    throw InvalidInput(fmt::format("{}: complex values; expected {} real numbers (m)", what, fallback.size()));
   const auto array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(alpha);
   if (!array || array.ndim() != 1)
     throw InvalidInput(fmt::format("{}: expected a 1-D sequence of {} numbers (m)", what, fallback.size()));
@@ -74,6 +77,18 @@ Eigen::VectorXd case_initial_design(const io::CaseDescription& description) {
   if (!b.friction_orientation || !b.contact) return b.initial_design;
   return study::OrientationDesign(*b.friction_orientation, b.contact->law, b.admissible.upper_bound)
       .initial_design(b.initial_design);
+}
+
+void warn_if_outside(const study::ElasticBody& body, const Eigen::VectorXd& alpha, const char* what) {
+  // The CLI's solve warns for an initial design outside Υ, certify and check-gradient refuse one;
+  // an API that evaluates any design (finite differences cross the volume equality) says so
+  // instead of staying silent (a design 1 m below the foundation "converged").
+  const std::string violation = body.admissible_set().describe_violation(alpha, 1e-9);
+  if (violation.empty()) return;
+  const std::string message = fmt::format("{} is outside the admissible set: {} (solved anyway; certify and "
+                                          "check_gradient refuse such a design)",
+                                          what, violation);
+  if (PyErr_WarnEx(PyExc_RuntimeWarning, message.c_str(), 1) != 0) throw py::error_already_set();
 }
 
 }  // namespace frictopt::python

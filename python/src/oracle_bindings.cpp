@@ -90,6 +90,7 @@ Example::
           "evaluate",
           [](Oracle& o, const py::object& alpha, bool with_subgradient) {
             const Eigen::VectorXd a = design_from_python(alpha, initial_design(o), "alpha");
+            if (!alpha.is_none()) warn_if_outside(*o.body, a, "alpha");
             py::gil_scoped_release release;
             const std::lock_guard lock(o.mutex);
             return study::Evaluation(o.oracle->evaluate_design(a, with_subgradient));
@@ -101,6 +102,7 @@ Example::
           "__call__",
           [](Oracle& o, const py::object& alpha) {
             const Eigen::VectorXd a = design_from_python(alpha, initial_design(o), "alpha");
+            if (!alpha.is_none()) warn_if_outside(*o.body, a, "alpha");
             study::Evaluation e;
             {
               py::gil_scoped_release release;

@@ -94,6 +94,14 @@ def test_design_argument_and_errors(coarse_case: frictopt.Case) -> None:
         body.solve([0.0, 0.0, 0.0])
     assert body.design_violation() == ""
     assert body.design_violation(np.full(16, 1.0)) != ""  # 1 m > the upper bound 5 mm
+    # A design outside Υ is solved, but not silently; a complex one is refused (numpy would drop
+    # the imaginary part).
+    with pytest.warns(RuntimeWarning, match="alpha is outside the admissible set"):
+        body.solve(np.full(16, -1.0e-3))
+    with pytest.raises(ValueError, match="alpha: complex values; expected 16 real numbers"):
+        body.solve(np.asarray(body.initial_design, dtype=complex))
+    with pytest.raises(ValueError, match="complex values"):
+        frictopt.Oracle(coarse_case).evaluate(np.asarray(body.initial_design, dtype=complex))
 
 
 def test_numerical_failure_is_a_status_not_an_exception(coarse_case: frictopt.Case) -> None:
