@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <functional>
 #include <optional>
 
 #include "bindings.hpp"
@@ -16,19 +17,25 @@
 #include "frictopt/io/summary_json.hpp"
 
 namespace frictopt::python {
+namespace {
+
+// The run's opener for an optional run_directory argument (none: nothing written). As the CLI's:
+// created if missing, frictopt's files in it replaced, foreign ones kept.
+std::function<io::RunDirectory*()> run_opener(const py::object& run_directory, std::optional<io::RunDirectory>& run) {
+  if (run_directory.is_none()) return {};
+  const std::filesystem::path dir = run_directory.cast<std::filesystem::path>();
+  return [&run, dir]() -> io::RunDirectory* { return &run.emplace(dir, io::RunOpening::kOutput); };
+}
+
+}  // namespace
 
 void bind_experiment(py::module_& m) {
   m.def(
       "experiment",
       [](std::shared_ptr<const Case> source, const py::object& run_directory) {
-        namespace fs = std::filesystem;
         std::optional<io::RunDirectory> run;
         io::ExperimentRunRequest request{source->description, source->description.origin, {}, {}};
-        if (!run_directory.is_none()) {
-          const fs::path dir = run_directory.cast<fs::path>();
-          // As the CLI's: created if missing, frictopt's files in it replaced, foreign ones kept.
-          request.open_run = [&run, dir]() -> io::RunDirectory* { return &run.emplace(dir, io::RunOpening::kOutput); };
-        }
+        request.open_run = run_opener(run_directory, run);
         io::ExperimentRunResult result;
         {
           py::gil_scoped_release release;
@@ -83,14 +90,9 @@ converge is a status, not an exception.)doc");
   m.def(
       "solve_program",
       [](std::shared_ptr<const Case> source, const py::object& run_directory) {
-        namespace fs = std::filesystem;
         std::optional<io::RunDirectory> run;
         io::ProgramRunRequest request{source->description, source->description.origin, {}, {}};
-        if (!run_directory.is_none()) {
-          const fs::path dir = run_directory.cast<fs::path>();
-          // As the CLI's: created if missing, frictopt's files in it replaced, foreign ones kept.
-          request.open_run = [&run, dir]() -> io::RunDirectory* { return &run.emplace(dir, io::RunOpening::kOutput); };
-        }
+        request.open_run = run_opener(run_directory, run);
         io::ProgramRunResult result;
         {
           py::gil_scoped_release release;

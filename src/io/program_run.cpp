@@ -13,18 +13,6 @@
 
 namespace frictopt::io {
 
-JsonValue to_json(const study::LoadingProgram::Summary& summary) {
-  JsonValue json = JsonValue::object();
-  json["status"] = std::string(to_string(summary.status));
-  json["message"] = summary.message;
-  json["steps_solved"] = summary.steps_solved;
-  json["factorizations"] = summary.factorizations;
-  json["factorization_seconds"] = summary.factorization_seconds;
-  json["contact_seconds"] = summary.contact_seconds;
-  json["time_seconds"] = summary.time_seconds;
-  return json;
-}
-
 ProgramRunResult run_loading_program(const ProgramRunRequest& request) {
   const CaseDescription& description = request.description;
   const auto report = [&](const std::string& line) {

@@ -293,6 +293,18 @@ JsonValue to_json(const study::TribometerAngleResult& a, bool with_ramp) {
   return j;
 }
 
+JsonValue to_json(const study::LoadingProgram::Summary& summary) {
+  JsonValue json = JsonValue::object();
+  json["status"] = std::string(to_string(summary.status));
+  json["message"] = summary.message;
+  json["steps_solved"] = summary.steps_solved;
+  json["factorizations"] = summary.factorizations;
+  json["factorization_seconds"] = summary.factorization_seconds;
+  json["contact_seconds"] = summary.contact_seconds;
+  json["time_seconds"] = summary.time_seconds;
+  return json;
+}
+
 JsonValue to_json(const study::Tribometer::Summary& s) {
   JsonValue j = JsonValue::object();
   j["status"] = std::string(to_string(s.status));

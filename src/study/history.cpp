@@ -44,9 +44,15 @@ ProgramHistory::ProgramHistory(ElasticBody& body, std::unique_ptr<cost::CostFunc
   prepare_static(nullptr);
 }
 
+namespace {
+void require_contact(const ElasticBody& body) {
+  if (!body.contact_boundary() || !body.definition().contact)
+    throw InvalidInput("a cost of the contact state needs a body in contact: add a [contact] table to the case");
+}
+}  // namespace
+
 void ProgramHistory::prepare_static(const CostDefinition* definition) {
-  if (!body_.contact_boundary() || !body_.definition().contact)
-    throw InvalidInput("the shape oracle needs a body in contact: add a [contact] table to the case");
+  require_contact(body_);
   states_.resize(1);
   sets_.resize(1);
   if (!definition) return;
@@ -65,8 +71,7 @@ ProgramHistory::ProgramHistory(ElasticBody& body, const CostDefinition& definiti
     prepare_static(&definition);
     return;
   }
-  if (!body_.contact_boundary() || !body_.definition().contact)
-    throw InvalidInput("a cost along a loading history needs a body in contact: add a [contact] table to the case");
+  require_contact(body_);
   program_ = *definition.program;
   program_.validate(body_.definition(), where);
   const int k_steps = num_steps();

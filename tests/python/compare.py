@@ -7,8 +7,9 @@ import re
 
 import numpy as np
 
-TIMINGS = {"assembly_seconds", "factorization_seconds", "solve_seconds", "time_seconds", "elapsed_seconds",
-           "contact_seconds", "stress_seconds", "subgradient_seconds", "state_seconds"}
+def is_timing(key: str) -> bool:
+    """Wall and CPU times differ run to run; every summary names them *_seconds."""
+    return key.endswith("_seconds")
 # Ratios of singular values (in [0, 1]): an SVD gives every singular value to about ε·σ_max, so
 # a ratio near zero is exact to ~1e-16 ABSOLUTELY but not relatively — measured in CI: the
 # (MF1) ratio 2.749161075631567e-10 (CLI) against 2.7491610994504885e-10 (Python), 9e-9
@@ -29,7 +30,7 @@ def assert_same(cli, py, path: str = "") -> None:
     if isinstance(cli, dict):
         for key, value in cli.items():
             assert key in py, f"{path}{key} missing from the Python summary"
-            if key not in TIMINGS:
+            if not is_timing(key):
                 assert_same(value, py[key], f"{path}{key}.")
     elif isinstance(cli, list) and cli and all(isinstance(v, (int, float)) or v is None for v in cli) \
             and any(isinstance(v, float) for v in cli):

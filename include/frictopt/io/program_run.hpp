@@ -35,8 +35,4 @@ struct ProgramRunResult {
 /// not converge ends the run: the summary's status, not an exception.
 [[nodiscard]] ProgramRunResult run_loading_program(const ProgramRunRequest& request);
 
-/// summary.json's members of a program's summary (status, message, steps_solved, factorizations,
-/// factorization_seconds, contact_seconds, time_seconds).
-[[nodiscard]] JsonValue to_json(const study::LoadingProgram::Summary& summary);
-
 }  // namespace frictopt::io

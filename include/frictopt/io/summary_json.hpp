@@ -15,6 +15,7 @@
 #include "frictopt/study/certificate.hpp"
 #include "frictopt/study/elastic_body.hpp"
 #include "frictopt/study/identification.hpp"
+#include "frictopt/study/loading_program.hpp"
 #include "frictopt/study/shape_oracle.hpp"
 #include "frictopt/study/tribometer.hpp"
 
@@ -70,6 +71,9 @@ void add_members(JsonValue& into, const JsonValue& members);
 [[nodiscard]] JsonValue to_json(const study::TribometerAngleResult& angle, bool with_ramp = false);
 /// The tribometer's run: status, press, counters and every angle (without their ramps).
 [[nodiscard]] JsonValue to_json(const study::Tribometer::Summary& summary);
+/// A loading program's run (status, message, steps_solved, factorizations, factorization_seconds,
+/// contact_seconds, time_seconds).
+[[nodiscard]] JsonValue to_json(const study::LoadingProgram::Summary& summary);
 /// The whole certificate: index sets, pieces with ξ_i and weights, Clarke distance, (MF1) rank,
 /// Mordukhovich check; `options` for the tolerances used.
 [[nodiscard]] JsonValue to_json(const study::Certificate& certificate, const study::CertifyOptions& options);
