@@ -25,8 +25,10 @@ int run_solve(const std::filesystem::path& case_path, const std::filesystem::pat
   if (description.program) return run_program(case_path, out_dir, description);
   study::ElasticBody body(description.body);
   const auto& mesh = body.mesh();
-  fmt::print("{}: {}D body, {} nodes, {} elements, {} unknowns, {} design variables\n", case_path.string(),
-             mesh.dim(), mesh.num_nodes(), mesh.num_elements(), body.elasticity().dofs().num_free(),
+  fmt::print("{}: {}D body, {} nodes, {} elements ({}, smallest scaled Jacobian {:.3g} at α⁰), {} unknowns, {} design "
+             "variables\n",
+             case_path.string(), mesh.dim(), mesh.num_nodes(), mesh.num_elements(), mesh::to_string(mesh.element_kind()),
+             mesh.min_scaled_jacobian(mesh.positions(body.definition().initial_design)), body.elasticity().dofs().num_free(),
              body.definition().shape.num_controls());
   // The dense contact algebra grows like m² in memory and m³ in time (m contact unknowns): said
   // before the solve starts (docs/scaling.md, "Contact nodes").

@@ -261,6 +261,10 @@ Example::
       .def_property_readonly("dim", [](const Body& b) { return b.body->definition().shape.dim(); }, "2 or 3.")
       .def_property_readonly("num_unknowns", [](const Body& b) { return b.body->elasticity().dofs().num_free(); },
                              "Free displacement unknowns of the finite-element problem.")
+      .def_property_readonly("element", [](const Body& b) { return std::string(mesh::to_string(b.body->mesh().element_kind())); },
+                             "The cells: 'hex8', 'tet4' (3D), 'quad4', 'tri3' (2D) ([mesh] element).")
+      .def_property_readonly("num_elements", [](const Body& b) { return b.body->mesh().num_elements(); },
+                             "Number of cells of the mesh.")
       .def_property_readonly("num_design_variables",
                              [](const Body& b) { return b.body->num_design_variables(); },
                              "Number of control heights α.")
@@ -341,8 +345,9 @@ Example::
           "solution_is_exact, natural_map_residual). Isotropic laws only (ValueError otherwise).")
       .def("__repr__", [](const Body& b) {
         const auto& d = b.body->definition();
-        return fmt::format("<frictopt.Body '{}': {}D, {} unknowns, {} contact nodes, {} design variables>", d.name,
-                           d.shape.dim(), b.body->elasticity().dofs().num_free(),
+        return fmt::format("<frictopt.Body '{}': {}D, {} {} cells, {} unknowns, {} contact nodes, {} design variables>",
+                           d.name, d.shape.dim(), b.body->mesh().num_elements(),
+                           mesh::to_string(b.body->mesh().element_kind()), b.body->elasticity().dofs().num_free(),
                            b.body->contact_boundary() ? b.body->contact_boundary()->num_nodes() : 0,
                            b.body->num_design_variables());
       });

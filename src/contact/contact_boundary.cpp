@@ -63,6 +63,16 @@ ContactBoundary::ContactBoundary(const mesh::Mesh& mesh, const fem::DofMap& dofs
   const mesh::Connectivity& facets = contact_surface.facets;
   for (Eigen::Index f = 0; f < facets.rows(); ++f) {
     const auto x = [&](Eigen::Index k) { return plane.row(bottom_row.at(facets(f, k))); };
+    if (facets.cols() == 3) {
+      // A linear triangle (a tetrahedron's face): ∫ N_a = area/3 on the projected triangle.
+      const double area = 0.5 * std::abs((x(1)(0) - x(0)(0)) * (x(2)(1) - x(0)(1)) -
+                                         (x(1)(1) - x(0)(1)) * (x(2)(0) - x(0)(0)));
+      for (Eigen::Index k = 0; k < 3; ++k) {
+        const auto it = index.find(facets(f, k));
+        if (it != index.end()) areas_(it->second) += area / 3.0;
+      }
+      continue;
+    }
     // (Exact equality: a tilted frame's rounding sends a grid facet to the general formula,
     // which is exact for parallelograms too.)
     const bool parallelogram = dim_ == 2 || x(0) + x(2) == x(1) + x(3);

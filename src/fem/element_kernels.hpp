@@ -52,7 +52,7 @@ struct ElasticityKernel {
     Matrix K = Matrix::Zero();
     Eigen::Matrix<double, kNodes, Dim> G;
     double det;
-    for (const auto& [xi, w] : Element::gauss2()) {
+    for (const auto& [xi, w] : Element::quadrature()) {
       physical_gradients(Xe, xi, G, det);
       // Exploit isotropy: K_ab,ij = (λ G_ai G_bj + μ G_aj G_bi + μ δ_ij G_a·G_b) w det J.
       const Eigen::Matrix<double, kNodes, kNodes> GG = G * G.transpose();
@@ -75,7 +75,7 @@ struct ElasticityKernel {
     Coordinates g = Coordinates::Zero();
     Eigen::Matrix<double, kNodes, Dim> G;
     double det;
-    for (const auto& [xi, w] : Element::gauss2()) {
+    for (const auto& [xi, w] : Element::quadrature()) {
       physical_gradients(Xe, xi, G, det);
       const Tensor Hu = gradient(ue, G), Hp = gradient(pe, G);
       const Tensor su = stress(Hu), sp = stress(Hp);
@@ -100,7 +100,7 @@ struct ElasticityDirectional {
     typename Kernel::Vector df = Kernel::Vector::Zero();
     Eigen::Matrix<double, Kernel::kNodes, Dim> G;
     double det;
-    for (const auto& [xi, w] : Kernel::Element::gauss2()) {
+    for (const auto& [xi, w] : Kernel::Element::quadrature()) {
       Kernel::physical_gradients(Xe, xi, G, det);
       const typename Kernel::Tensor Theta = dXe.transpose() * G;  // Θ_kj = Σ_b dX_{b,k} G_{b,j}
       const typename Kernel::Tensor Hu = Kernel::gradient(ue, G);

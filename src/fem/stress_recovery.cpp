@@ -51,7 +51,7 @@ StressField recover(const mesh::Mesh& mesh, const IsotropicMaterial& material,
       Xe.row(a) = X.row(elements(e, a));
       ue.template segment<Dim>(a * Dim) = u.segment(elements(e, a) * Dim, Dim);
     }
-    Kernel::physical_gradients(Xe, Element::Point::Zero(), G, det);
+    Kernel::physical_gradients(Xe, Element::centre(), G, det);
     out.element.row(e) = voigt6<Element>(Kernel::gradient(ue, G), kernel, material).transpose();
     for (int a = 0; a < Kernel::kNodes; ++a) {
       Kernel::physical_gradients(Xe, corners.row(a).transpose(), G, det);

@@ -137,6 +137,7 @@ mesh::GridResolution read_grid(const TableReader& r, const Geometry& geometry) {
   }
   read_in_plane_grading(r, geometry, m);
   detail::read_vertical_grading(r, geometry.height, r.has("grading"), m);
+  m.element_family = detail::read_element_family(r, dim);
   return m;
 }
 
@@ -156,7 +157,7 @@ int read_imported_geometry_section(const TableReader& top, std::string_view orig
 mesh::GridResolution read_grid_section(const TableReader& top, std::string_view origin, const Geometry& geometry) {
   return read_grid(required_table(top, "mesh", origin,
                                   {"cells", "grading", "growth", "refine_box", "vertical_grading", "fine_depth",
-                                   "vertical_growth"}),
+                                   "vertical_growth", "element"}),
                    geometry);
 }
 

@@ -70,6 +70,16 @@ void read_vertical_grading(const TableReader& r, double height, bool grading_giv
   }
 }
 
+mesh::ElementFamily read_element_family(const TableReader& r, int dim) {
+  const std::string tensor = dim == 2 ? "quad4" : "hex8", simplex = dim == 2 ? "tri3" : "tet4";
+  const std::string name = r.optional_string("element").value_or(tensor);
+  if (name == simplex) return mesh::ElementFamily::kSimplex;
+  if (name != tensor)
+    r.fail_value("element", fmt::format("\"{}\" (Q1 cells, the default) or \"{}\" (P1 simplices) for a {}D body",
+                                        tensor, simplex, dim));
+  return mesh::ElementFamily::kTensorProduct;
+}
+
 bool names_mesh_file(const toml::table& root) {
   const toml::table* mesh = root["mesh"].as_table();
   return mesh != nullptr && mesh->contains("file");
@@ -99,6 +109,7 @@ ImportedBody read_imported_mesh(const TableReader& r, int dim, std::string_view 
                                  r.field("size"), *size, file_text));
     options.size = *size;
   }
+  options.family = read_element_family(r, dim);
   std::shared_ptr<const mesh::Mesh> reference;
   std::vector<std::filesystem::path> sources;
   try {
@@ -154,7 +165,7 @@ ImportedBody read_imported_mesh_section(const TableReader& top, std::string_view
                                         const mesh::PlaneFrame& design_frame) {
   const toml::table* table = top.optional_table("mesh");
   if (table == nullptr) top.fail_missing("mesh", "a table [mesh]");
-  return read_imported_mesh(TableReader(*table, "mesh", case_origin, {"file", "size", "contact", "patch", "extension"}),
+  return read_imported_mesh(TableReader(*table, "mesh", case_origin, {"file", "size", "contact", "patch", "extension", "element"}),
                             dim, case_origin, design_frame);
 }
 

@@ -21,6 +21,11 @@ namespace frictopt::io::detail {
 /// naming the field otherwise (docs/case-format.md, "Vertical grading").
 void read_vertical_grading(const TableReader& r, double height, bool grading_given, mesh::GridResolution& m);
 
+/// Reads [mesh] element: "hex8" (the default in 3D) or "tet4", "quad4" (the default in 2D) or
+/// "tri3" — the cells of the structured grid or of an imported body (docs/case-format.md,
+/// "[mesh] element"); InvalidInput naming the field for another name or one of the other dimension.
+mesh::ElementFamily read_element_family(const TableReader& r, int dim);
+
 /// Whether the root's [mesh] table names a file (an imported body) rather than grid cells.
 bool names_mesh_file(const toml::table& root);
 

@@ -52,8 +52,7 @@ VtuGrid make_state_grid(const study::ElasticBody& body, const study::BodyState& 
   const int dim = m.dim();
   VtuGrid grid;
   grid.points = state.positions;
-  grid.cells.push_back({m.element_kind() == mesh::ElementKind::kQuad4 ? VtkCellType::kQuad : VtkCellType::kHexahedron,
-                        m.elements()});
+  grid.cells.push_back({static_cast<VtkCellType>(m.vtk_cell_type()), m.elements()});
   Eigen::MatrixXd u(m.num_nodes(), dim);
   for (int n = 0; n < m.num_nodes(); ++n)
     u.row(n) = state.displacement.segment(n * dim, dim).transpose();

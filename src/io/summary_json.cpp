@@ -520,6 +520,9 @@ JsonValue solve_summary(const std::string& case_name, const study::ElasticBody& 
   add_members(summary, run_environment());
   add_members(summary, to_json(state.summary));
   summary["dim"] = mesh.dim();
+  summary["element"] = std::string(mesh::to_string(mesh.element_kind()));
+  summary["num_elements"] = static_cast<std::int64_t>(mesh.num_elements());
+  summary["min_scaled_jacobian"] = mesh.min_scaled_jacobian(state.positions);
   summary["num_nodes"] = static_cast<std::int64_t>(mesh.num_nodes());
   summary["num_unknowns"] = static_cast<std::int64_t>(body.elasticity().dofs().num_free());
   summary["alpha"] = state.alpha;

@@ -28,6 +28,7 @@ namespace {
 constexpr int kGmshLine2 = 1;
 constexpr int kGmshTriangle3 = 2;
 constexpr int kGmshQuad4 = 3;
+constexpr int kGmshTetra4 = 4;
 constexpr int kGmshHexa8 = 5;
 
 // STEP's customary length unit; OpenCASCADE's writer labels the model's numbers as millimetres.
@@ -81,6 +82,27 @@ detail::ChildLimits export_limits() {
 constexpr std::array<std::array<int, 4>, 6> kHexFaces{{{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                                        {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}};
 constexpr std::array<std::array<int, 2>, 4> kQuadEdges{{{0, 1}, {1, 2}, {2, 3}, {3, 0}}};
+// The same for P1 cells.
+constexpr std::array<std::array<int, 3>, 4> kTetFaces{{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}};
+constexpr std::array<std::array<int, 2>, 3> kTriangleEdges{{{0, 1}, {1, 2}, {2, 0}}};
+
+// Gmsh's element type of a mesh's cells and of its boundary facets.
+int gmsh_cell_type(ElementKind kind) {
+  switch (kind) {
+    case ElementKind::kQuad4: return kGmshQuad4;
+    case ElementKind::kHex8: return kGmshHexa8;
+    case ElementKind::kTri3: return kGmshTriangle3;
+    case ElementKind::kTet4: return kGmshTetra4;
+  }
+  return kGmshHexa8;
+}
+int gmsh_facet_type(ElementKind kind) {
+  switch (nodes_per_facet(kind)) {
+    case 2: return kGmshLine2;
+    case 3: return kGmshTriangle3;
+    default: return kGmshQuad4;
+  }
+}
 
 }  // namespace
 
@@ -136,8 +158,8 @@ std::string bezier_step(const BezierGeometry& geometry, const std::string& name)
 
 Connectivity exterior_facets(const Mesh& mesh) {
   const Connectivity& cells = mesh.elements();
-  const bool three_d = mesh.dim() == 3;
-  const int per_facet = three_d ? 4 : 2;
+  const ElementKind kind = mesh.element_kind();
+  const int per_facet = nodes_per_facet(kind);
   // A facet is interior when two cells share it: count each facet by its sorted node list.
   std::map<std::array<int, 4>, int> count;
   std::vector<std::array<int, 4>> oriented;
@@ -150,10 +172,12 @@ Connectivity exterior_facets(const Mesh& mesh) {
       ++count[key];
       oriented.push_back(f);
     };
-    if (three_d)
-      for (const auto& face : kHexFaces) add(face.data(), 4);
-    else
-      for (const auto& edge : kQuadEdges) add(edge.data(), 2);
+    switch (kind) {
+      case ElementKind::kHex8: for (const auto& face : kHexFaces) add(face.data(), 4); break;
+      case ElementKind::kQuad4: for (const auto& edge : kQuadEdges) add(edge.data(), 2); break;
+      case ElementKind::kTet4: for (const auto& face : kTetFaces) add(face.data(), 3); break;
+      case ElementKind::kTri3: for (const auto& edge : kTriangleEdges) add(edge.data(), 2); break;
+    }
   }
   std::vector<std::array<int, 4>> exterior;
   for (const auto& f : oriented) {
@@ -203,11 +227,12 @@ std::string mesh_file(const Mesh& mesh, const Eigen::Ref<const Eigen::MatrixXd>&
       gmsh::model::add(volume_name);
       if (format == MeshFileFormat::kStl) {
         // Only the exterior surface, as triangles (STL has no other facet): each outward
-        // quadrilateral (a, b, c, d) as (a, b, c) and (a, c, d).
+        // quadrilateral (a, b, c, d) as (a, b, c) and (a, c, d), a triangle as it is.
         const Connectivity facets = exterior_facets(mesh);
         std::vector<std::size_t> triangles;
+        const std::vector<int> split = facets.cols() == 3 ? std::vector<int>{0, 1, 2} : std::vector<int>{0, 1, 2, 0, 2, 3};
         for (Eigen::Index r = 0; r < facets.rows(); ++r)
-          for (int k : {0, 1, 2, 0, 2, 3}) triangles.push_back(static_cast<std::size_t>(facets(r, k)) + 1);
+          for (int k : split) triangles.push_back(static_cast<std::size_t>(facets(r, k)) + 1);
         const int surface = gmsh::model::addDiscreteEntity(2);
         gmsh::model::mesh::addNodes(2, surface, node_tags, coordinates);
         gmsh::model::mesh::addElementsByType(surface, kGmshTriangle3, element_tags(triangles.size() / 3), triangles);
@@ -217,13 +242,13 @@ std::string mesh_file(const Mesh& mesh, const Eigen::Ref<const Eigen::MatrixXd>&
       const int body = gmsh::model::addDiscreteEntity(dim);
       gmsh::model::mesh::addNodes(dim, body, node_tags, coordinates);
       const std::vector<std::size_t> cell_nodes = gmsh_nodes(mesh.elements());
-      gmsh::model::mesh::addElementsByType(body, dim == 3 ? kGmshHexa8 : kGmshQuad4,
+      gmsh::model::mesh::addElementsByType(body, gmsh_cell_type(mesh.element_kind()),
                                            element_tags(static_cast<std::size_t>(mesh.num_elements())), cell_nodes);
       gmsh::model::setPhysicalName(dim, gmsh::model::addPhysicalGroup(dim, {body}), volume_name);
       for (const std::string& name : mesh.boundary_names()) {
         const BoundarySet& set = mesh.boundary(name);
         const int entity = gmsh::model::addDiscreteEntity(dim - 1);
-        gmsh::model::mesh::addElementsByType(entity, dim == 3 ? kGmshQuad4 : kGmshLine2,
+        gmsh::model::mesh::addElementsByType(entity, gmsh_facet_type(mesh.element_kind()),
                                              element_tags(static_cast<std::size_t>(set.facets.rows())),
                                              gmsh_nodes(set.facets));
         gmsh::model::setPhysicalName(dim - 1, gmsh::model::addPhysicalGroup(dim - 1, {entity}), name);

@@ -35,7 +35,7 @@ Eigen::SparseMatrix<double> laplace_stiffness(const Mesh& body) {
   for (Eigen::Index e = 0; e < cells.rows(); ++e) {
     for (int a = 0; a < N; ++a) Xe.row(a) = X.row(cells(e, a));
     Eigen::Matrix<double, N, N> Ke = Eigen::Matrix<double, N, N>::Zero();
-    for (const auto& [xi, w] : Element::gauss2()) {
+    for (const auto& [xi, w] : Element::quadrature()) {
       const auto G = Element::gradients(xi);
       const Eigen::Matrix<double, Dim, Dim> J = Xe.transpose() * G;
       const Eigen::Matrix<double, N, Dim> dN = G * J.inverse();

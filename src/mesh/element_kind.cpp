@@ -8,7 +8,8 @@
 namespace frictopt::mesh {
 namespace {
 constexpr auto kElementKindNames = frictopt::detail::make_enum_table<ElementKind>(
-    std::pair{ElementKind::kQuad4, "quad4"}, std::pair{ElementKind::kHex8, "hex8"});
+    std::pair{ElementKind::kQuad4, "quad4"}, std::pair{ElementKind::kHex8, "hex8"},
+    std::pair{ElementKind::kTri3, "tri3"}, std::pair{ElementKind::kTet4, "tet4"});
 }  // namespace
 
 std::string_view to_string(ElementKind kind) { return kElementKindNames.name(kind); }

@@ -292,8 +292,9 @@ RawMesh extract(const std::filesystem::path& file, const GmshMeshOptions& option
     throw InvalidInput(fmt::format("{}: no surface or volume elements; expected a 2D mesh of quadrilaterals or a 3D "
                                    "mesh of hexahedra",
                                    name));
-  int cell_type = dim == 2 ? kGmshQuad4 : kGmshHexa8;
-  int facet_type = dim == 2 ? kGmshLine2 : kGmshQuad4;
+  const bool keep_simplices = options.family == ElementFamily::kSimplex;
+  int cell_type = keep_simplices ? (dim == 2 ? kGmshTriangle3 : kGmshTetra4) : (dim == 2 ? kGmshQuad4 : kGmshHexa8);
+  int facet_type = dim == 2 ? kGmshLine2 : keep_simplices ? kGmshTriangle3 : kGmshQuad4;
 
   std::vector<int> body_entities;
   {
@@ -312,7 +313,9 @@ RawMesh extract(const std::filesystem::path& file, const GmshMeshOptions& option
   auto cells_by_type = elements_of(dim, body_entities);
   const bool has_simplices = cells_by_type.count(dim == 2 ? kGmshTriangle3 : kGmshTetra4) > 0;
   const bool only_simplices = has_simplices && cells_by_type.size() == 1;
-  if (is_geo && has_simplices) {
+  if (keep_simplices) {
+    // P1 cells (docs/meshes.md, "Tetrahedra"): the simplices as Gmsh made or wrote them.
+  } else if (is_geo && has_simplices) {
     // No Recombine/Transfinite in the .geo: split every simplex into quads/hexes (Gmsh's
     // subdivision), the cheapest route to the Q1 cells our kernels integrate (docs/meshes.md).
     gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", dim == 2 ? 1 : 2);
@@ -335,11 +338,17 @@ RawMesh extract(const std::filesystem::path& file, const GmshMeshOptions& option
     std::string found;
     for (const auto& [t, b] : cells_by_type)
       found += fmt::format("{}{} {}", found.empty() ? "" : ", ", b.first.size(), gmsh_type_name(t));
+    if (keep_simplices)
+      throw InvalidInput(fmt::format(
+          "{}: the {}D body has {}; expected only {} (mesh.element = \"{}\" keeps the file's simplices as P1 cells, "
+          "docs/meshes.md: mesh the .geo without Recombine/Transfinite, or read this file with mesh.element = \"{}\")",
+          name, dim, found, gmsh_type_name(cell_type), dim == 2 ? "tri3" : "tet4", dim == 2 ? "quad4" : "hex8"));
     throw InvalidInput(fmt::format(
         "{}: the {}D body has {}; expected only {} (frictopt's Q1 cells, docs/meshes.md: mesh the .geo with "
         "Recombine/Transfinite, or let frictopt mesh the .geo, which subdivides simplices; a .msh of simplices "
-        "only is subdivided, or subdivide it with `gmsh -{} -setnumber Mesh.SubdivisionAlgorithm {} file.geo`)",
-        name, dim, found, gmsh_type_name(cell_type), dim, dim == 2 ? 1 : 2));
+        "only is subdivided, or subdivide it with `gmsh -{} -setnumber Mesh.SubdivisionAlgorithm {} file.geo`; "
+        "or keep simplices as P1 cells with mesh.element = \"{}\")",
+        name, dim, found, gmsh_type_name(cell_type), dim, dim == 2 ? 1 : 2, dim == 2 ? "tri3" : "tet4"));
   }
   const auto cells_it = cells_by_type.find(cell_type);
   if (cells_it == cells_by_type.end() || cells_it->second.first.empty())
@@ -495,9 +504,10 @@ void subdivide_simplices(RawMesh& raw) {
 }
 
 // The caller's part: the Mesh of what the child read.
-Mesh build(const std::string& name, RawMesh raw, std::int64_t max_unknowns) {
+Mesh build(const std::string& name, RawMesh raw, std::int64_t max_unknowns, ElementFamily family) {
   const int dim = raw.dim;
-  if (raw.cells.cols() == dim + 1) {
+  const ElementKind kind = element_kind(family, dim);
+  if (family == ElementFamily::kTensorProduct && raw.cells.cols() == dim + 1) {
     subdivide_simplices(raw);
     const auto unknowns = static_cast<std::int64_t>(raw.X.rows()) * dim;
     if (unknowns > max_unknowns)
@@ -515,19 +525,22 @@ Mesh build(const std::string& name, RawMesh raw, std::int64_t max_unknowns) {
   }
   Eigen::MatrixXd X = std::move(raw.X);
   Connectivity cells = std::move(raw.cells);
-  // Gmsh's and VTK's node orders of the quadrilateral and the hexahedron agree; a cell that is
-  // inverted in that order (a mirrored hand-written cell) is mirrored back.
-  const ElementKind kind = dim == 2 ? ElementKind::kQuad4 : ElementKind::kHex8;
+  // Gmsh's and VTK's node orders of the quadrilateral, hexahedron, triangle and tetrahedron
+  // agree; a cell that is inverted in that order (a mirrored hand-written cell, or Gmsh's
+  // orientation of a volume's simplices) is mirrored back.
   with_element(kind, [&](auto element) {
     using Element = decltype(element);
-    const typename Element::Point centre = Element::Point::Zero();
-    const auto G = Element::gradients(centre);
+    const auto G = Element::gradients(Element::centre());
     Eigen::Matrix<double, Element::kNodes, Element::kDim> Xe;
     for (Eigen::Index e = 0; e < cells.rows(); ++e) {
       for (int a = 0; a < Element::kNodes; ++a) Xe.row(a) = X.row(cells(e, a));
       if ((Xe.transpose() * G).determinant() < 0) {
-        std::swap(cells(e, 1), cells(e, 3));
-        if constexpr (Element::kDim == 3) std::swap(cells(e, 5), cells(e, 7));
+        if constexpr (is_simplex(Element::kKind)) {
+          std::swap(cells(e, 1), cells(e, 2));
+        } else {
+          std::swap(cells(e, 1), cells(e, 3));
+          if constexpr (Element::kDim == 3) std::swap(cells(e, 5), cells(e, 7));
+        }
       }
     }
   });
@@ -550,7 +563,8 @@ Mesh build(const std::string& name, RawMesh raw, std::int64_t max_unknowns) {
   // inverted corner (seen when simplices are subdivided near a curved surface, e.g. the fillets
   // of cases3d/gmsh-die at size 0.007).
   diagnostics.inverted_hint = raw.subdivided ? " — try another mesh size, or Recombine/Transfinite in the .geo"
-                                             : " — the file's cell is not a valid hexahedron/quadrilateral";
+                              : is_simplex(kind) ? " — the file's cell is not a valid tetrahedron/triangle"
+                                                 : " — the file's cell is not a valid hexahedron/quadrilateral";
   const Eigen::Index num_dofs = X.rows() * dim;
   const Mesh as_read(kind, X, cells, Eigen::SparseMatrix<double>(num_dofs, 0), boundaries, diagnostics);
   as_read.check_quality(X, "mesh as read");
@@ -594,7 +608,7 @@ GmshMesh::GmshMesh(const std::filesystem::path& file, const GmshMeshOptions& opt
   subdivided_ = raw.subdivided;
   element_tags_ = raw.cell_tags;
   source_files_ = checked.sources;
-  mesh_ = build(file.string(), std::move(raw), options.max_unknowns);
+  mesh_ = build(file.string(), std::move(raw), options.max_unknowns, options.family);
 }
 
 std::uint64_t available_memory_bytes() {

@@ -82,7 +82,7 @@ namespace {
 template <class Element>
 double element_volume_sum(const Connectivity& elements, const Eigen::Ref<const Eigen::MatrixXd>& X) {
   constexpr int Dim = Element::kDim;
-  const auto rule = Element::gauss2();
+  const auto rule = Element::quadrature();
   double volume = 0.0;
   Eigen::Matrix<double, Element::kNodes, Dim> Xe;
   for (Eigen::Index e = 0; e < elements.rows(); ++e) {
@@ -120,19 +120,11 @@ void check_elements(const Connectivity& elements, const ElementDiagnostics& diag
 template <class Element>
 double smallest_scaled_jacobian(const Connectivity& elements, const Eigen::Ref<const Eigen::MatrixXd>& X) {
   constexpr int Dim = Element::kDim;
-  const auto corners = Element::corners();
   Eigen::Matrix<double, Element::kNodes, Dim> Xe;
   double smallest = 1.0;
   for (Eigen::Index e = 0; e < elements.rows(); ++e) {
     for (int a = 0; a < Element::kNodes; ++a) Xe.row(a) = X.row(elements(e, a));
-    for (int a = 0; a < Element::kNodes; ++a) {
-      const Eigen::Matrix<double, Dim, 1> xi = corners.row(a).transpose();
-      Eigen::Matrix<double, Dim, Dim> J = Xe.transpose() * Element::gradients(xi);
-      const Eigen::Matrix<double, 1, Dim> lengths = J.colwise().norm();
-      if (!(lengths.minCoeff() > 0)) return 0.0;  // a collapsed edge
-      for (int c = 0; c < Dim; ++c) J.col(c) /= lengths(c);
-      smallest = std::min(smallest, J.determinant());
-    }
+    for (int a = 0; a < Element::kNodes; ++a) smallest = std::min(smallest, Element::scaled_jacobian_at_corner(Xe, a));
   }
   return smallest;
 }

@@ -59,6 +59,42 @@ std::array<int, 3> validated_cells(int dim, double height, const GridResolution&
   return cells;
 }
 
+// Splits every grid cell into P1 simplices on the same nodes: a quadrilateral (0,1,2,3) into
+// (0,1,2), (0,2,3); a hexahedron into the 6 tetrahedra of Kuhn's (Freudenthal's) triangulation
+// around its diagonal 0–6, and every boundary quadrilateral (f0,f1,f2,f3) into (f0,f1,f2),
+// (f0,f2,f3). Written out here rather than asked of a mesher because the grid's cells all have
+// the same orientation (corner 0 lowest in every direction), and for such a grid Kuhn's split
+// is conforming: the diagonal it draws on a face is the one its neighbour draws, and the one the
+// boundary facets' rule draws (each face's diagonal runs from its lowest to its highest corner).
+// Every tetrahedron keeps the hexahedron's orientation (det J > 0 for the box).
+void split_into_simplices(int dim, Connectivity& elements, std::map<std::string, BoundarySet, std::less<>>& boundaries) {
+  if (dim == 2) {
+    Connectivity tri(elements.rows() * 2, 3);
+    for (Eigen::Index e = 0; e < elements.rows(); ++e) {
+      const auto c = elements.row(e);
+      tri.row(2 * e) << c(0), c(1), c(2);
+      tri.row(2 * e + 1) << c(0), c(2), c(3);
+    }
+    elements = std::move(tri);
+    return;  // 2D facets are segments either way
+  }
+  static constexpr int kKuhn[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+  Connectivity tet(elements.rows() * 6, 4);
+  for (Eigen::Index e = 0; e < elements.rows(); ++e)
+    for (int t = 0; t < 6; ++t)
+      for (int a = 0; a < 4; ++a) tet(6 * e + t, a) = elements(e, kKuhn[t][a]);
+  elements = std::move(tet);
+  for (auto& [name, set] : boundaries) {
+    Connectivity tri(set.facets.rows() * 2, 3);
+    for (Eigen::Index f = 0; f < set.facets.rows(); ++f) {
+      const auto q = set.facets.row(f);
+      tri.row(2 * f) << q(0), q(1), q(2);
+      tri.row(2 * f + 1) << q(0), q(2), q(3);
+    }
+    set.facets = std::move(tri);
+  }
+}
+
 }  // namespace
 
 StructuredMesh::StructuredMesh(const shape::BezierShape& shape, double height, const GridResolution& resolution)
@@ -181,15 +217,20 @@ StructuredMesh::StructuredMesh(const shape::BezierShape& shape, double height, c
     boundaries.emplace(std::string(to_string(face)), std::move(set));
   }
 
+  const bool simplices = resolution.element_family == ElementFamily::kSimplex;
+  if (simplices) split_into_simplices(dim, elements, boundaries);
+  const int per_cell = simplices ? (dim == 2 ? 2 : 6) : 1;
   ElementDiagnostics diagnostics;
-  diagnostics.location = [n1, n2_cells, dim](Eigen::Index element) {
-    const Eigen::Index i1 = element % n1, i2 = (element / n1) % n2_cells,
-                       k = element / (static_cast<Eigen::Index>(n1) * n2_cells);
-    return dim == 3 ? fmt::format("column {},{}, layer {}", i1, i2, k) : fmt::format("column {}, layer {}", i1, k);
+  diagnostics.location = [n1, n2_cells, dim, per_cell](Eigen::Index element) {
+    const Eigen::Index cell = element / per_cell;
+    const Eigen::Index i1 = cell % n1, i2 = (cell / n1) % n2_cells, k = cell / (static_cast<Eigen::Index>(n1) * n2_cells);
+    const std::string piece = per_cell > 1 ? fmt::format(", simplex {} of the cell", element % per_cell) : "";
+    return dim == 3 ? fmt::format("column {},{}, layer {}{}", i1, i2, k, piece)
+                    : fmt::format("column {}, layer {}{}", i1, k, piece);
   };
   diagnostics.inverted_hint = " — is a control height at or above geometry.height?";
-  mesh_ = Mesh(dim == 2 ? ElementKind::kQuad4 : ElementKind::kHex8, std::move(reference), std::move(elements),
-               std::move(V), std::move(boundaries), std::move(diagnostics));
+  mesh_ = Mesh(element_kind(resolution.element_family, dim), std::move(reference), std::move(elements), std::move(V),
+               std::move(boundaries), std::move(diagnostics));
 }
 
 }  // namespace frictopt::mesh

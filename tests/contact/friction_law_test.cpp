@@ -79,7 +79,7 @@ TEST(FrictionLaw, ThesisPolygonHasVerticesOnTheCircleAtOddMultiplesOfPiOverN) {
   }
 }
 
-TEST(FrictionLaw, AnisotropicRhombusEdgeDataMatchesSpec03Section16) {
+TEST(FrictionLaw, AnisotropicRhombusEdgeDataMatchesRemark621) {
   const double f1 = 0.3, f2 = 0.7;
   const auto law = FrictionLaw::polygon({f1, f2, f1, f2});
   const Eigen::Vector2d e1 = Eigen::Vector2d(f2 - f1, f1 + f2).normalized();

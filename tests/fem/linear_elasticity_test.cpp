@@ -31,8 +31,10 @@ Eigen::VectorXd curved_design(int d) {
   return alpha;
 }
 
-mesh::GridResolution resolution(int dim, int n) {
-  return dim == 2 ? mesh::GridResolution{{2 * n, 0, n}, 1.0} : mesh::GridResolution{{n, n, n}, 1.0};
+mesh::GridResolution resolution(int dim, int n, mesh::ElementFamily family = mesh::ElementFamily::kTensorProduct) {
+  mesh::GridResolution r = dim == 2 ? mesh::GridResolution{{2 * n, 0, n}, 1.0} : mesh::GridResolution{{n, n, n}, 1.0};
+  r.element_family = family;
+  return r;
 }
 
 // Prescribes the values of a vector field on every boundary node (all faces, bottom included).
@@ -56,10 +58,18 @@ const IsotropicMaterial kSteel{2.1e11, 0.3, PlaneModel::kPlaneStrain};
 
 class ElasticityByDimension : public ::testing::TestWithParam<int> {};
 
-TEST_P(ElasticityByDimension, PatchTestReproducesLinearFieldToRoundOff) {
-  const int dim = GetParam();
+// The tests every element class must pass: Q1 and P1 (the grid split into simplices) in 2D and 3D.
+struct ElementCase {
+  int dim;
+  mesh::ElementFamily family;
+};
+class ElasticityByElement : public ::testing::TestWithParam<ElementCase> {};
+
+TEST_P(ElasticityByElement, PatchTestReproducesLinearFieldToRoundOff) {
+  const int dim = GetParam().dim;
+  const mesh::ElementFamily family = GetParam().family;
   const auto s = make_shape(dim);
-  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 4)).take_mesh();
+  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 4, family)).take_mesh();
   const Eigen::MatrixXd X = mesh.positions(curved_design(s.num_controls()));
   Eigen::MatrixXd B(dim, dim);
   B.setZero();
@@ -162,10 +172,11 @@ TEST_P(ElasticityByDimension, ManufacturedHarmonicSolutionConvergesAtSecondOrder
   }
 }
 
-TEST_P(ElasticityByDimension, StiffnessIsSymmetricPositiveDefiniteAfterDirichlet) {
-  const int dim = GetParam();
+TEST_P(ElasticityByElement, StiffnessIsSymmetricPositiveDefiniteAfterDirichlet) {
+  const int dim = GetParam().dim;
+  const mesh::ElementFamily family = GetParam().family;
   const auto s = make_shape(dim);
-  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 2)).take_mesh();
+  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 2, family)).take_mesh();
   const Eigen::MatrixXd X = mesh.positions(curved_design(s.num_controls()));
   LinearElasticity problem(mesh, kSteel, expand_dirichlet(mesh, {{"left", {}, {}}}), {});
   problem.assemble(X);
@@ -183,10 +194,11 @@ TEST_P(ElasticityByDimension, StiffnessIsSymmetricPositiveDefiniteAfterDirichlet
   EXPECT_GT(eig_free(rigid), 1e-6 * eig_free.maxCoeff());
 }
 
-TEST_P(ElasticityByDimension, TractionResultantAndClapeyronEnergyBalance) {
-  const int dim = GetParam();
+TEST_P(ElasticityByElement, TractionResultantAndClapeyronEnergyBalance) {
+  const int dim = GetParam().dim;
+  const mesh::ElementFamily family = GetParam().family;
   const auto s = make_shape(dim);
-  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 3)).take_mesh();
+  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 3, family)).take_mesh();
   const Eigen::MatrixXd X = mesh.positions(curved_design(s.num_controls()));
   Eigen::VectorXd t = Eigen::VectorXd::Zero(dim);
   t(0) = 2e6;
@@ -212,10 +224,11 @@ TEST_P(ElasticityByDimension, TractionResultantAndClapeyronEnergyBalance) {
   EXPECT_LE((reaction + top_area * t).norm(), 1e-8 * top_area * t.norm());
 }
 
-TEST_P(ElasticityByDimension, ShapeDerivativeKernelMatchesCentralDifferences) {
-  const int dim = GetParam();
+TEST_P(ElasticityByElement, ShapeDerivativeKernelMatchesCentralDifferences) {
+  const int dim = GetParam().dim;
+  const mesh::ElementFamily family = GetParam().family;
   const auto s = make_shape(dim);
-  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 3)).take_mesh();
+  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 3, family)).take_mesh();
   // A traction on the right face, which moves with α, exercises ∂l/∂α as well as ∂A/∂α.
   Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(dim, -1e6, 3e6);
   LinearElasticity problem(mesh, kSteel, expand_dirichlet(mesh, {{"left", {}, {}}}),
@@ -238,10 +251,11 @@ TEST_P(ElasticityByDimension, ShapeDerivativeKernelMatchesCentralDifferences) {
   EXPECT_GT(ratios.front(), 3.0);  // second-order Taylor remainder: ratio ~4
 }
 
-TEST_P(ElasticityByDimension, ResidualDirectionalDerivativeMatchesDifferencesAndTheKernel) {
-  const int dim = GetParam();
+TEST_P(ElasticityByElement, ResidualDirectionalDerivativeMatchesDifferencesAndTheKernel) {
+  const int dim = GetParam().dim;
+  const mesh::ElementFamily family = GetParam().family;
   const auto s = make_shape(dim);
-  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 3)).take_mesh();
+  const mesh::Mesh mesh = mesh::StructuredMesh(s, 1.0, resolution(dim, 3, family)).take_mesh();
   Eigen::VectorXd t = Eigen::VectorXd::LinSpaced(dim, -1e6, 3e6);
   LinearElasticity problem(mesh, kSteel, expand_dirichlet(mesh, {{"left", {}, {}}}),
                            {{"right", t}});
@@ -268,6 +282,15 @@ TEST_P(ElasticityByDimension, ResidualDirectionalDerivativeMatchesDifferencesAnd
 
 INSTANTIATE_TEST_SUITE_P(Dim, ElasticityByDimension, ::testing::Values(2, 3),
                          [](const auto& param_info) { return "Dim" + std::to_string(param_info.param); });
+INSTANTIATE_TEST_SUITE_P(Element, ElasticityByElement,
+                         ::testing::Values(ElementCase{2, mesh::ElementFamily::kTensorProduct},
+                                           ElementCase{3, mesh::ElementFamily::kTensorProduct},
+                                           ElementCase{2, mesh::ElementFamily::kSimplex},
+                                           ElementCase{3, mesh::ElementFamily::kSimplex}),
+                         [](const auto& param_info) {
+                           return std::string(mesh::to_string(
+                               mesh::element_kind(param_info.param.family, param_info.param.dim)));
+                         });
 
 TEST(StressRecovery, VonMisesOfUniaxialAndPureShear) {
   Eigen::Matrix<double, 6, 1> s;

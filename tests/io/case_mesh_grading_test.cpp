@@ -106,5 +106,21 @@ TEST(CaseMeshVerticalGrading, BadValuesAreReportedWithTheField) {
                       {"mesh.cells", "mesh.cells[vertical] = 8"});
 }
 
+// [mesh] element (docs/case-format.md): the grid's Q1 cells by default, P1 simplices on request,
+// the name of the other dimension or an unknown name refused naming the field and the choices.
+TEST(CaseMeshElement, ChoosesTheCellsAndRefusesNamesOfTheOtherDimension) {
+  EXPECT_EQ(parse_case(case_text(3, ""), "case.toml").body.resolution.element_family,
+            mesh::ElementFamily::kTensorProduct);
+  EXPECT_EQ(parse_case(case_text(3, "element = \"hex8\"\n"), "case.toml").body.resolution.element_family,
+            mesh::ElementFamily::kTensorProduct);
+  EXPECT_EQ(parse_case(case_text(3, "element = \"tet4\"\n"), "case.toml").body.resolution.element_family,
+            mesh::ElementFamily::kSimplex);
+  EXPECT_EQ(parse_case(case_text(2, "element = \"tri3\"\n"), "case.toml").body.resolution.element_family,
+            mesh::ElementFamily::kSimplex);
+  expect_invalid_case(case_text(2, "element = \"tet4\"\n"), {"mesh.element = \"tet4\"", "\"quad4\"", "\"tri3\"", "2D body"});
+  expect_invalid_case(case_text(3, "element = \"tet10\"\n"), {"mesh.element = \"tet10\"", "\"hex8\"", "\"tet4\""});
+  expect_invalid_case(case_text(3, "element = 4\n"), {"mesh.element"});
+}
+
 }  // namespace
 }  // namespace frictopt::io

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Patch test on an in-plane graded, vertically graded (power law and "contact") and morphed
 // structured grid (docs/case-format.md, "[mesh]"): Q1 cells reproduce every linear displacement
-// field exactly on any mesh of convex cells, so a linear field prescribed on the whole boundary
-// must come back exactly inside.
+// field exactly on any mesh of convex cells, and so do the grid's cells split into P1 simplices
+// ([mesh] element = "tri3"/"tet4") if the split is conforming, so a linear field prescribed on
+// the whole boundary must come back exactly inside.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -17,7 +18,7 @@
 namespace frictopt::mesh {
 namespace {
 
-TEST(GradedStructuredMesh, PassesThePatchTestIn2DAnd3D) {
+void expect_patch_test_passed(ElementFamily family) {
   for (const auto& [dim, contact_layers] : {std::pair{2, false}, std::pair{3, false}, std::pair{2, true}, std::pair{3, true}}) {
     SCOPED_TRACE(std::to_string(dim) + "D" + (contact_layers ? ", vertical grading contact" : ", power law"));
     const auto shape = dim == 2 ? shape::BezierShape::curve(1.0, 4) : shape::BezierShape::surface(1.0, 0.8, 3, 3);
@@ -31,7 +32,9 @@ TEST(GradedStructuredMesh, PassesThePatchTestIn2DAnd3D) {
       resolution.fine_depth = 0.25;
       resolution.vertical_growth = 1.5;
     }
+    resolution.element_family = family;
     const StructuredMesh grid(shape, 1.0, resolution);
+    ASSERT_EQ(family_of(grid.mesh().element_kind()), family);
     const Mesh& mesh = grid.mesh();
     Eigen::VectorXd alpha = Eigen::VectorXd::Constant(shape.num_controls(), 0.1);
     alpha(1) = 0.25;  // a non-flat bottom: the cells are morphed, not only stretched
@@ -69,6 +72,10 @@ TEST(GradedStructuredMesh, PassesThePatchTestIn2DAnd3D) {
     EXPECT_LE(worst, 1e-11 * scale);
   }
 }
+
+TEST(GradedStructuredMesh, PassesThePatchTestIn2DAnd3D) { expect_patch_test_passed(ElementFamily::kTensorProduct); }
+
+TEST(GradedStructuredMesh, PassesThePatchTestSplitIntoSimplices) { expect_patch_test_passed(ElementFamily::kSimplex); }
 
 }  // namespace
 }  // namespace frictopt::mesh

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The full patch test on distorted imported meshes (docs/meshes.md): Q1 cells reproduce every
-// affine displacement exactly on any mesh of convex cells, so an affine field with a general
+// affine displacement exactly on any mesh of convex cells, and P1 simplices on any mesh, so an affine field with a general
 // gradient (stretch, shear and rotation in every direction), prescribed at every boundary
 // node with ν = 0.3, must come back exactly at the interior nodes. The meshes are Gmsh's
 // subdivisions of triangles (2D) and tetrahedra (3D) into quadrilaterals and hexahedra, whose
 // cells are far from rectangular (minimum scaled Jacobian asserted below 0.7 in 2D, 0.5 in 3D;
-// 1 for rectangles). Complements
+// 1 for rectangles), and the same files' triangles and tetrahedra kept as P1 cells. Complements
 // tests/study/gmsh_body_test.cpp (uniaxial strain through ElasticBody, ν = 0).
 #include <gtest/gtest.h>
 
@@ -26,8 +26,10 @@ namespace fs = std::filesystem;
 const fs::path kData = fs::path(FRICTOPT_SOURCE_DIR) / "tests/mesh/data";
 
 // `distorted`: the minimum scaled Jacobian the mesh must stay below (1 for rectangular cells).
-void expect_affine_fields_reproduced(const fs::path& file, double size, double distorted) {
-  const Mesh mesh = GmshMesh(file, {.size = size}).take_mesh();
+void expect_affine_fields_reproduced(const fs::path& file, double size, double distorted,
+                                     ElementFamily family = ElementFamily::kTensorProduct) {
+  const Mesh mesh = GmshMesh(file, {.size = size, .family = family}).take_mesh();
+  ASSERT_EQ(family_of(mesh.element_kind()), family);
   const int dim = mesh.dim();
   const Eigen::MatrixXd& X = mesh.reference_positions();
   EXPECT_LT(mesh.min_scaled_jacobian(X), distorted) << "the mesh should be distorted";
@@ -69,6 +71,14 @@ TEST(ImportedMeshPatchTest, AffineFieldsAreExactOnSubdividedTriangles) {
 
 TEST(ImportedMeshPatchTest, AffineFieldsAreExactOnSubdividedTetrahedra) {
   expect_affine_fields_reproduced(kData / "box.geo", 0.15, 0.5);
+}
+
+TEST(ImportedMeshPatchTest, AffineFieldsAreExactOnTrianglesKeptAsP1Cells) {
+  expect_affine_fields_reproduced(kData / "mms_plate.geo", 0.08, 1.0, ElementFamily::kSimplex);
+}
+
+TEST(ImportedMeshPatchTest, AffineFieldsAreExactOnTetrahedraKeptAsP1Cells) {
+  expect_affine_fields_reproduced(kData / "box.geo", 0.08, 1.0, ElementFamily::kSimplex);
 }
 
 }  // namespace

@@ -76,9 +76,11 @@ TEST(Mesh, ConstructorRefusesInconsistentParts) {
 }
 
 TEST(ElementKind, NamesRoundTrip) {
-  for (ElementKind kind : {ElementKind::kQuad4, ElementKind::kHex8})
+  for (ElementKind kind : {ElementKind::kQuad4, ElementKind::kHex8, ElementKind::kTri3, ElementKind::kTet4}) {
     EXPECT_EQ(parse_element_kind(to_string(kind)), kind);
-  EXPECT_THROW((void)parse_element_kind("tet4"), InvalidInput);
+    EXPECT_EQ(element_kind(family_of(kind), spatial_dimension(kind)), kind);
+  }
+  EXPECT_THROW((void)parse_element_kind("tet10"), InvalidInput);
 }
 
 }  // namespace

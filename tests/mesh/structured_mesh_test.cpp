@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdint>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 #include <random>
@@ -178,6 +181,63 @@ TEST(StructuredMesh, RefusesAGridWhoseIndicesDoNotFitBeforeAllocating) {
     const std::string what = e.what();
     EXPECT_NE(what.find("mesh.cells = [50000, 50000]"), std::string::npos) << what;
     EXPECT_NE(what.find("5000200002 unknowns"), std::string::npos) << what;
+  }
+}
+
+
+// [mesh] element = "tet4"/"tri3": the grid's cells split into simplices on the same nodes. The split
+// must be conforming (every interior face shared by exactly two simplices), its exterior faces must be
+// exactly the named boundary sets' facets, every simplex positively oriented, and the volume the Q1
+// grid's (exact for a flat design: the box; the bilinear faces of a morphed hexahedron are not
+// planar, so a curved design's volumes differ at second order).
+TEST(StructuredMesh, SplitIntoSimplicesIsConformingAndKeepsNodesFacesAndVolume) {
+  for (int dim : {2, 3}) {
+    SCOPED_TRACE(std::to_string(dim) + "D");
+    const auto shape = dim == 2 ? shape::BezierShape::curve(1.0, 3) : shape::BezierShape::surface(1.0, 0.8, 3, 2);
+    GridResolution q1{{5, 4, 3}, 1.3};
+    GridResolution p1 = q1;
+    p1.element_family = ElementFamily::kSimplex;
+    const StructuredMesh hexes(shape, 0.6, q1), simplices(shape, 0.6, p1);
+    const Mesh& mesh = simplices.mesh();
+    EXPECT_EQ(mesh.element_kind(), dim == 2 ? ElementKind::kTri3 : ElementKind::kTet4);
+    EXPECT_EQ(mesh.num_elements(), hexes.mesh().num_elements() * (dim == 2 ? 2 : 6));
+    EXPECT_EQ(mesh.reference_positions(), hexes.mesh().reference_positions());
+    EXPECT_EQ((mesh.design_jacobian() - hexes.mesh().design_jacobian()).norm(), 0.0);
+    const Eigen::VectorXd flat = Eigen::VectorXd::Zero(shape.num_controls());
+    EXPECT_NEAR(mesh.volume(mesh.positions(flat)), hexes.mesh().volume(hexes.mesh().positions(flat)), 1e-14);
+    Eigen::VectorXd curved = Eigen::VectorXd::LinSpaced(shape.num_controls(), 0.0, 0.2);
+    const double v_p1 = mesh.volume(mesh.positions(curved)), v_q1 = hexes.mesh().volume(hexes.mesh().positions(curved));
+    EXPECT_NEAR(v_p1, v_q1, 1e-2 * v_q1);
+    EXPECT_GT(mesh.min_scaled_jacobian(mesh.positions(curved)), 0.1);
+    // Conformity and boundary facets: each facet key (sorted nodes) of the cells counted.
+    const std::vector<std::vector<int>> local =
+        dim == 2 ? std::vector<std::vector<int>>{{0, 1}, {1, 2}, {2, 0}}
+                 : std::vector<std::vector<int>>{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+    std::map<std::vector<int>, int> count;
+    for (Eigen::Index e = 0; e < mesh.num_elements(); ++e)
+      for (const auto& f : local) {
+        std::vector<int> key;
+        for (int a : f) key.push_back(mesh.elements()(e, a));
+        std::sort(key.begin(), key.end());
+        ++count[key];
+      }
+    std::set<std::vector<int>> exterior, named;
+    for (const auto& [key, n] : count) {
+      EXPECT_LE(n, 2) << "a face shared by more than two simplices";
+      if (n == 1) exterior.insert(key);
+    }
+    for (const std::string& name : mesh.boundary_names()) {
+      const Connectivity& facets = mesh.boundary(name).facets;
+      ASSERT_EQ(facets.cols(), dim);
+      for (Eigen::Index f = 0; f < facets.rows(); ++f) {
+        std::vector<int> key(facets.row(f).data(), facets.row(f).data() + dim);
+        std::sort(key.begin(), key.end());
+        EXPECT_EQ(count.count(key), 1u) << name << " facet " << f << " is not a face of the simplices";
+        named.insert(key);
+      }
+    }
+    EXPECT_EQ(named, exterior) << "the named faces must be exactly the exterior faces (a nonconforming split "
+                                  "leaves interior faces of one simplex)";
   }
 }
 

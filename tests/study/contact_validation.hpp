@@ -48,6 +48,8 @@ struct BlockSpec {
   /// down to fine_depth, growing by <= vertical_growth above; otherwise the power law of
   /// bottom_grading.
   double fine_depth = 0.0, vertical_growth = 1.2;
+  /// The grid's cells: Q1, or split into P1 simplices ([mesh] element = "tet4"/"tri3").
+  mesh::ElementFamily family = mesh::ElementFamily::kTensorProduct;
 };
 
 /// The in-plane cell size at the apex: L/cells, or the refinement box's cell when graded.
@@ -92,6 +94,7 @@ inline BodyDefinition block_definition(const BlockSpec& s) {
   def.shape = s.dim == 2 ? shape::BezierShape::curve(s.width, 3) : shape::BezierShape::surface(s.width, s.width, 3, 3);
   def.height = s.height;
   def.resolution.cells = {s.cells, s.dim == 2 ? 1 : s.cells, s.layers};
+  def.resolution.element_family = s.family;
   if (s.fine_depth > 0) {
     def.resolution.vertical_grading = mesh::VerticalGrading::kContact;
     def.resolution.fine_depth = s.fine_depth;
@@ -118,28 +121,9 @@ inline BodyDefinition block_definition(const BlockSpec& s) {
   return def;
 }
 
-/// Projected area of Γ_c per contact node (2D: length), lumped from the bottom facets (the
-/// same rule as io::contact_tributary_areas, kept here so the tests depend on study only).
-inline Eigen::VectorXd tributary_areas(const ElasticBody& body) {
-  const mesh::Mesh& m = body.mesh();
-  const contact::ContactBoundary& boundary = *body.contact_boundary();
-  std::vector<Eigen::Index> index(static_cast<std::size_t>(m.num_nodes()), -1);
-  for (Eigen::Index i = 0; i < boundary.num_nodes(); ++i)
-    index[static_cast<std::size_t>(boundary.nodes()[static_cast<std::size_t>(i)])] = i;
-  const Eigen::MatrixXd X = m.positions(Eigen::VectorXd::Zero(m.num_design_variables()));
-  Eigen::VectorXd area = Eigen::VectorXd::Zero(boundary.num_nodes());
-  const mesh::Connectivity facets = m.boundary("bottom").facets;
-  for (Eigen::Index f = 0; f < facets.rows(); ++f) {
-    const double a = m.dim() == 2 ? std::abs(X(facets(f, 1), 0) - X(facets(f, 0), 0))
-                                  : std::abs((X(facets(f, 1), 0) - X(facets(f, 0), 0)) *
-                                             (X(facets(f, 3), 1) - X(facets(f, 0), 1)));
-    for (Eigen::Index k = 0; k < facets.cols(); ++k) {
-      const Eigen::Index i = index[static_cast<std::size_t>(facets(f, k))];
-      if (i >= 0) area(i) += a / static_cast<double>(facets.cols());
-    }
-  }
-  return area;
-}
+/// Projected area of Γ_c per contact node (2D: length): the contact boundary's ∫ N_a over the
+/// bottom facets (a quarter of each quadrilateral, a third of each triangle, half a segment).
+inline Eigen::VectorXd tributary_areas(const ElasticBody& body) { return body.contact_boundary()->tributary_areas(); }
 
 /// Distance of each contact node from the apex (centre of the base) in the x' plane.
 inline Eigen::VectorXd apex_distances(const ElasticBody& body, double width) {

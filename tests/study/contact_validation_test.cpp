@@ -466,3 +466,81 @@ TEST(ElasticBodySymmetry, BottomNodesWithAPrescribedComponentAreNotContactNodes)
 
 }  // namespace
 }  // namespace frictopt::study::validation
+
+namespace frictopt::study::validation {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// The contact patch test (docs/contact-validation.md §0): a flat block on the rigid plane, its top
+// moved down by δ (vertical component only), the lateral rigid motions held at top corners. The
+// exact solution is uniaxial stress, σ_33 = −E δ/H uniform (plane
+// strain: E/(1 − ν²)), a linear
+// displacement field; every element reproduces it, and consistent contact weights (∫ N_a over the
+// contact facets: a quarter of a quadrilateral, a third of a triangle) then give every contact
+// node the pressure λ_i/a_i = E δ/H exactly — on a graded grid whose facets all differ in size.
+// Frictionless with ν = 0.3 (the bottom slides outward), and with the anisotropic 4-gon at ν = 0
+// (nothing slides, all nodes stick).
+TEST(ContactPatchTest, UniformPressureIsTransmittedExactlyByQ1AndP1Cells) {
+  for (int dim : {2, 3})
+    for (mesh::ElementFamily family : {mesh::ElementFamily::kTensorProduct, mesh::ElementFamily::kSimplex})
+      for (bool friction : {false, true}) {
+        SCOPED_TRACE(std::string(mesh::to_string(mesh::element_kind(family, dim))) +
+                     (friction ? ", 4-gon friction, ν = 0" : ", frictionless, ν = 0.3"));
+        constexpr double kDelta = 1e-3, kHeight = 0.8, kYoung = 1e9;
+        BodyDefinition b;
+        b.name = "contact-patch";
+        b.shape = dim == 2 ? shape::BezierShape::curve(1.0, 3) : shape::BezierShape::surface(1.0, 0.7, 3, 3);
+        b.height = kHeight;
+        b.resolution.cells = {9, dim == 2 ? 1 : 7, 5};
+        b.resolution.grading = 1.4;
+        b.resolution.growth = 1.3;
+        b.resolution.refine_box = std::array<double, 4>{0.3, 0.5, 0.2, 0.4};
+        b.resolution.element_family = family;
+        b.material = {kYoung, friction ? 0.0 : 0.3, fem::PlaneModel::kPlaneStrain};
+        Eigen::VectorXd down = Eigen::VectorXd::Zero(dim);
+        down(dim - 1) = -kDelta;
+        b.dirichlet = {{"top", {dim - 1}, down}};
+        // The lateral rigid motions held at two top corners, where the exact field u_i = ν δ x_i/H
+        // (i < dim) vanishes in the components held (no contact node is constrained).
+        const auto corner = [&](double x1, std::vector<int> components) {
+          fem::NodalConstraint c;
+          Eigen::VectorXd point = Eigen::VectorXd::Zero(dim);
+          point(0) = x1;
+          point(dim - 1) = kHeight;
+          c.where.point = point;
+          c.where.tolerance = 1e-9;
+          c.components = std::move(components);
+          return c;
+        };
+        b.constraints = {dim == 2 ? corner(0.0, {0}) : corner(0.0, {0, 1})};
+        if (dim == 3) b.constraints.push_back(corner(1.0, {1}));
+        b.initial_design = Eigen::VectorXd::Zero(b.shape.num_controls());
+        b.admissible.upper_bound = 0.1;
+        b.admissible.height = kHeight;
+        ContactDefinition contact;
+        if (dim == 2)
+          contact.law = friction ? FrictionLaw::interval(0.4, 0.2) : FrictionLaw::interval(0.0, 0.0);
+        else
+          contact.law = friction ? FrictionLaw::polygon({0.4, 0.2, 0.4, 0.2}) : FrictionLaw::disc(0.0);
+        b.contact = contact;
+        ElasticBody body(b);
+        const BodyState state = body.solve(b.initial_design);
+        ASSERT_EQ(state.summary.status, Status::kConverged) << state.summary.message;
+        const Eigen::VectorXd pressure =
+            state.contact->state.normal_forces().cwiseQuotient(body.contact_boundary()->tributary_areas());
+        // Uniaxial stress; in plane strain the modulus is E/(1 − ν²).
+        const double nu = b.material.poisson;
+        const double exact = (dim == 2 ? kYoung / (1 - nu * nu) : kYoung) * kDelta / kHeight;
+        const double error = (pressure.array() - exact).abs().maxCoeff() / exact;
+        std::printf("contact patch test, %s%s: %lld contact nodes, pressure %.6e Pa (exact %.6e), max error %.1e\n",
+                    std::string(mesh::to_string(body.mesh().element_kind())).c_str(), friction ? ", friction" : "",
+                    static_cast<long long>(pressure.size()), pressure.mean(), exact, error);
+        EXPECT_LE(error, 1e-8);
+        double tangential = 0.0;
+        for (Eigen::Index i = 0; i < pressure.size(); ++i) tangential = std::max(tangential, state.contact->state.q(i).norm());
+        EXPECT_LE(tangential, 1e-8 * state.contact->state.normal_forces().maxCoeff());
+      }
+}
+
+}  // namespace
+}  // namespace frictopt::study::validation

@@ -69,7 +69,8 @@ class ContactBoundary {
   /// foundation plane, so the pressure at node i is λ_i / area_i. Constant in α. A facet that is a
   /// parallelogram in the plane (the structured grid's) gives each node a quarter; any other
   /// quadrilateral (imported meshes) gives node a the integral of its shape function N_a over the
-  /// projected facet.
+  /// projected facet; a triangle (tetrahedral meshes) gives each of its nodes a third (∫ N_a, all
+  /// positive: the linear triangle has no vanishing vertex weights).
   const Eigen::VectorXd& tributary_areas() const { return areas_; }
   /// Initial gaps g_i = n·X(node_i) − d (docs/theory/problem.md §3: G_α(x'_i) = X(node_i, dim−1)
   /// for the standard foundation).

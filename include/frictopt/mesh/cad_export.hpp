@@ -33,7 +33,7 @@ Eigen::Vector3d evaluate(const BezierGeometry& geometry, double u, double v = 0.
 std::string bezier_step(const BezierGeometry& geometry, const std::string& name);
 
 /// The exterior facets of a mesh (facets of exactly one cell), oriented with the outward
-/// normal (right-hand rule), one per row: 2 nodes (2D) or 4 (3D).
+/// normal (right-hand rule), one per row: 2 nodes (2D), 4 (hexahedra) or 3 (tetrahedra).
 Connectivity exterior_facets(const Mesh& mesh);
 
 enum class MeshFileFormat {

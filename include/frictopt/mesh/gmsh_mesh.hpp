@@ -41,6 +41,11 @@ struct GmshMeshOptions {
   /// Wall-clock seconds the Gmsh child process may take (reading, meshing); then it is killed
   /// and the file refused.
   double time_limit_seconds = 600.0;
+  /// The cells the body is meshed with (docs/meshes.md): kTensorProduct, Q1 quadrilaterals or
+  /// hexahedra (a .geo's simplices are subdivided by Gmsh, a .msh's by frictopt), or kSimplex,
+  /// P1 triangles or tetrahedra as Gmsh makes them or the .msh holds them (no subdivision; a
+  /// file with quadrilaterals or hexahedra is then refused).
+  ElementFamily family = ElementFamily::kTensorProduct;
 };
 
 /// Refuses a .geo file that could do more than describe a geometry: throws InvalidInput naming
@@ -66,8 +71,9 @@ std::uint64_t available_memory_bytes();
 void check_msh_file(const std::filesystem::path& file);
 
 /// The body of a Gmsh file, as a Mesh of Q1 cells (quadrilaterals in 2D, hexahedra in 3D;
-/// docs/meshes.md says why) with no design variables yet (V has 0 columns: the design
-/// extension adds them, design_extension.hpp).
+/// docs/meshes.md says why) or, with options.family = kSimplex, of P1 cells (triangles,
+/// tetrahedra), with no design variables yet (V has 0 columns: the design extension adds
+/// them, design_extension.hpp).
 ///
 /// - Dimension: 3 when the file has volume elements, else 2 (then the body lies in a plane
 ///   z = const and x3 is dropped).
@@ -76,7 +82,7 @@ void check_msh_file(const std::filesystem::path& file);
 ///   others keep the order of their Gmsh tags.
 /// - Boundary sets: one per named physical group of dimension dim − 1 (an unnamed group is
 ///   called by its number, e.g. "3"), its facets the group's elements.
-/// - A .geo is meshed by Gmsh with options.size; when its mesh has triangles or tetrahedra
+/// - A .geo is meshed by Gmsh with options.size; for Q1 cells, when its mesh has triangles or tetrahedra
 ///   (no Recombine / Transfinite in the .geo), it is meshed again with Gmsh's all-quad (2D)
 ///   or all-hex (3D) subdivision (Mesh.SubdivisionAlgorithm), which splits every simplex into
 ///   quads/hexes — the cells are then about half options.size.

@@ -5,6 +5,8 @@
 #include <array>
 #include <optional>
 
+#include "frictopt/mesh/element_kind.hpp"
+
 namespace frictopt::mesh {
 
 /// How the layers are spaced vertically (docs/case-format.md, "Vertical grading").
@@ -33,6 +35,11 @@ struct GridResolution {
   /// [x1min, x1max, x2min, x2max] in metres (the x2 pair is unused in 2D); without it and with
   /// growth > 1, the centred box of a third of each extent (kDefaultRefineFraction).
   std::optional<std::array<double, 4>> refine_box{};
+  /// The cells (docs/case-format.md, "[mesh] element"): kTensorProduct, the grid's Q1 cells, or
+  /// kSimplex, every grid cell split into P1 simplices sharing the grid's nodes (each hexahedron
+  /// into 6 tetrahedra around its diagonal from the lowest to the highest corner, each quadrilateral into 2
+  /// triangles), the same nodes, design motion and boundary sets.
+  ElementFamily element_family = ElementFamily::kTensorProduct;
 };
 
 /// The default refinement box is the central 1/3 of each in-plane extent.

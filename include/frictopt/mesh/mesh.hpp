@@ -22,8 +22,8 @@ using Connectivity = Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 /// A named part of the boundary (deal.II's boundary id, MFEM's boundary attribute): the contact
 /// surface Γ_c, a Dirichlet part Γ_u, a loaded part Γ_p.
 struct BoundarySet {
-  /// Facets, one per row: 2 nodes (2D segments) or 4 (3D quadrilaterals, cyclic order) for Q1
-  /// cells; in general ElementKind's facet node count.
+  /// Facets, one per row: 2 nodes (2D segments), 4 (3D quadrilaterals of hexahedra, cyclic
+  /// order) or 3 (triangles of tetrahedra): ElementKind's facet node count.
   Connectivity facets;
   /// The nodes of the facets, each once, in increasing order.
   std::vector<int> nodes;
@@ -59,7 +59,7 @@ class Mesh {
   int num_elements() const { return static_cast<int>(elements_.rows()); }
   int nodes_per_element() const { return mesh::nodes_per_element(kind_); }
   int num_dofs() const { return dim() * num_nodes(); }
-  /// VTK cell type of the cells (9 = VTK_QUAD, 12 = VTK_HEXAHEDRON).
+  /// VTK cell type of the cells (9 = VTK_QUAD, 12 = VTK_HEXAHEDRON, 5 = VTK_TRIANGLE, 10 = VTK_TETRA).
   int vtk_cell_type() const { return mesh::vtk_cell_type(kind_); }
   Eigen::Index num_design_variables() const { return V_.cols(); }
 
@@ -78,16 +78,16 @@ class Mesh {
   std::vector<std::string> boundary_names() const;
 
   /// Volume (3D) or area per unit thickness (2D) of the mesh at positions X, by the element's
-  /// Gauss rule of det J (exact for the multilinear geometry of Q1 cells).
+  /// quadrature of det J (exact for the multilinear geometry of Q1 cells and for simplices).
   double volume(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
   /// Throws InvalidInput naming the cell (and the producer's location of it), the design label
   /// and det J when a cell of X is inverted or degenerate (det J at a corner <= 1e-12 × the
   /// cell's reference size). `design_label` says which design is meant, e.g. "design 12".
   void check_quality(const Eigen::Ref<const Eigen::MatrixXd>& X, const std::string& design_label) const;
-  /// The smallest scaled Jacobian over the cells' corners at positions X: at a corner, det of
-  /// the Jacobian with its columns (the edge directions there) normalized; 1 for a rectangle
-  /// or box, 0 for a degenerate corner, < 0 for an inverted one (the Verdict library's
-  /// measure for quads and hexes).
+  /// The smallest scaled Jacobian over the cells' corners at positions X (capped at 1): at a
+  /// corner, det of the unit edge directions there; 1 for a rectangle or box and for an
+  /// equilateral simplex, 0 for a degenerate corner, < 0 for an inverted one (the Verdict
+  /// library's measures for quads, hexes, triangles and tetrahedra).
   double min_scaled_jacobian(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
   /// The same mesh with another design Jacobian V ((num_nodes·dim) × d): how a design motion
   /// (design_extension.hpp) is attached to a mesh read without one.

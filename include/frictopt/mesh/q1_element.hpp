@@ -87,9 +87,23 @@ struct Q1Element {
     return G;
   }
 
+  /// The reference cell's centre (where the constant-strain part of a field is sampled).
+  static Point centre() { return Point::Zero(); }
+
+  /// det of the Jacobian at corner a with its columns (the edge directions there) normalized:
+  /// 1 for a box, 0 degenerate, < 0 inverted (the Verdict library's hex/quad scaled Jacobian).
+  static double scaled_jacobian_at_corner(const Eigen::Matrix<double, kNodes, Dim>& Xe, int a) {
+    static const auto c = corners();
+    Eigen::Matrix<double, Dim, Dim> J = Xe.transpose() * gradients(c.row(a).transpose());
+    const Eigen::Matrix<double, 1, Dim> lengths = J.colwise().norm();
+    if (!(lengths.minCoeff() > 0)) return 0.0;  // a collapsed edge
+    for (int k = 0; k < Dim; ++k) J.col(k) /= lengths(k);
+    return J.determinant();
+  }
+
   /// Tensor Gauss–Legendre rule with 2 points per direction (exact for the Q1 stiffness on
   /// parallelepipeds; the standard full integration for Q1 elasticity).
-  static std::array<std::pair<Point, double>, kNodes> gauss2() {
+  static std::array<std::pair<Point, double>, kNodes> quadrature() {
     std::array<std::pair<Point, double>, kNodes> rule;
     const double g = 1.0 / std::sqrt(3.0);
     const auto c = corners();

@@ -28,7 +28,8 @@ struct StructuredGridSizes {
 /// without allocating anything.
 StructuredGridSizes structured_grid_sizes(int dim, const GridResolution& resolution);
 
-/// Structured mesh of bilinear quadrilaterals (2D) or trilinear hexahedra (3D).
+/// Structured mesh of bilinear quadrilaterals (2D) or trilinear hexahedra (3D), or of those cells
+/// split into P1 triangles or tetrahedra on the same nodes (resolution.element_family).
 ///
 /// Why Q1 and not simplices: the morph moves nodes only vertically along fixed columns, so a
 /// structured Q1 grid stays well shaped for every admissible design, needs no remeshing, has
