@@ -126,3 +126,19 @@ def test_repr_reads_well(solved) -> None:
     assert repr(body).startswith("<frictopt.Body 'punch-anisotropic': 3D")
     assert "contact nodes (stick" in repr(s)
     assert "status='converged'" in repr(s.summary)
+
+
+def test_tetrahedra_solve_and_check_gradient(coarse_case: frictopt.Case) -> None:
+    # [mesh] element = "tet4" (docs/meshes.md, "Tetrahedra and triangles"): the same grid split into
+    # 6 tetrahedra per cell, the same nodes and contact nodes; ξ against central differences.
+    case = coarse_case.with_overrides(mesh={"element": "tet4"})
+    body = frictopt.Body(case)
+    assert body.element == "tet4" and body.num_elements == 8 * 8 * 4 * 6
+    assert frictopt.Body(coarse_case).element == "hex8"
+    s = body.solve()
+    assert s.converged
+    assert s.element_stress.shape == (8 * 8 * 4 * 6, 6) and s.positions.shape == (9 * 9 * 5, 3)
+    assert body.num_contact_nodes == 81 and abs(body.tributary_areas.sum() - 1.0) < 1e-12
+    assert "8 tet4 cells" not in repr(body) and "1536 tet4 cells" in repr(body)
+    r = frictopt.check_gradient(case)
+    assert r.ok and set(r.verdicts) <= {"match", "kink"}, r.verdicts
