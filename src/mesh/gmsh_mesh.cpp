@@ -313,9 +313,9 @@ RawMesh extract(const std::filesystem::path& file, const GmshMeshOptions& option
   auto cells_by_type = elements_of(dim, body_entities);
   const bool has_simplices = cells_by_type.count(dim == 2 ? kGmshTriangle3 : kGmshTetra4) > 0;
   const bool only_simplices = has_simplices && cells_by_type.size() == 1;
-  if (keep_simplices) {
-    // P1 cells (docs/meshes.md, "Tetrahedra"): the simplices as Gmsh made or wrote them.
-  } else if (is_geo && has_simplices) {
+  // With keep_simplices the simplices are the P1 cells as Gmsh made or wrote them (docs/meshes.md,
+  // "Tetrahedra and triangles"); otherwise they become Q1 cells.
+  if (!keep_simplices && is_geo && has_simplices) {
     // No Recombine/Transfinite in the .geo: split every simplex into quads/hexes (Gmsh's
     // subdivision), the cheapest route to the Q1 cells our kernels integrate (docs/meshes.md).
     gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", dim == 2 ? 1 : 2);
@@ -326,7 +326,7 @@ RawMesh extract(const std::filesystem::path& file, const GmshMeshOptions& option
     });
     subdivided = true;
     cells_by_type = elements_of(dim, body_entities);
-  } else if (!is_geo && only_simplices) {
+  } else if (!keep_simplices && !is_geo && only_simplices) {
     // A .msh of triangles/tetrahedra only: read as they are and subdivided by the caller
     // (subdivide_simplices), as Gmsh subdivides a .geo's.
     cell_type = dim == 2 ? kGmshTriangle3 : kGmshTetra4;
