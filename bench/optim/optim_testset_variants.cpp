@@ -7,8 +7,9 @@
 // Prints one Markdown row per variant (solved, false "converged", total evaluations) and one
 // line per unsolved or falsely converged run. Exit code 0 iff every variant solves >= 39 of 40
 // and none reports "converged" at an inaccurate value.
-//   optim_testset_variants [--accuracy A] [--variant NAME] [--only PROBLEM] [--runs]
-// --runs prints every run (problem, variant, f, relative error, evaluations, status) too.
+//   optim_testset_variants [--accuracy A] [--variant NAME] [--only PROBLEM] [--runs] [--no-restart-check]
+// --runs prints every run (problem, variant, f, relative error, evaluations, status) too;
+// --no-restart-check switches off BundleTrust::Options::confirm_by_restart.
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -22,19 +23,22 @@ int main(int argc, char** argv) {
   double accuracy = 1e-4;
   std::string only_variant, only_problem;
   bool runs = false;
+  bool no_restart = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--accuracy" && i + 1 < argc) accuracy = std::atof(argv[++i]);
     else if (a == "--variant" && i + 1 < argc) only_variant = argv[++i];
     else if (a == "--only" && i + 1 < argc) only_problem = argv[++i];
     else if (a == "--runs") runs = true;
+    else if (a == "--no-restart-check") no_restart = true;
     else {
-      std::fprintf(stderr, "usage: %s [--accuracy A] [--variant NAME] [--only PROBLEM] [--runs]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--accuracy A] [--variant NAME] [--only PROBLEM] [--runs] [--no-restart-check]\n", argv[0]);
       return 2;
     }
   }
   fo::BundleTrust::Options bt;
   bt.keep_history = false;
+  bt.confirm_by_restart = !no_restart;
   const auto problems = fo::testset::forty();
   std::printf("| variant | solved | false converged | other statuses | evaluations |\n|---|---:|---:|---|---:|\n");
   bool pass = true;
@@ -61,6 +65,7 @@ int main(int argc, char** argv) {
                     std::string(frictopt::to_string(s.status)).c_str(), std::string(fo::to_string(s.stop_reason)).c_str(),
                     fc ? " FALSE CONVERGED" : (ok ? "" : " unsolved"));
       if (runs || !ok) notes += line;
+      if (!only_problem.empty()) notes += s.brief_report() + "\n";
       if (!s.converged()) others += (others.empty() ? "" : ", ") + p.name + " " + std::string(fo::to_string(s.stop_reason));
       std::fflush(stdout);
     }
