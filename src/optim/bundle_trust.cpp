@@ -436,6 +436,7 @@ class Run {
       update_bundle(st, trial);
       update_t(st, trial);
       if (!record(st, trial)) return;
+      if (!restart_check_progress(st)) return;
     }
     finish(st, Status::kMaxIterations, StopReason::kIterationLimit, "iteration limit reached (max_iterations)");
   }
@@ -666,6 +667,28 @@ class Run {
     restart_message_ = m.str();
     return true;
   }
+  // A restart check in progress after an outer iteration: a gain above its tolerance shows the
+  // stop it checks premature (the check ends; the next stop starts its own); a bundle's worth of
+  // iterations, j_max — the budget of confirm_in_point_units — without such a gain confirms it,
+  // and the run ends converged (false returned). Why a budget: rebuilding a model in n = 50
+  // (L1HILB) took 783 evaluations to the second stop, against 229 for the first, while 100
+  // iterations show whether a fresh bundle finds a decrease above ε·F.
+  bool restart_check_progress(BundleTrust::IterationSummary& st) {
+    if (std::isnan(st.check_value)) return true;
+    const double gain = st.check_value - st.f;
+    if (gain > st.check_tolerance) {
+      st.check_value = kNaN;
+      return true;
+    }
+    if (st.iteration - st.check_iteration < s_.bundle_size_used) return true;
+    std::ostringstream m;
+    m << "almost stationary: |z+w| <= epsilon*G, aggregate error <= epsilon*F, certificate <= epsilon*G; confirmed by "
+      << st.restart_checks << " restart check(s): the restarted bundle gained " << gain * st.objective_scale
+      << " <= epsilon*F = " << st.check_tolerance * st.objective_scale << " in " << st.iteration - st.check_iteration
+      << " iterations (j_max)";
+    finish(st, Status::kConverged, StopReason::kCertifiedStationary, m.str());
+    return false;
+  }
   // The bundle reduced to the center's cut (and the cuts of its pieces at the center),
   // z_{k−1} = g(x_k), σ_{k−1} = 0 as at the start (docs/theory/bundle-trust.md §4), and t reset
   // so that the first trial d = −t·g(x_k) reaches the radius ρ of the certificate (the farthest
@@ -679,6 +702,7 @@ class Run {
   void restart_check(BundleTrust::IterationSummary& st) {
     st.check_value = st.f;
     st.check_tolerance = o_.epsilon * st.value_scale;
+    st.check_iteration = st.iteration;
     ++st.restart_checks;
     std::vector<BundleElement> kept;
     Eigen::VectorXd g;

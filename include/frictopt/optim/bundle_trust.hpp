@@ -103,6 +103,7 @@ class BundleTrust {
     int restart_checks = 0;
     double check_value = kNaN;
     double check_tolerance = kNaN;
+    int check_iteration = 0;  ///< outer iteration at which the check in progress started
   };
   using IterationCallback = std::function<CallbackResult(const IterationSummary&)>;
 
@@ -172,8 +173,9 @@ class BundleTrust {
     // Restart check of a certified stop (docs/optim.md, "Restart check"; Kiwiel 1990 restarts
     // the bundle the same way): the bundle is reduced to the center's own cut, t is reset to a
     // fresh first step C_0/‖g(x_k)‖, and the run goes on until its stopping test passes again.
-    // "Converged" only if that second stop gained at most ε·F over the first (F of the first);
-    // otherwise the first stop was premature and the second is checked in turn. A verdict that
+    // "Converged" only if that second stop — or j_max iterations, whichever comes first —
+    // gained at most ε·F over the first (F of the first); otherwise the first stop was premature
+    // and the next stop is checked in turn. A verdict that
     // needs two stops from two different bundles does not flip with the last bits of f (the
     // test set's f·(1 + k·2⁻⁴⁰) variants, docs/optim-testset.md). false: the first certified
     // stop is returned.
