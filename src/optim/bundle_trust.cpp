@@ -484,16 +484,13 @@ class Run {
   // Relative stopping test (docs/optim.md): ‖z + ω‖ <= ε·G, σ + μᵀ(c − Cx) <= ε·F and −v <= ε·F
   // (the next step's predicted decrease is negligible: keeps a large t from stopping on a flat
   // aggregate), with
-  // G = max(‖g(x_k)‖, √ε·‖g(x_1)‖) and F = max(|f(x_k)|, √ε·|f(x_1)|): relative to the
-  // subgradient and value at the center, floored by √ε times those at the start so that a
-  // smooth minimum (g(x_k) → 0) or a zero optimal value (f(x_k) → 0) still ends the run.
-  // Known limit of the value floor: where f(x_1) > f*/√ε, F is the floor, not |f|, and the test
-  // accepts value errors up to ε^1.5·|f(x_1)| (MAD8 at ε = 1e-6: f(x_1) = 2.2e4, F = 21.9 at
-  // f = 0.507). The floor ε·|f(x_1)| was tried and rejected: at f* = 0
-  // it asks the direction QP's multipliers for an aggregate error of ε²·|f(x_1)|, below the QP's
-  // resolution, and weighted-ℓ1 runs that reach f = 0 exactly ended "not certified"
-  // (BundleTrust.ConvergesWithTheThesisVariantThatNeverEnlargesT,
-  // BundleTrust.LargeSubgradientsNeitherStallTheQpNorCreep). docs/optim-testset.md.
+  // G = max(‖g(x_k)‖, √ε·‖g(x_1)‖) — relative to the subgradient at the center, floored by √ε
+  // times the one at the start so that a smooth minimum (g(x_k) → 0) still ends the run — and
+  // F of value_scale (the decrease the run has made). Until the tenth round F was
+  // max(|f(x_k)|, √ε·|f(x_1)|), not invariant under f → f + b (docs/optim-testset.md, "Units,
+  // shifts and last bits"); its floor ε·|f(x_1)| had been tried and rejected, at f* = 0 it asked
+  // the QP's multipliers for an aggregate error of ε²·|f(x_1)|, below the QP's resolution
+  // (BundleTrust.ConvergesWithTheThesisVariantThatNeverEnlargesT).
   void update_scales(BundleTrust::IterationSummary& st) const {
     const double root_eps = std::sqrt(o_.epsilon);
     double g_center = 0.0;
