@@ -499,17 +499,13 @@ class Run {
     st.subgradient_scale = std::max(g_center, root_eps * st.g_start_norm);
     st.value_scale = value_scale(st);
   }
-  // In a variable metric H, ‖z + ω‖ is read in the dual norm ‖H^{-1/2}·‖ (DirectionQp::
-  // stationarity), so G is too: G_H = max(‖H^{-1/2}g(x_k)‖, √ε‖H^{-1/2}g(x_1)‖) — the same
-  // relative test in the variables H^{1/2}x. (Old checkpoints without g(x_1): the Euclidean
-  // floor.)
   // ‖z_{k−1}‖·L of the "near" test of (b)/(c) (docs/theory/bundle-trust.md §4): the printed
   // |Δ| <= ‖z_{k−1}‖ + σ_{k−1} adds a slope to a value, i.e. reads the slope over one unit of x.
   // We read it over the run's length unit L (length_unit): ‖x_1‖∞ (1 when x_1 = 0), or the
   // application's design range max_step_length, grown with the distance the centers have
-  // travelled (grow_locality_unit) as the locality γs²/t_ref is. L scales with x and not with f, so the test
-  // is invariant under f → a·f + b and x → c·x, and on a problem whose start has ‖x_1‖∞ = 1 it
-  // is the printed test. Tried and rejected: the trial step ‖d‖ as the length (|Δ| <= ‖z‖·‖d‖
+  // travelled (grow_locality_unit) as the locality γs²/t_ref is. L scales with x and not with
+  // f, so the test is invariant under f → a·f + b and x → c·x, and on an automatic start with
+  // ‖x_1‖∞ = 1 it is the printed test. Tried and rejected: the trial step ‖d‖ as the length (|Δ| <= ‖z‖·‖d‖
   // + σ, about the predicted decrease): far trials were never "near", (c)(ii)/(d) bisected t
   // without adding cuts, and 10 of the 40 problems ended with t below t_min
   // (docs/optim-testset.md, "Units, shifts and last bits").
@@ -527,6 +523,10 @@ class Run {
     const double first_step = st.t_reference * std::max(st.g_start_norm, 1e-300);
     return std::isnan(o_.max_step_length) ? first_step / kAutomaticStepFactor : first_step;
   }
+  // In a variable metric H, ‖z + ω‖ is read in the dual norm ‖H^{-1/2}·‖ (DirectionQp::
+  // stationarity), so G is too: G_H = max(‖H^{-1/2}g(x_k)‖, √ε‖H^{-1/2}g(x_1)‖) — the same
+  // relative test in the variables H^{1/2}x. (Old checkpoints without g(x_1): the Euclidean
+  // floor.)
   [[nodiscard]] double metric_subgradient_scale(const BundleTrust::IterationSummary& st) const {
     const Eigen::VectorXd& h = st.metric.h;
     if (h.size() == 0) return st.subgradient_scale;
@@ -796,8 +796,8 @@ class Run {
   int restarts_ = 0;
   int tightenings_ = 0;
   double test_factor_ = 1.0;  // stopping test uses test_factor_·ε (see certify)
-  std::string restart_message_;
-  double certificate_radius_ = 0.0;  // ρ of the last certificate (certify), for restart_check  // how the restart check confirmed the stop (finish's message)
+  std::string restart_message_;       // how the restart check confirmed the stop (finish's message)
+  double certificate_radius_ = 0.0;  // ρ of the last certificate (certify), for restart_check
 };
 
 bool Run::inner_iteration(BundleTrust::IterationSummary& st, Trial& out) {
