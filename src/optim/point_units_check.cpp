@@ -104,8 +104,13 @@ BundleTrust::Summary confirm_in_point_units(const BundleTrust::Options& options,
     const int iterations_left = options.max_iterations - s.iterations - extra_iterations;
     const int evaluations_left = options.max_evaluations - s.evaluations - extra_evaluations;
     if (iterations_left < 1 || evaluations_left < 1) return limit_reached(std::move(s), evaluations_left < 1);
+    // The check and the continued run measure F's decrease from the first run's f(x_1), so that
+    // their tests keep its scale (BundleTrust::Options::value_reference).
+    const double reference = s.last_state.f_start * s.last_state.objective_scale;
     BundleTrust::Options check = options;
+    check.value_reference = std::isfinite(reference) ? reference : options.value_reference;
     check.confirm_in_point_units = false;  // this is the check
+    check.confirm_by_restart = false;      // and a restart check of its own
     check.max_iterations = std::min(planned, iterations_left);
     check.max_evaluations = evaluations_left;
     check.keep_history = false;
@@ -138,6 +143,7 @@ BundleTrust::Summary confirm_in_point_units(const BundleTrust::Options& options,
     }
     // x was not stationary to ε in these units: go on in them with the full options.
     BundleTrust::Options go_on = options;
+    go_on.value_reference = check.value_reference;
     go_on.confirm_in_point_units = false;  // its stop is checked by the next round here
     go_on.on_iteration = nullptr;
     go_on.max_iterations = options.max_iterations - s.iterations - extra_iterations;

@@ -283,15 +283,21 @@ fo::FunctionOracle scaled_cb2(double cf, double cx) {
 constexpr double kCb2Min = 1.9522245;
 }  // namespace
 
-// Same decisions up to round-off: identical step kinds along the common history, and the
-// stop at most one iteration apart (the last test compares numbers that sit within round-off
-// of its threshold, so it may fire one iteration earlier or later).
+// Same decisions up to round-off: identical step kinds along the common history while the
+// center is above the final value by more than 1e-8 relative, and the stop at most a few
+// iterations apart. At the minimizer itself — the restart check (Options::confirm_by_restart)
+// re-explores it — a trial's Δ = f(y) − f(x_k) is round-off of f, and serious or null is a coin
+// flip of the last bits; the power-of-two units of invariance_test.cpp check those decisions
+// bit for bit.
 static void expect_same_run(const fo::BundleTrust::Summary& a, const fo::BundleTrust::Summary& b, const std::string& what) {
   const std::size_t common = std::min(a.history.size(), b.history.size());
+  const double final_b = b.f, tolerance = 1e-8 * std::abs(b.f);
   for (std::size_t i = 0; i < common; ++i)
-    EXPECT_EQ(a.history[i].step, b.history[i].step) << what << ", iteration " << i + 1;
-  EXPECT_LE(std::abs(a.iterations - b.iterations), 1) << what;
-  EXPECT_LE(std::abs(a.evaluations - b.evaluations), 1) << what;
+    if (b.history[i].f > final_b + tolerance) {
+      EXPECT_EQ(a.history[i].step, b.history[i].step) << what << ", iteration " << i + 1;
+    }
+  EXPECT_LE(std::abs(a.iterations - b.iterations), 3) << what;
+  EXPECT_LE(std::abs(a.evaluations - b.evaluations), 3) << what;
 }
 
 TEST(BundleTrust, ScalingTheObjectiveChangesNoDecision) {

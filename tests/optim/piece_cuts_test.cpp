@@ -168,7 +168,13 @@ TEST(PieceCuts, DefaultRunInDisparateUnitsReachesTheMinimum) {
   for (double epsilon : {1e-5, 1e-7}) {
     MaxOfQuadratics problem = disparate_units_problem();
     const fo::BundleTrust::Summary s = run(problem, epsilon);
-    ASSERT_EQ(s.status, Status::kConverged) << s.brief_report();
+    // Since F reads the decrease f(x_1) − f(x_k) instead of |f(x_k)| (invariance under f + b,
+    // docs/optim.md "Invariance"), a tight ε asks the certificate (δ·ρ <= ε·F) and the QP's
+    // multipliers for less where |f| is large against the decrease, and the run may end `stalled`
+    // (stationarity_not_certified) at the accurate point (Dembo7 at ε = 1e-6: 3.3e-8 off f*,
+    // certificate 4.4e-5 against the bound 1.7e-5).
+    ASSERT_TRUE(s.status == Status::kConverged || s.stop_reason == fo::StopReason::kStationarityNotCertified)
+        << s.brief_report();
     const double accuracy = epsilon == 1e-5 ? 1e-4 : 1e-6;
     EXPECT_LE(std::abs(s.f - problem.f_star()), accuracy * problem.f_star()) << s.brief_report();
   }
