@@ -202,6 +202,14 @@ JsonValue checkpoint_to_json(const RunCheckpoint& c) {
   j["test_factor"] = s.test_factor;
   j["resolution_reached"] = s.resolution_reached;
   j["bundle_size_used"] = s.bundle_size_used;
+  // The restart check (docs/optim.md, "Restart check"): how many were started and the one in
+  // progress, so that a resume continues the check instead of starting it again.
+  j["restart_checks"] = s.restart_checks;
+  if (!std::isnan(s.check_value)) {
+    j["check_value"] = s.check_value;
+    j["check_tolerance"] = s.check_tolerance;
+    j["check_iteration"] = s.check_iteration;
+  }
   const optim::DiagonalMetric& m = s.metric;
   if (!m.is_identity() || m.steps.size() > 0 || m.resets > 0) {
     JsonValue metric = JsonValue::object();
@@ -332,6 +340,15 @@ RunCheckpoint checkpoint_from_json(const JsonValue& j, const std::string& origin
     s.resolution_reached = v.as_bool();
   }
   if (j.contains("bundle_size_used")) s.bundle_size_used = static_cast<int>(top.count("bundle_size_used", 0, 1'000'000));
+  // The restart check (absent in checkpoints written before it: none started, none in progress).
+  if (j.contains("restart_checks")) s.restart_checks = static_cast<int>(top.count("restart_checks"));
+  if (j.contains("check_value")) {
+    s.check_value = top.number("check_value", true);
+    s.check_tolerance = top.number("check_tolerance", true);
+    if (!(s.check_tolerance >= 0))
+      fail_field(origin, "check_tolerance", format_number(s.check_tolerance), "a tolerance >= 0");
+    s.check_iteration = static_cast<int>(top.count("check_iteration", 0, s.iteration));
+  }
   if (j.contains("metric")) {
     const Fields m(top.at("metric"), origin, "metric.");
     optim::DiagonalMetric& metric = s.metric;

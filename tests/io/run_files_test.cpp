@@ -64,6 +64,10 @@ RunCheckpoint checkpoint_with_every_kind_of_element() {
   c.method.test_factor = 0.1;
   c.method.resolution_reached = true;
   c.method.bundle_size_used = 18;
+  c.method.restart_checks = 2;  // a restart check in progress (docs/optim.md, "Restart check")
+  c.method.check_value = 0.75;
+  c.method.check_tolerance = 1.5e-5;
+  c.method.check_iteration = c.method.iteration - 1;
   c.fingerprint.dim = 3;
   c.fingerprint.settings = {{"material.young", "1"}};
   c.fingerprint.case_hash = hash_settings(c.fingerprint.settings);
@@ -103,6 +107,11 @@ TEST(RunFilesCheckpoint, EveryBundleElementRoundTripsTheAggregateToo) {
   EXPECT_EQ(back.method.test_factor, 0.1);
   EXPECT_TRUE(back.method.resolution_reached);
   EXPECT_EQ(back.method.bundle_size_used, 18);
+  // So does a restart check in progress (a resume once started it again).
+  EXPECT_EQ(back.method.restart_checks, 2);
+  EXPECT_EQ(back.method.check_value, 0.75);
+  EXPECT_EQ(back.method.check_tolerance, 1.5e-5);
+  EXPECT_EQ(back.method.check_iteration, c.method.iteration - 1);
 }
 
 TEST(RunFilesCheckpoint, AnEditedValueFailsTheChecksum) {
