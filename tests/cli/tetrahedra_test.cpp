@@ -3,10 +3,14 @@
 // shipped punch-tet on a coarse grid passes check-gradient (every ξ_k matches central
 // differences), optimizes to a certified stationary point, certifies, and export-shape writes a
 // .msh of tetrahedra that frictopt reads back as P1 cells; the die of Gmsh kept in tetrahedra
-// solves at a size where its subdivided hexahedra are refused (an inverted corner).
+// solves at a size where its subdivided hexahedra are refused (an inverted corner); the part
+// from CAD (cases3d/step-pad) is what its pad-cad.geo makes, and solves from its STEP file.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "common/cli_runner.hpp"
@@ -79,6 +83,32 @@ TEST(CliTetrahedra, DieKeptInTetrahedraSolvesWhereItsSubdividedHexahedraAreRefus
   const RunResult hex = run("solve " + (dir / "hex.toml").string() + " -o " + (dir / "hex").string());
   EXPECT_EQ(hex.exit_code, 2) << hex.output;
   EXPECT_NE(hex.output.find("is inverted for the mesh as read"), std::string::npos) << hex.output;
+}
+
+// The STEP file without its FILE_NAME line (the time of writing): the rest is the geometry.
+std::string step_without_timestamp(const fs::path& file) {
+  std::ifstream in(file);
+  std::ostringstream out;
+  for (std::string line; std::getline(in, line);)
+    if (line.find("FILE_NAME(") == std::string::npos) out << line << '\n';
+  return out.str();
+}
+
+TEST(CliTetrahedra, StepPartIsReproducibleFromItsGeoAndSolves) {
+  const fs::path dir = fresh_directory("cli_tetrahedra_step");
+  fs::create_directories(dir);
+  const fs::path made = dir / "pad.step";
+  const std::string command = "gmsh -0 " + (kSource / "cases3d/step-pad/pad-cad.geo").string() + " -o " + made.string() +
+                              " -format step > " + (dir / "gmsh.log").string() + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_text(dir / "gmsh.log");
+  EXPECT_EQ(step_without_timestamp(made), step_without_timestamp(kSource / "cases3d/step-pad/pad.step"))
+      << "cases3d/step-pad/pad.step is not what pad-cad.geo makes: run cases3d/step-pad/make_step.sh";
+  const RunResult solve =
+      run("solve " + (kSource / "cases3d/step-pad/case.toml").string() + " -o " + (dir / "solve").string());
+  ASSERT_EQ(solve.exit_code, 0) << solve.output;
+  EXPECT_NE(solve.output.find("(tet4, smallest scaled Jacobian"), std::string::npos) << solve.output;
+  const auto summary = frictopt::io::parse_json(read_text(dir / "solve" / "summary.json"));
+  EXPECT_GT(summary.at("contact").at("num_contact_nodes").as_number(), 100);
 }
 
 }  // namespace
