@@ -139,6 +139,6 @@ def test_tetrahedra_solve_and_check_gradient(coarse_case: frictopt.Case) -> None
     assert s.converged
     assert s.element_stress.shape == (8 * 8 * 4 * 6, 6) and s.positions.shape == (9 * 9 * 5, 3)
     assert body.num_contact_nodes == 81 and abs(body.tributary_areas.sum() - 1.0) < 1e-12
-    assert "8 tet4 cells" not in repr(body) and "1536 tet4 cells" in repr(body)
+    assert "1536 tet4 cells" in repr(body)
     r = frictopt.check_gradient(case)
     assert r.ok and set(r.verdicts) <= {"match", "kink"}, r.verdicts

@@ -121,10 +121,6 @@ inline BodyDefinition block_definition(const BlockSpec& s) {
   return def;
 }
 
-/// Projected area of Γ_c per contact node (2D: length): the contact boundary's ∫ N_a over the
-/// bottom facets (a quarter of each quadrilateral, a third of each triangle, half a segment).
-inline Eigen::VectorXd tributary_areas(const ElasticBody& body) { return body.contact_boundary()->tributary_areas(); }
-
 /// Distance of each contact node from the apex (centre of the base) in the x' plane.
 inline Eigen::VectorXd apex_distances(const ElasticBody& body, double width) {
   const Eigen::MatrixXd& x = body.contact_boundary()->plane_coordinates();
@@ -284,7 +280,7 @@ struct HertzMeasurement {
 inline HertzMeasurement measure_hertz(const ElasticBody& body, const BodyState& state, const BlockSpec& s) {
   const contact::ContactState& st = state.contact->state;
   const Eigen::VectorXd lambda = st.normal_forces();
-  const Eigen::VectorXd pressure = lambda.cwiseQuotient(tributary_areas(body));
+  const Eigen::VectorXd pressure = lambda.cwiseQuotient(body.contact_boundary()->tributary_areas());
   const Eigen::VectorXd r = apex_distances(body, s.width);
   HertzMeasurement m;
   m.cell = apex_cell(s);
